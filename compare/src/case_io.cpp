@@ -1,0 +1,290 @@
+#include "linequad/case_io.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+
+namespace linequad {
+
+std::string hex(double x) {
+    if (std::isnan(x)) return "nan";
+    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%a", x);
+    return buf;
+}
+
+namespace {
+
+using json::Value;
+
+bool to_double(const Value& v, double* out) {
+    if (v.type != Value::Type::number && v.type != Value::Type::string) return false;
+    const std::string& s = v.text;
+    if (s.empty() || std::isspace(static_cast<unsigned char>(s[0]))) return false;
+    if (s == "nan" || s == "-nan") return *out = std::numeric_limits<double>::quiet_NaN(), true;
+    char* end = nullptr;
+    errno = 0;
+    double x = std::strtod(s.c_str(), &end); // correctly rounded for decimal and hex (glibc)
+    if (end != s.c_str() + s.size()) return false;
+    *out = x; // overflow gives inf (reported later as infinite input), underflow the subnormal
+    return true;
+}
+
+struct Reader {
+    const Value& obj;
+    std::string* why;
+
+    bool fail(std::string_view field, std::string_view what) {
+        *why = "field \"" + std::string(field) + "\": " + std::string(what);
+        return false;
+    }
+    const Value* need(const char* field) {
+        const Value* v = obj.find(field);
+        if (!v) fail(field, "missing");
+        return v;
+    }
+    bool number(const char* field, double* out) {
+        const Value* v = need(field);
+        if (!v) return false;
+        if (!to_double(*v, out)) return fail(field, "expected a number (hex-float or decimal)");
+        return true;
+    }
+    bool vec(const char* field, Vec3* out) {
+        const Value* v = need(field);
+        if (!v) return false;
+        double c[3];
+        if (v->type != Value::Type::array || v->items.size() != 3 || !to_double(v->items[0], &c[0]) ||
+            !to_double(v->items[1], &c[1]) || !to_double(v->items[2], &c[2]))
+            return fail(field, "expected an array of 3 numbers");
+        *out = {c[0], c[1], c[2]};
+        return true;
+    }
+};
+
+const char* const shape_fields[3][5] = {
+    {"C", "H", "r", nullptr, nullptr},
+    {"C", "a", "b", "c", nullptr},
+    {"C", "H", "a", "b", nullptr},
+};
+const char* const shape_names[3] = {"cylinder", "elliptic_cylinder", "elliptic_cone"};
+const char* const common_fields[] = {"id", "shape", "L0", "v", "range", "finite", "family", "k", "note"};
+
+bool known_field(const std::string& key, int shape) {
+    for (const char* f : common_fields)
+        if (key == f) return true;
+    for (const char* f : shape_fields[shape])
+        if (f && key == f) return true;
+    return false;
+}
+
+void put_vec(std::string& out, const char* name, Vec3 p) {
+    out += ",\"";
+    out += name;
+    out += "\":[\"" + hex(p.x) + "\",\"" + hex(p.y) + "\",\"" + hex(p.z) + "\"]";
+}
+void put_num(std::string& out, const char* name, double x) {
+    out += ",\"";
+    out += name;
+    out += "\":\"" + hex(x) + "\"";
+}
+
+} // namespace
+
+bool parse_case(std::string_view line, Case* c, std::string* why) {
+    *c = Case{};
+    Value obj;
+    std::string err;
+    if (!json::parse(line, &obj, &err)) {
+        *why = "not valid JSON: " + err;
+        return false;
+    }
+    if (obj.type != Value::Type::object) {
+        *why = "not a JSON object";
+        return false;
+    }
+    if (const Value* id = obj.find("id")) {
+        c->id.clear();
+        json::write(c->id, *id);
+    }
+    Reader r{obj, why};
+    const Value* shape = r.need("shape");
+    if (!shape) return false;
+    int kind = -1;
+    for (int i = 0; i < 3; ++i)
+        if (shape->type == Value::Type::string && shape->text == shape_names[i]) kind = i;
+    if (kind < 0) return r.fail("shape", "expected cylinder, elliptic_cylinder or elliptic_cone");
+    for (const auto& m : obj.members)
+        if (!known_field(m.first, kind))
+            return r.fail(m.first, std::string("not a field of a ") + shape_names[kind] + " case");
+
+    if (!r.vec("L0", &c->line.L0) || !r.vec("v", &c->line.v)) return false;
+    if (const Value* range = obj.find("range")) {
+        if (range->type != Value::Type::string) return r.fail("range", "expected a string");
+        if (range->text == "line") c->line.range = Range::line;
+        else if (range->text == "ray") c->line.range = Range::ray;
+        else if (range->text == "segment") c->line.range = Range::segment;
+        else return r.fail("range", "expected line, ray or segment");
+    }
+    bool finite = true;
+    if (const Value* f = obj.find("finite")) {
+        if (f->type != Value::Type::boolean) return r.fail("finite", "expected true or false");
+        finite = f->boolean;
+    }
+    if (const Value* f = obj.find("family")) {
+        if (f->type != Value::Type::string) return r.fail("family", "expected a string");
+        c->family = f->text;
+    }
+    if (const Value* k = obj.find("k")) {
+        double x;
+        if (!to_double(*k, &x) || x != std::floor(x) || std::fabs(x) > 1e6)
+            return r.fail("k", "expected an integer");
+        c->k = int(x);
+    }
+    switch (kind) {
+    case 0: {
+        Cylinder s;
+        if (!r.vec("C", &s.C) || !r.vec("H", &s.H) || !r.number("r", &s.r)) return false;
+        s.finite = finite;
+        c->shape = s;
+        break;
+    }
+    case 1: {
+        EllipticCylinder s;
+        if (!r.vec("C", &s.C) || !r.vec("a", &s.a) || !r.vec("b", &s.b) || !r.vec("c", &s.c))
+            return false;
+        s.finite = finite;
+        c->shape = s;
+        break;
+    }
+    default: {
+        EllipticCone s;
+        if (!r.vec("C", &s.C) || !r.vec("H", &s.H) || !r.vec("a", &s.a) || !r.vec("b", &s.b))
+            return false;
+        s.finite = finite;
+        c->shape = s;
+        break;
+    }
+    }
+    return true;
+}
+
+std::string format_case(const Case& c) {
+    std::string out = "{\"id\":" + c.id + ",\"shape\":\"" + shape_name(c.shape) + "\"";
+    bool finite = true;
+    if (auto* s = std::get_if<Cylinder>(&c.shape)) {
+        put_vec(out, "C", s->C), put_vec(out, "H", s->H), put_num(out, "r", s->r);
+        finite = s->finite;
+    } else if (auto* s = std::get_if<EllipticCylinder>(&c.shape)) {
+        put_vec(out, "C", s->C), put_vec(out, "a", s->a), put_vec(out, "b", s->b);
+        put_vec(out, "c", s->c);
+        finite = s->finite;
+    } else if (auto* s = std::get_if<EllipticCone>(&c.shape)) {
+        put_vec(out, "C", s->C), put_vec(out, "H", s->H), put_vec(out, "a", s->a);
+        put_vec(out, "b", s->b);
+        finite = s->finite;
+    }
+    put_vec(out, "L0", c.line.L0);
+    put_vec(out, "v", c.line.v);
+    out += ",\"range\":\"" + std::string(range_name(c.line.range)) + "\"";
+    out += finite ? ",\"finite\":true" : ",\"finite\":false";
+    if (!c.family.empty()) {
+        out += ",\"family\":";
+        json::write_string(out, c.family);
+        out += ",\"k\":" + std::to_string(c.k);
+    }
+    out += "}";
+    return out;
+}
+
+std::string format_result(const std::string& id, std::string_view solver, const Result& r,
+                          bool points) {
+    if (!r.ok()) return format_failure(id, solver, code_name(r.error.code), message(r.error));
+    std::string out = "{\"id\":" + id + ",\"solver\":";
+    json::write_string(out, solver);
+    out += ",\"hits\":[";
+    for (int i = 0; i < r.count; ++i) {
+        const Hit& h = r.hits[i];
+        if (i) out += ",";
+        out += "{\"t\":\"" + hex(h.t) + "\",\"kind\":\"";
+        out += h.kind == HitKind::tangent ? "tangent\"" : "cross\"";
+        if (points) put_vec(out, "p", h.p);
+        out += "}";
+    }
+    out += "],\"on_surface\":";
+    if (!r.on_surface) {
+        out += "null";
+    } else {
+        auto end = [](double t) { return std::isinf(t) ? std::string("null") : "\"" + hex(t) + "\""; };
+        out += "[" + end(r.s0) + "," + end(r.s1) + "]";
+    }
+    out += "}";
+    return out;
+}
+
+std::string format_failure(const std::string& id, std::string_view solver, std::string_view code,
+                           std::string_view message) {
+    std::string out = "{\"id\":" + id + ",\"solver\":";
+    json::write_string(out, solver);
+    out += ",\"error\":";
+    json::write_string(out, message);
+    out += ",\"code\":";
+    json::write_string(out, code);
+    out += "}";
+    return out;
+}
+
+bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
+    *pr = ParsedResult{};
+    Value obj;
+    std::string err;
+    if (!json::parse(line, &obj, &err)) return *why = "not valid JSON: " + err, false;
+    if (obj.type != Value::Type::object) return *why = "not a JSON object", false;
+    Reader r{obj, why};
+    if (const Value* id = obj.find("id")) json::write(pr->id, *id);
+    else return r.fail("id", "missing");
+    if (const Value* s = obj.find("solver"); s && s->type == Value::Type::string) pr->solver = s->text;
+    if (const Value* e = obj.find("error")) {
+        pr->error_message = e->type == Value::Type::string ? e->text : "error";
+        const Value* code = obj.find("code");
+        pr->error_code = code && code->type == Value::Type::string ? code->text : "error";
+        pr->result.error.code = ErrorCode::out_of_range; // any error; the code string says which
+        return true;
+    }
+    const Value* hits = r.need("hits");
+    if (!hits) return false;
+    if (hits->type != Value::Type::array || hits->items.size() > 2)
+        return r.fail("hits", "expected an array of at most 2 hits");
+    for (const Value& h : hits->items) {
+        Reader hr{h, why};
+        Hit& out = pr->result.hits[pr->result.count++];
+        if (h.type != Value::Type::object || !hr.number("t", &out.t)) return r.fail("hits", "each hit needs t");
+        const Value* kind = h.find("kind");
+        if (!kind || kind->type != Value::Type::string || (kind->text != "cross" && kind->text != "tangent"))
+            return r.fail("hits", "kind must be cross or tangent");
+        out.kind = kind->text == "tangent" ? HitKind::tangent : HitKind::cross;
+        if (h.find("p")) {
+            if (!hr.vec("p", &out.p)) return r.fail("hits", "p must be 3 numbers");
+            pr->has_points = true;
+        }
+    }
+    const Value* on = obj.find("on_surface");
+    if (on && on->type == Value::Type::array) {
+        if (on->items.size() != 2) return r.fail("on_surface", "expected [t0, t1]");
+        double e[2];
+        for (int i = 0; i < 2; ++i) {
+            if (on->items[i].type == Value::Type::null) e[i] = i == 0 ? -INFINITY : INFINITY;
+            else if (!to_double(on->items[i], &e[i])) return r.fail("on_surface", "expected numbers or null");
+        }
+        pr->result.on_surface = true;
+        pr->result.s0 = e[0], pr->result.s1 = e[1];
+    } else if (on && on->type != Value::Type::null) {
+        return r.fail("on_surface", "expected null or [t0, t1]");
+    }
+    return true;
+}
+
+} // namespace linequad

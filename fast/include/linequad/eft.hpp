@@ -1,0 +1,90 @@
+// Error-free transformations and the accurate products built on them.
+//
+// Everything here relies on std::fma being a true fused multiply-add and on the compiler not
+// contracting other expressions (fast/ is built with -ffp-contract=off). Barring underflow:
+//  - two_sum / two_prod return the rounded result and its exact rounding error;
+//  - difference_of_products is Kahan's 2x2 determinant, relative error <= 2u
+//    (Jeannerod, Louvet, Muller 2013), and exactly zero iff a*b == c*d;
+//  - dot2 is Ogita-Rump-Oishi's Dot2: as accurate as if computed in twice the precision.
+#pragma once
+
+#include "linequad/vec3.hpp"
+
+#include <cmath>
+
+namespace linequad {
+
+struct TwoTerm {
+    double hi, lo; // value = hi + lo exactly, |lo| <= ulp(hi)/2
+};
+
+inline TwoTerm two_sum(double a, double b) {
+    double s = a + b;
+    double bb = s - a;
+    return {s, (a - (s - bb)) + (b - bb)};
+}
+
+inline TwoTerm two_prod(double a, double b) {
+    double p = a * b;
+    return {p, std::fma(a, b, -p)};
+}
+
+inline double difference_of_products(double a, double b, double c, double d) {
+    double cd = c * d;
+    double err = std::fma(-c, d, cd);
+    double dop = std::fma(a, b, -cd);
+    return dop + err;
+}
+
+// a x b with each component a Kahan difference of products.
+inline Vec3 cross_accurate(Vec3 a, Vec3 b) {
+    return {difference_of_products(a.y, b.z, a.z, b.y),
+            difference_of_products(a.z, b.x, a.x, b.z),
+            difference_of_products(a.x, b.y, a.y, b.x)};
+}
+
+// sum_i x_i*y_i for n terms, Dot2 of Ogita, Rump and Oishi.
+template <int N>
+double dot2(const double (&x)[N], const double (&y)[N]) {
+    TwoTerm p = two_prod(x[0], y[0]);
+    double s = p.hi, c = p.lo;
+    for (int i = 1; i < N; ++i) {
+        TwoTerm q = two_prod(x[i], y[i]);
+        TwoTerm t = two_sum(s, q.hi);
+        s = t.hi;
+        c += q.lo + t.lo;
+    }
+    return s + c;
+}
+
+inline double dot2(Vec3 a, Vec3 b) {
+    const double x[3] = {a.x, a.y, a.z};
+    const double y[3] = {b.x, b.y, b.z};
+    return dot2(x, y);
+}
+
+// (p - q) as an unevaluated sum, per component: exact.
+struct Vec3TwoTerm {
+    Vec3 hi, lo;
+};
+inline Vec3TwoTerm difference_exact(Vec3 p, Vec3 q) {
+    TwoTerm x = two_sum(p.x, -q.x), y = two_sum(p.y, -q.y), z = two_sum(p.z, -q.z);
+    return {{x.hi, y.hi, z.hi}, {x.lo, y.lo, z.lo}};
+}
+
+// (hi + lo) + s*v with one rounding per component up to the tiny lo term: how the stable
+// solvers move a line's origin to its point of closest approach without losing it.
+inline Vec3 moved_origin(const Vec3TwoTerm& w, double s, Vec3 v) {
+    return {std::fma(s, v.x, w.hi.x) + w.lo.x, std::fma(s, v.y, w.hi.y) + w.lo.y,
+            std::fma(s, v.z, w.hi.z) + w.lo.z};
+}
+
+// sqrt(x^2 + y^2) - |z| times sqrt(x^2 + y^2) + |z|: x^2 + y^2 - z^2 without the cancellation
+// of subtracting two rounded squares (the geometric form of the discriminant).
+inline double circle_minus_square(double x, double y, double z) {
+    double rho = std::sqrt(x * x + y * y);
+    double az = std::fabs(z);
+    return (rho - az) * (rho + az);
+}
+
+} // namespace linequad

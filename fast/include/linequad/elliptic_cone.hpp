@@ -1,0 +1,16 @@
+// Line against an elliptic cone, apex H, base centre C, x^2 + y^2 = z^2, z <= 0 (seed 002).
+#pragma once
+
+#include "linequad/result.hpp"
+#include "linequad/shapes.hpp"
+
+namespace linequad {
+namespace seed {
+// As seed 002 writes it, with its own equation (erratum 1): M = T R S inverted, the textbook roots; errata fixed, nothing improved.
+Result intersect(const EllipticCone& s, const Line& l, Query q = {});
+} // namespace seed
+namespace stable {
+// Same geometry without cancellation: see the derivation at the top of src/elliptic_cone.cpp.
+Result intersect(const EllipticCone& s, const Line& l, Query q = {});
+} // namespace stable
+} // namespace linequad

@@ -1,0 +1,16 @@
+// Line against a finite or infinite elliptic cylinder C + x a + y b + z c, x^2 + y^2 = 1 (seed 000).
+#pragma once
+
+#include "linequad/result.hpp"
+#include "linequad/shapes.hpp"
+
+namespace linequad {
+namespace seed {
+// As seed 000 writes it: M = T R S inverted as a 4x4 matrix, the textbook roots; errata fixed, nothing improved.
+Result intersect(const EllipticCylinder& s, const Line& l, Query q = {});
+} // namespace seed
+namespace stable {
+// Same geometry without cancellation: see the derivation at the top of src/elliptic_cylinder.cpp.
+Result intersect(const EllipticCylinder& s, const Line& l, Query q = {});
+} // namespace stable
+} // namespace linequad

@@ -1,0 +1,74 @@
+// What every solver returns: a small value type that names every case.
+#pragma once
+
+#include "linequad/vec3.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace linequad {
+
+enum class HitKind : std::uint8_t {
+    cross,   // a simple root: the line passes through the surface
+    tangent, // a double root: a tangent line, or a line through the cone's apex
+};
+
+struct Hit {
+    double t = 0;
+    HitKind kind = HitKind::cross;
+    Vec3 p; // L0 + t v; left at zero when the query asked for no points
+};
+
+// Why an input was refused. Never a hit, never undefined behaviour.
+enum class ErrorCode : std::uint8_t {
+    none,
+    not_a_number,     // a NaN coordinate
+    infinite,         // an infinite coordinate
+    zero_direction,   // v = 0
+    bad_radius,       // r <= 0
+    degenerate_axis,  // H = C
+    singular_frame,   // a, b, c linearly dependent
+    out_of_range,     // inputs whose products overflow or underflow double
+    unknown_solver,   // no solver of that name for that shape
+};
+
+struct Error {
+    ErrorCode code = ErrorCode::none;
+    const char* field = ""; // the input that is wrong ("L0", "v", "r", "a,b,c", ...)
+};
+
+std::string message(const Error& e);
+const char* code_name(ErrorCode c);
+
+// What the caller needs; a solver does no more than that.
+enum class Need : std::uint8_t {
+    any,     // is there a hit at all (the first one found is returned)
+    nearest, // the hit with the smallest t in the range
+    all,     // every hit, sorted by t
+};
+
+struct Query {
+    Need need = Need::all;
+    bool points = true; // compute hit points
+};
+
+struct Result {
+    Error error;
+    int count = 0; // hits in hits[0..count), sorted by t
+    Hit hits[2];
+    // The line lies on the surface for t in [s0, s1] (either end may be infinite). When set,
+    // count is 0: the points of the interval are all hits.
+    bool on_surface = false;
+    double s0 = 0, s1 = 0;
+
+    bool ok() const { return error.code == ErrorCode::none; }
+    bool any_hit() const { return count > 0 || on_surface; }
+    static Result failure(Error e) {
+        Result r;
+        r.error = e;
+        return r;
+    }
+    static Result failure(ErrorCode c, const char* field) { return failure(Error{c, field}); }
+};
+
+} // namespace linequad

@@ -1,0 +1,84 @@
+// Line against an elliptic cone {C, H, a, b} (seed 002), in double precision.
+//
+// Derivation. With c = H - C (erratum 4), the frame M = [a b c] with origin H maps the unit cone
+// (apex at the origin, base centre (0, 0, -1), base radius 1) to the shape: P = H + M (x, y, z).
+// Seed 002 derives the unit cone as |P - H'|^2 = 2 ((P - H') . h)^2 with h = (0, 0, -1), i.e.
+//     x^2 + y^2 = z^2,
+// a double cone (erratum 5: the nappe z <= 0 is kept; finite keeps -1 <= z <= 0). Its section
+// "Intersections calculation" then substitutes into the cylinder's equation; substituting into
+// the cone's own (erratum 1), with w = M^-1 (L0 - H) and v' = M^-1 v:
+//     A t^2 + 2 B t + C0 = 0,
+//     A = v'x^2 + v'y^2 - v'z^2,  B = v'x wx + v'y wy - v'z wz,  C0 = wx^2 + wy^2 - wz^2.
+// Cases the seed does not name (erratum 6): A = 0 when v' is along a generator (one root when
+// B != 0; when B = 0 too, the line lies on the cone if C0 = 0, and there is no hit otherwise);
+// a line through the apex gives a double root there (reported as tangent).
+//
+// seed: M = T R S as written; a = v'.v' - 2 (v'.h)^2, b = 2 (v'.w - 2 (v'.h)(w.h)),
+// c = w.w - 2 (w.h)^2; textbook roots.
+//
+// stable: the dual frame; the origin moved to the line's closest approach to the apex (in the
+// unit cone's frame); each form x^2 + y^2 - z^2 evaluated as (rho - |z|)(rho + |z|) with
+// rho = sqrt(x^2 + y^2); B as a compensated dot product; and the discriminant in geometric form:
+// with u = v' x w (Kahan cross product), Lagrange's identity in the metric diag(1, 1, -1) gives
+//     D = B^2 - A C0 = ux^2 + uy^2 - uz^2.
+// Roots are the stable pair q / A, C0 / q, then the root nearer the original origin by Vieta.
+#include "linequad/elliptic_cone.hpp"
+
+#include "frame.hpp"
+#include "roots.hpp"
+
+namespace linequad {
+
+using namespace detail;
+
+Result seed::intersect(const EllipticCone& s, const Line& l, Query q) {
+    if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
+    Eigen::Matrix4d m_inv = seed_inverse_frame(s.H, s.a, s.b, s.c());
+    Vec3 w = apply_point(m_inv, l.L0), v = apply_vector(m_inv, l.v); // H' = 0
+    const Vec3 h{0, 0, -1};
+    double vh = dot(v, h), wh = dot(w, h);
+    double a = dot(v, v) - 2 * vh * vh;
+    double b = 2 * (dot(v, w) - 2 * vh * wh);
+    double c = dot(w, w) - 2 * wh * wh;
+    if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c))
+        return Result::failure(ErrorCode::out_of_range, "coefficients");
+    Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
+    auto z_of = [&](double t) { return w.z + t * v.z; };
+    return finish_roots(textbook_roots(a, b, c), 1, z_of, e, l, q, w.z, v.z);
+}
+
+Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
+    if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
+    double extent = std::fmax(std::fmax(max_abs(l.L0), max_abs(s.C)),
+                              std::fmax(max_abs(s.H), std::fmax(max_abs(s.a), max_abs(s.b))));
+    Prescale ps = prescale_for(extent, l.v);
+    Vec3 a = ps.pos(s.a), b = ps.pos(s.b), H = ps.pos(s.H), v = ps.dir(l.v);
+    Vec3 c = H - ps.pos(s.C);
+    if (std::fmin(max_abs(a), std::fmin(max_abs(b), max_abs(c))) < min_relative_size)
+        return Result::failure(ErrorCode::out_of_range, "a,b,H-C");
+    DualFrame f(a, b, c);
+    Vec3TwoTerm w = difference_exact(ps.pos(l.L0), H);
+    Vec3 vl = f.local(v), wl = f.local(w.hi + w.lo);
+    Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
+    auto z_of = [&](double t) { return f.local_z(moved_origin(w, t, v)); };
+
+    double tc = -dot2(vl, wl) / dot(vl, vl);
+    Vec3 wc = f.local(moved_origin(w, tc, v));
+    double A = circle_minus_square(vl.x, vl.y, vl.z);
+    const double vm[3] = {vl.x, vl.y, -vl.z}, wm[3] = {wc.x, wc.y, wc.z};
+    double B = dot2(vm, wm);
+    double Cc = circle_minus_square(wc.x, wc.y, wc.z);
+    Vec3 u = cross_accurate(vl, wc);
+    double D = circle_minus_square(u.x, u.y, u.z);
+    Roots roots = stable_roots(A, B, Cc, D);
+    if (roots.kind == Roots::two) {
+        const double s_[2] = {roots.t[0], roots.t[1]};
+        unshift(tc, s_, circle_minus_square(wl.x, wl.y, wl.z) / A, roots.t);
+    } else if (roots.kind == Roots::one || roots.kind == Roots::tangent) {
+        roots.t[0] += tc;
+    }
+    // On the surface: z(t) = wl.z + t v'z in the prescaled parameter.
+    return finish_roots(roots, ps.t_scale(), z_of, e, l, q, wl.z, vl.z);
+}
+
+} // namespace linequad

@@ -1,0 +1,82 @@
+// Line against an elliptic cylinder {C, a, b, c} (seed 000), in double precision.
+//
+// Derivation. The frame M maps the unit cylinder x^2 + y^2 = 1 (0 <= z <= 1) to the shape:
+// P = C + M (x, y, z). The line maps back by M^-1 as a point and a vector (erratum 2):
+//     w = M^-1 (L0 - C),   v' = M^-1 v,
+// and on the unit cylinder, with h = (0, 0, 1), seed 000's equation |P|^2 - (P.h)^2 = 1 gives
+//     A t^2 + 2 B t + C0 = 0,  A = v'x^2 + v'y^2,  B = v'x wx + v'y wy,  C0 = wx^2 + wy^2 - 1.
+// The extent is 0 <= wz + t v'z <= 1.
+//
+// seed: M = T R S built and inverted as the seed writes it; the textbook roots.
+//
+// stable: M^-1 as the dual frame (adjugate / determinant, no normalisation), then in the plane
+// of the unit circle, with u = v'x wy - v'y wx (a Kahan difference of products),
+//     D = B^2 - A C0 = A - u^2 = (sqrt(A) - |u|)(sqrt(A) + |u|)
+// (|u| / sqrt(A) is the distance from the axis to the line: D < 0 iff it exceeds 1); the origin
+// moved to the closest approach to the axis first, and the roots paired as for the circular
+// cylinder (src/cylinder.cpp). A = 0 exactly when v' is along the axis.
+#include "linequad/elliptic_cylinder.hpp"
+
+#include "frame.hpp"
+#include "roots.hpp"
+
+namespace linequad {
+
+using namespace detail;
+
+Result seed::intersect(const EllipticCylinder& s, const Line& l, Query q) {
+    if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
+    Eigen::Matrix4d m_inv = seed_inverse_frame(s.C, s.a, s.b, s.c);
+    Vec3 w = apply_point(m_inv, l.L0), v = apply_vector(m_inv, l.v); // C' = 0
+    const Vec3 h{0, 0, 1};
+    double vh = dot(v, h), wh = dot(w, h);
+    double a = dot(v, v) - vh * vh;
+    double b = 2 * (dot(v, w) - vh * wh);
+    double c = dot(w, w) - wh * wh - 1;
+    if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c))
+        return Result::failure(ErrorCode::out_of_range, "coefficients");
+    Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
+    auto z_of = [&](double t) { return w.z + t * v.z; };
+    return finish_roots(textbook_roots(a, b, c), 1, z_of, e, l, q, w.z, v.z);
+}
+
+Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
+    if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
+    double extent = std::fmax(std::fmax(max_abs(l.L0), max_abs(s.C)),
+                              std::fmax(max_abs(s.a), std::fmax(max_abs(s.b), max_abs(s.c))));
+    Prescale ps = prescale_for(extent, l.v);
+    Vec3 a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c), v = ps.dir(l.v);
+    if (std::fmin(max_abs(a), std::fmin(max_abs(b), max_abs(c))) < min_relative_size)
+        return Result::failure(ErrorCode::out_of_range, "a,b,c");
+    DualFrame f(a, b, c);
+    Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
+    Vec3 vl = f.local(v), wl = f.local(w.hi + w.lo);
+    Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
+    auto z_of = [&](double t) { return f.local_z(moved_origin(w, t, v)); };
+
+    double A = vl.x * vl.x + vl.y * vl.y;
+    double C0 = circle_minus_square(wl.x, wl.y, 1);
+    Roots roots;
+    if (A == 0) { // along the axis
+        roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
+        return finish_roots(roots, ps.t_scale(), z_of, e, l, q, wl.z, vl.z);
+    }
+    const double vxy[2] = {vl.x, vl.y}, wxy[2] = {wl.x, wl.y};
+    double tc = -dot2(vxy, wxy) / A;
+    Vec3 wc = f.local(moved_origin(w, tc, v));
+    double u = std::fabs(difference_of_products(vl.x, wc.y, vl.y, wc.x));
+    double sA = std::sqrt(A);
+    double gap = sA - u;
+    if (gap < 0) return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
+    if (gap == 0) {
+        roots.kind = Roots::tangent, roots.t[0] = tc;
+    } else {
+        double half = std::sqrt(gap * (sA + u)) / A;
+        const double s_[2] = {-half, half};
+        roots.kind = Roots::two;
+        unshift(tc, s_, C0 / A, roots.t);
+    }
+    return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
+}
+
+} // namespace linequad

@@ -1,0 +1,47 @@
+// The affine frame M = [a b c] + origin of the elliptic shapes, and its inverse.
+#pragma once
+
+#include "linequad/eft.hpp"
+
+#include <Eigen/Dense>
+
+namespace linequad::detail {
+
+// Seed 000/002's construction, kept literally for the seed solvers: M = T R S with R built from
+// the normalised axes and S from their lengths, inverted as a general 4x4 matrix.
+inline Eigen::Matrix4d seed_inverse_frame(Vec3 origin, Vec3 a, Vec3 b, Vec3 c) {
+    Eigen::Matrix4d T = Eigen::Matrix4d::Identity(), R = Eigen::Matrix4d::Identity(),
+                    S = Eigen::Matrix4d::Identity();
+    T.col(3).head<3>() << origin.x, origin.y, origin.z;
+    const Vec3 axes[3] = {a, b, c};
+    for (int i = 0; i < 3; ++i) {
+        double n = norm(axes[i]);
+        R.col(i).head<3>() << axes[i].x / n, axes[i].y / n, axes[i].z / n;
+        S(i, i) = n;
+    }
+    return (T * R * S).inverse();
+}
+
+inline Vec3 apply_point(const Eigen::Matrix4d& m, Vec3 p) {
+    Eigen::Vector4d r = m * Eigen::Vector4d(p.x, p.y, p.z, 1);
+    return {r[0], r[1], r[2]};
+}
+// A direction has homogeneous coordinate 0: no translation (erratum 2).
+inline Vec3 apply_vector(const Eigen::Matrix4d& m, Vec3 v) {
+    Eigen::Vector4d r = m * Eigen::Vector4d(v.x, v.y, v.z, 0);
+    return {r[0], r[1], r[2]};
+}
+
+// M^-1 without forming M: its rows are the dual vectors (b x c, c x a, a x b) / det[a b c]
+// (adjugate over determinant, erratum 3), each cross product accurate to 2 ulps.
+struct DualFrame {
+    Vec3 nx, ny, nz;
+    double det;
+    DualFrame(Vec3 a, Vec3 b, Vec3 c)
+        : nx(cross_accurate(b, c)), ny(cross_accurate(c, a)), nz(cross_accurate(a, b)),
+          det(dot2(a, nx)) {}
+    Vec3 local(Vec3 u) const { return {dot2(nx, u) / det, dot2(ny, u) / det, dot2(nz, u) / det}; }
+    double local_z(Vec3 u) const { return dot2(nz, u) / det; }
+};
+
+} // namespace linequad::detail

@@ -1,0 +1,211 @@
+#include "support.hpp"
+
+#include "linequad/expansion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+
+namespace linequad {
+
+const char* shape_name(const Shape& s) {
+    switch (s.index()) {
+    case 0: return "cylinder";
+    case 1: return "elliptic_cylinder";
+    default: return "elliptic_cone";
+    }
+}
+
+const char* range_name(Range r) {
+    switch (r) {
+    case Range::line: return "line";
+    case Range::ray: return "ray";
+    case Range::segment: return "segment";
+    }
+    return "?";
+}
+
+const char* code_name(ErrorCode c) {
+    switch (c) {
+    case ErrorCode::none: return "none";
+    case ErrorCode::not_a_number: return "not_a_number";
+    case ErrorCode::infinite: return "infinite";
+    case ErrorCode::zero_direction: return "zero_direction";
+    case ErrorCode::bad_radius: return "bad_radius";
+    case ErrorCode::degenerate_axis: return "degenerate_axis";
+    case ErrorCode::singular_frame: return "singular_frame";
+    case ErrorCode::out_of_range: return "out_of_range";
+    case ErrorCode::unknown_solver: return "unknown_solver";
+    }
+    return "?";
+}
+
+std::string message(const Error& e) {
+    std::string f = e.field;
+    switch (e.code) {
+    case ErrorCode::none: return "";
+    case ErrorCode::not_a_number: return f + " has a NaN coordinate";
+    case ErrorCode::infinite: return f + " has an infinite coordinate";
+    case ErrorCode::zero_direction: return "the direction " + f + " is the zero vector";
+    case ErrorCode::bad_radius: return "the radius " + f + " is not positive";
+    case ErrorCode::degenerate_axis: return f + ": the axis has zero length (H = C)";
+    case ErrorCode::singular_frame: return "the frame " + f + " is singular (linearly dependent)";
+    case ErrorCode::out_of_range:
+        return f + ": magnitudes too far apart for double evaluation (overflow or underflow)";
+    case ErrorCode::unknown_solver: return "no solver named " + f + " for this shape";
+    }
+    return "?";
+}
+
+// Products of three doubles are exact only while nothing underflows, so each vector is first
+// scaled by its own power of two (which cannot change the determinant's sign).
+int det3_sign_exact(Vec3 a, Vec3 b, Vec3 c) {
+    auto unit = [](Vec3 u) {
+        double m = max_abs(u);
+        return m == 0 ? u : ldexp(u, -std::ilogb(m));
+    };
+    a = unit(a), b = unit(b), c = unit(c);
+    double det = dot(a, cross(b, c));
+    // Shewchuk's bound for a 3x3 determinant of values below 2: far from zero, the float sign is
+    // certain; otherwise evaluate exactly.
+    double permanent = std::fabs(a.x) * (std::fabs(b.y * c.z) + std::fabs(b.z * c.y)) +
+                       std::fabs(a.y) * (std::fabs(b.z * c.x) + std::fabs(b.x * c.z)) +
+                       std::fabs(a.z) * (std::fabs(b.x * c.y) + std::fabs(b.y * c.x));
+    if (std::fabs(det) > 0x1p-49 * permanent) return det > 0 ? 1 : -1;
+    Expansion<64> e;
+    e.add_product(a.x, b.y, c.z), e.add_product(-a.x, b.z, c.y);
+    e.add_product(a.y, b.z, c.x), e.add_product(-a.y, b.x, c.z);
+    e.add_product(a.z, b.x, c.y), e.add_product(-a.z, b.y, c.x);
+    return e.sign();
+}
+
+namespace {
+
+Error check_point(Vec3 p, const char* field) {
+    if (std::isnan(p.x) || std::isnan(p.y) || std::isnan(p.z)) return {ErrorCode::not_a_number, field};
+    if (!is_finite(p)) return {ErrorCode::infinite, field};
+    return {};
+}
+
+Error check_line(const Line& l) {
+    if (Error e = check_point(l.L0, "L0"); e.code != ErrorCode::none) return e;
+    if (Error e = check_point(l.v, "v"); e.code != ErrorCode::none) return e;
+    if (l.v == Vec3{}) return {ErrorCode::zero_direction, "v"};
+    return {};
+}
+
+struct Named {
+    Vec3 p;
+    const char* field;
+};
+
+Error check_all(const Line& l, std::initializer_list<Named> points) {
+    Error e = check_line(l);
+    for (const Named& n : points)
+        if (e.code == ErrorCode::none) e = check_point(n.p, n.field);
+    return e;
+}
+
+// The cone's frame uses c = H - C, which is not a double; the determinant is linear in c, so
+// det[a b H-C] = det[a b H] - det[a b C], and both signs are exact. When the two differ in
+// sign or one vanishes the sign of the difference is known; otherwise compare exactly.
+bool frame_singular(Vec3 a, Vec3 b, Vec3 c) { return det3_sign_exact(a, b, c) == 0; }
+
+bool cone_frame_singular(Vec3 a, Vec3 b, Vec3 C, Vec3 H) {
+    // Both ends scaled by one power of two: exact, so the difference is unchanged in sign.
+    double m = std::fmax(max_abs(C), max_abs(H));
+    int k = m == 0 ? 0 : std::ilogb(m);
+    C = ldexp(C, -k), H = ldexp(H, -k);
+    auto unit = [](Vec3 u) { return ldexp(u, -std::ilogb(max_abs(u))); };
+    if (a == Vec3{} || b == Vec3{}) return true;
+    a = unit(a), b = unit(b);
+    Expansion<128> e;
+    Vec3 d[2] = {H, C};
+    for (int i = 0; i < 2; ++i) {
+        double s = i == 0 ? 1 : -1;
+        Vec3 c = d[i];
+        e.add_product(s * a.x, b.y, c.z), e.add_product(-s * a.x, b.z, c.y);
+        e.add_product(s * a.y, b.z, c.x), e.add_product(-s * a.y, b.x, c.z);
+        e.add_product(s * a.z, b.x, c.y), e.add_product(-s * a.z, b.y, c.x);
+    }
+    return e.sign() == 0;
+}
+
+} // namespace
+
+namespace detail {
+
+Result finish(Candidate* c, int n, Extent e, const Line& l, Query q) {
+    for (int i = 0; i < n; ++i)
+        if (!std::isfinite(c[i].t) || std::isnan(c[i].z))
+            return Result::failure(ErrorCode::out_of_range, "t");
+    if (n == 2 && c[1].t < c[0].t) std::swap(c[0], c[1]);
+    Result r;
+    for (int i = 0; i < n; ++i) {
+        if (!(c[i].z >= e.lo && c[i].z <= e.hi) || !in_range(c[i].t, l.range)) continue;
+        Hit& h = r.hits[r.count++];
+        h.t = c[i].t;
+        h.kind = c[i].kind;
+        if (q.points)
+            h.p = {std::fma(h.t, l.v.x, l.L0.x), std::fma(h.t, l.v.y, l.L0.y),
+                   std::fma(h.t, l.v.z, l.L0.z)};
+        if (q.need != Need::all) break; // sorted, so the first kept is also the nearest
+    }
+    return r;
+}
+
+Result finish_on_surface(double z0, double dz, double t_scale, Extent e, const Line& l) {
+    // dz != 0 on every surface line: it runs along the axis (cylinders) or a generator (cone).
+    double a = (e.lo - z0) / dz * t_scale, b = (e.hi - z0) / dz * t_scale;
+    if (std::isnan(a)) a = -inf; // (-inf) - (-inf) cannot occur; guards 0 * inf
+    if (std::isnan(b)) b = inf;
+    double s0 = std::fmin(a, b), s1 = std::fmax(a, b);
+    if (l.range != Range::line) s0 = std::fmax(s0, 0.0);
+    if (l.range == Range::segment) s1 = std::fmin(s1, 1.0);
+    Result r;
+    if (s0 > s1) return r;
+    r.on_surface = true;
+    r.s0 = s0, r.s1 = s1;
+    return r;
+}
+
+Prescale prescale_for(double max_position, Vec3 v) {
+    Prescale p;
+    p.k = max_position == 0 ? 0 : std::ilogb(max_position);
+    p.j = std::ilogb(max_abs(v));
+    return p;
+}
+
+} // namespace detail
+
+Error validate(const Cylinder& s, const Line& l) {
+    Error e = check_all(l, {{s.C, "C"}, {s.H, "H"}});
+    if (e.code != ErrorCode::none) return e;
+    if (std::isnan(s.r)) return {ErrorCode::not_a_number, "r"};
+    if (std::isinf(s.r)) return {ErrorCode::infinite, "r"};
+    if (!(s.r > 0)) return {ErrorCode::bad_radius, "r"};
+    if (s.H == s.C) return {ErrorCode::degenerate_axis, "H-C"};
+    return {};
+}
+
+Error validate(const EllipticCylinder& s, const Line& l) {
+    Error e = check_all(l, {{s.C, "C"}, {s.a, "a"}, {s.b, "b"}, {s.c, "c"}});
+    if (e.code != ErrorCode::none) return e;
+    if (s.a == Vec3{} || s.b == Vec3{} || s.c == Vec3{} || frame_singular(s.a, s.b, s.c))
+        return {ErrorCode::singular_frame, "a,b,c"};
+    return {};
+}
+
+Error validate(const EllipticCone& s, const Line& l) {
+    Error e = check_all(l, {{s.C, "C"}, {s.H, "H"}, {s.a, "a"}, {s.b, "b"}});
+    if (e.code != ErrorCode::none) return e;
+    if (s.H == s.C) return {ErrorCode::degenerate_axis, "H-C"};
+    if (cone_frame_singular(s.a, s.b, s.C, s.H)) return {ErrorCode::singular_frame, "a,b,H-C"};
+    return {};
+}
+
+Error validate(const Shape& s, const Line& l) {
+    return std::visit([&](const auto& shape) { return validate(shape, l); }, s);
+}
+
+} // namespace linequad

@@ -1,0 +1,60 @@
+// Internal pieces every fast solver shares: input checks, power-of-two prescaling, and the
+// last step that turns roots into a Result (extent, range, what the caller needs, points).
+#pragma once
+
+#include "linequad/result.hpp"
+#include "linequad/shapes.hpp"
+#include "linequad/validate.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace linequad::detail {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+// A root before the extent and range tests: t in the caller's parameter, z its axial coordinate
+// in the canonical frame (in the circular cylinder's own units for that shape).
+struct Candidate {
+    double t;
+    HitKind kind;
+    double z;
+};
+
+struct Extent {
+    double lo, hi; // the hit must satisfy lo <= z <= hi; infinite bounds when not finite
+};
+
+inline bool in_range(double t, Range r) {
+    switch (r) {
+    case Range::line: return true;
+    case Range::ray: return t >= 0;
+    case Range::segment: return t >= 0 && t <= 1;
+    }
+    return false;
+}
+
+// Keeps the candidates inside extent and range, sorted by t, as many as q.need asks for, and
+// their points when q.points. Candidates with a non-finite t or z give an out_of_range error.
+Result finish(Candidate* c, int n, Extent e, const Line& l, Query q);
+
+// The line lies on the surface: z(t) = z0 + (t / t_scale) dz. The interval of t where it is
+// inside the extent, intersected with the range.
+Result finish_on_surface(double z0, double dz, double t_scale, Extent e, const Line& l);
+
+// Power-of-two scales that bring a scene near unit size without any rounding: positions and
+// lengths are multiplied by 2^-k, the direction by 2^-j, so t = t_scaled * 2^(k - j).
+struct Prescale {
+    int k = 0, j = 0;
+    Vec3 pos(Vec3 p) const { return ldexp(p, -k); }
+    double len(double x) const { return std::ldexp(x, -k); }
+    Vec3 dir(Vec3 v) const { return ldexp(v, -j); }
+    double t_scale() const { return std::ldexp(1.0, k - j); }
+};
+Prescale prescale_for(double max_position, Vec3 v);
+
+// After prescaling, sizes below this (relative to the scene) would underflow when multiplied
+// four times; the stable solvers refuse them with out_of_range rather than guess.
+constexpr double min_relative_size = 0x1p-240;
+
+} // namespace linequad::detail

@@ -1,0 +1,43 @@
+// The exact oracle: every case classified exactly, every t and hit point correctly rounded.
+//
+// Inputs are taken as the exact rationals their doubles denote. The derivation
+// (exact_derivation.hpp) runs in CGAL::Simple_cartesian<CGAL::Mpzf> (exact ring arithmetic on
+// dyadic numbers: no rounding, no gcd); roots stay in the form (N + S sqrt(D)) / Den and every
+// decision (discriminant, extent, range, order) is the exact sign of such a number. Only the
+// outputs are rounded, each to the nearest double (ties to even) by an MPFR enclosure whose
+// precision doubles until both ends round to the same double.
+#pragma once
+
+#include "linequad/result.hpp"
+#include "linequad/shapes.hpp"
+#include "linequad/solvers.hpp"
+
+#include <cstdint>
+
+namespace linequad::exact {
+
+Result intersect(const Cylinder& s, const Line& l, Query q = {});
+Result intersect(const EllipticCylinder& s, const Line& l, Query q = {});
+Result intersect(const EllipticCone& s, const Line& l, Query q = {});
+Result intersect(const Shape& s, const Line& l, Query q = {});
+
+// The same derivation and classification in CGAL::Simple_cartesian<CGAL::Gmpq>: a slower,
+// independent number type, used to cross-check the oracle.
+Result intersect_gmpq(const Shape& s, const Line& l, Query q = {});
+
+// The oracle as a named solver ("exact") for the CLI and the audit.
+const Solver& solver();
+
+// How much precision the rounding needed, counted on this thread since the last reset.
+struct RoundingStats {
+    std::uint64_t values = 0;                // values rounded
+    std::uint64_t by_steps[8] = {};          // values resolved at 64, 128, ... bits (last: more)
+    int max_steps = 0;                       // most precision levels any value needed (1 = 64 bits)
+};
+RoundingStats& rounding_stats();
+
+// Rounds (X + Y sqrt(D)) / Den to the nearest double, for exact decimal strings of rationals;
+// exposed for the tests of the rounding itself. D >= 0, Den != 0.
+double round_surd(const char* X, const char* Y, const char* D, const char* Den);
+
+} // namespace linequad::exact

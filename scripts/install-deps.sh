@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs what linequad needs from Debian 12's packages, only what is missing.
+set -euo pipefail
+packages=(build-essential cmake pkg-config git
+          libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev catch2 libbenchmark-dev
+          gnuplot-nox clang libclang-rt-14-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" = 0 ] || sudo="sudo"
+  echo "installing: ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,57 @@
+// Helpers shared by the tests: run a solver by name, describe results for failure messages.
+#pragma once
+
+#include "linequad/case_io.hpp"
+#include "linequad/registry.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace linequad::test {
+
+inline Result run(const std::string& solver, const Shape& s, const Line& l, Query q = {}) {
+    const Solver* f = find_solver(solver);
+    REQUIRE(f != nullptr);
+    return (*f)(s, l, q);
+}
+
+inline std::string describe(const Result& r) { return format_result("0", "?", r); }
+
+// The solvers that must return exact answers where the arithmetic of a case is exact.
+inline const char* const every_solver[] = {"seed", "stable", "exact"};
+
+// Two points on a surface: the line through them meets it exactly at t = 0 and t = 1.
+inline Line through(Vec3 p, Vec3 q, Range range = Range::line) { return {p, q - p, range}; }
+
+// |a - b| in units in the last place of b (0 when equal; infinite if either is not finite).
+inline double ulps(double a, double b) {
+    if (a == b) return 0;
+    if (!std::isfinite(a) || !std::isfinite(b)) return INFINITY;
+    double u = std::nextafter(std::fabs(b), INFINITY) - std::fabs(b);
+    return std::fabs(a - b) / u;
+}
+
+// The oracle must be exact. The fast solvers round: in these hand-built tests every input and
+// root is O(1..100) and the roots are well separated (no tangency), so each coefficient carries
+// a few ulps and the roots at most a few dozen; 64 ulps of max(1, |expected|) bounds that with
+// room and still fails on any real mistake (a wrong formula is off by O(1)).
+inline bool exact_solver(const std::string& solver) { return solver == "exact"; }
+inline double fast_tolerance(double expected) { return 64 * 0x1p-53 * std::fmax(1.0, std::fabs(expected)); }
+
+inline void check_t(const std::string& solver, double got, double expected) {
+    INFO(solver << ": t = " << hex(got) << ", expected " << hex(expected));
+    if (exact_solver(solver) || std::isinf(expected)) CHECK(got == expected);
+    else CHECK(std::fabs(got - expected) <= fast_tolerance(expected));
+}
+
+inline void check_p(const std::string& solver, Vec3 got, Vec3 expected) {
+    for (int i = 0; i < 3; ++i) {
+        INFO("coordinate " << i);
+        check_t(solver, got[i], expected[i]);
+    }
+}
+
+} // namespace linequad::test

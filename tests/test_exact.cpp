@@ -1,0 +1,221 @@
+// The exact oracle: cross-checks of its number types and derivations, exact identities, and
+// its rounding against a 4096-bit MPFR evaluation.
+#include "support.hpp"
+
+#include "linequad/exact.hpp"
+
+#include <gmp.h>
+#include <mpfr.h>
+
+#include <cstring>
+#include <random>
+
+using namespace linequad;
+using namespace linequad::test;
+
+namespace {
+
+struct Random {
+    std::mt19937_64 rng{20261121};
+    // Doubles with full 53-bit mantissas over a few binades: exact inputs, generic answers.
+    double real(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+    Vec3 vec(double s) { return {real(-s, s), real(-s, s), real(-s, s)}; }
+    Range range() { return Range(rng() % 3); }
+    Shape shape() {
+        switch (rng() % 3) {
+        case 0: return Cylinder{vec(4), vec(4), real(0.5, 3), rng() % 4 != 0};
+        case 1: return EllipticCylinder{vec(4), vec(3), vec(3), vec(3), rng() % 4 != 0};
+        default: return EllipticCone{vec(4), vec(4), vec(3), vec(3), rng() % 4 != 0};
+        }
+    }
+    Line line() { return {vec(6), vec(2), range()}; }
+};
+
+bool same(const Result& a, const Result& b) {
+    return format_result("0", "", a) == format_result("0", "", b);
+}
+
+Shape scaled(const Shape& s, double k) {
+    if (auto* c = std::get_if<Cylinder>(&s)) return Cylinder{k * c->C, k * c->H, k * c->r, c->finite};
+    if (auto* e = std::get_if<EllipticCylinder>(&s))
+        return EllipticCylinder{k * e->C, k * e->a, k * e->b, k * e->c, e->finite};
+    const auto& n = std::get<EllipticCone>(s);
+    return EllipticCone{k * n.C, k * n.H, k * n.a, k * n.b, n.finite};
+}
+
+} // namespace
+
+TEST_CASE("exact: Mpzf and Gmpq kernels agree bit for bit", "[exact]") {
+    Random r;
+    int hits = 0;
+    for (int i = 0; i < 3000; ++i) {
+        Shape s = r.shape();
+        Line l = r.line();
+        Result a = exact::intersect(s, l), b = exact::intersect_gmpq(s, l);
+        INFO(describe(a) << "\n" << describe(b));
+        REQUIRE(same(a, b));
+        hits += a.count;
+    }
+    CHECK(hits > 300); // the random cases do hit
+}
+
+TEST_CASE("exact: a circular cylinder is an elliptic cylinder with axes of length r", "[exact]") {
+    Random r;
+    // Axis 2 (3, 4, 0); a, b orthogonal to it with length 5, exactly.
+    Vec3 C{1, -2, 0.5}, h{6, 8, 0}, a{0, 0, 5}, b{-4, 3, 0};
+    Cylinder circular{C, C + h, 5};
+    EllipticCylinder elliptic{C, a, b, h};
+    int hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+        Line l{C + r.vec(12), r.vec(2), r.range()};
+        if (i % 7 == 0) l.v = h; // parallel to the axis as well
+        if (i % 11 == 0) l.L0 = C + a + 0.5 * h; // through a surface point
+        Result x = exact::intersect(circular, l), y = exact::intersect(elliptic, l);
+        INFO(describe(x) << "\n" << describe(y));
+        REQUIRE(same(x, y));
+        hits += x.count;
+    }
+    CHECK(hits > 300);
+}
+
+TEST_CASE("exact: reversing v negates t / doubling v halves t / scaling by 2^k scales points",
+          "[exact]") {
+    Random r;
+    for (int i = 0; i < 1500; ++i) {
+        Shape s = r.shape();
+        Line l = r.line();
+        l.range = Range::line;
+        Result base = exact::intersect(s, l);
+        if (!base.ok()) continue;
+
+        Line reversed{l.L0, -1.0 * l.v};
+        Result rev = exact::intersect(s, reversed);
+        REQUIRE(rev.count == base.count);
+        for (int j = 0; j < base.count; ++j) {
+            CHECK(rev.hits[base.count - 1 - j].t == -base.hits[j].t);
+            CHECK(rev.hits[base.count - 1 - j].p == base.hits[j].p);
+        }
+
+        Result twice = exact::intersect(s, {l.L0, 2.0 * l.v});
+        REQUIRE(twice.count == base.count);
+        for (int j = 0; j < base.count; ++j) CHECK(twice.hits[j].t == base.hits[j].t / 2);
+
+        for (int k : {-60, 37}) {
+            double f = std::ldexp(1.0, k);
+            Result sc = exact::intersect(scaled(s, f), {f * l.L0, f * l.v});
+            REQUIRE(sc.count == base.count);
+            for (int j = 0; j < base.count; ++j) {
+                CHECK(sc.hits[j].t == base.hits[j].t);
+                CHECK(sc.hits[j].p == f * base.hits[j].p);
+            }
+        }
+    }
+}
+
+namespace {
+// (X + Y sqrt(D)) / Den at 4096 bits, then to the nearest double. Double rounding could only
+// bite if the 4096-bit value were exactly a midpoint between doubles: reported as NaN.
+double reference(const mpq_t X, const mpq_t Y, const mpq_t D, const mpq_t Den) {
+    mpfr_t x, y, d, den;
+    mpfr_inits2(4096, x, y, d, den, (mpfr_ptr)0);
+    mpfr_set_q(d, D, MPFR_RNDN);
+    mpfr_sqrt(d, d, MPFR_RNDN);
+    mpfr_set_q(y, Y, MPFR_RNDN);
+    mpfr_mul(y, y, d, MPFR_RNDN);
+    mpfr_set_q(x, X, MPFR_RNDN);
+    mpfr_add(x, x, y, MPFR_RNDN);
+    mpfr_set_q(den, Den, MPFR_RNDN);
+    mpfr_div(x, x, den, MPFR_RNDN);
+    double out = mpfr_get_d(x, MPFR_RNDN);
+    // Midpoint check: the value equals (out + neighbour) / 2 exactly?
+    double next = std::nextafter(out, mpfr_cmp_d(x, out) > 0 ? INFINITY : -INFINITY);
+    mpfr_set_d(y, out, MPFR_RNDN);
+    mpfr_add_d(y, y, next, MPFR_RNDN);
+    mpfr_div_2ui(y, y, 1, MPFR_RNDN);
+    bool tie = mpfr_equal_p(x, y);
+    mpfr_clears(x, y, d, den, (mpfr_ptr)0);
+    return tie ? NAN : out;
+}
+
+std::string str(const mpq_t q) {
+    char* s = mpq_get_str(nullptr, 10, q);
+    std::string out(s);
+    void (*freefunc)(void*, size_t);
+    mp_get_memory_functions(nullptr, nullptr, &freefunc);
+    freefunc(s, std::strlen(s) + 1);
+    return out;
+}
+} // namespace
+
+TEST_CASE("exact: rounding matches a 4096-bit evaluation on random values", "[exact][rounding]") {
+    std::mt19937_64 rng(7);
+    mpq_t X, Y, D, Den;
+    mpq_inits(X, Y, D, Den, (mpq_ptr)0);
+    int compared = 0;
+    for (int i = 0; i < 3000; ++i) {
+        auto set = [&](mpq_t q, bool positive) {
+            mpz_t n, d;
+            mpz_inits(n, d, (mpz_ptr)0);
+            mpz_set_ui(n, rng() >> (rng() % 60));
+            mpz_mul_ui(n, n, rng() >> 20);
+            mpz_set_ui(d, (rng() >> (rng() % 63)) | 1);
+            if (!positive && rng() % 2) mpz_neg(n, n);
+            mpq_set_num(q, n), mpq_set_den(q, d);
+            mpq_canonicalize(q);
+            mpz_clears(n, d, (mpz_ptr)0);
+        };
+        set(X, false), set(Y, false), set(D, true), set(Den, false);
+        if (mpq_sgn(Den) == 0) continue;
+        if (i % 5 == 0) mpq_set_ui(Y, 0, 1); // rationals too
+        double ref = reference(X, Y, D, Den);
+        if (std::isnan(ref)) continue;
+        double got = exact::round_surd(str(X).c_str(), str(Y).c_str(), str(D).c_str(), str(Den).c_str());
+        INFO(str(X) << " + " << str(Y) << " sqrt(" << str(D) << ") / " << str(Den));
+        REQUIRE(std::memcmp(&got, &ref, sizeof got) == 0);
+        ++compared;
+    }
+    CHECK(compared > 2500);
+    mpq_clears(X, Y, D, Den, (mpq_ptr)0);
+}
+
+TEST_CASE("exact: rounding near ties / subnormals and overflow", "[exact][rounding]") {
+    // 1 + 2^-53 is the midpoint between 1 and its successor: ties to even gives 1.
+    CHECK(exact::round_surd("9007199254740993", "0", "0", "9007199254740992") == 1.0);
+    // 1 + 3 * 2^-53 is the midpoint between 1 + 2^-52 and 1 + 2^-51: even is 1 + 2^-51.
+    CHECK(exact::round_surd("9007199254740995", "0", "0", "9007199254740992") == 1 + 0x1p-51);
+    // sqrt(D) just above and below a midpoint: D = (2^53 + 1)^2 +- 1, scaled by 2^-53.
+    const char* m2 = "81129638414606699710187514626049"; // (2^53 + 1)^2
+    CHECK(exact::round_surd("0", "1", "81129638414606699710187514626050", "9007199254740992") ==
+          1 + 0x1p-52);
+    CHECK(exact::round_surd("0", "1", "81129638414606699710187514626048", "9007199254740992") == 1.0);
+    CHECK(exact::round_surd("0", "1", m2, "9007199254740992") == 1.0); // exactly the tie
+    // Half the smallest subnormal (a tie with 0: even is 0), and 3/2 of it (a tie: even is 2).
+    mpz_t p;
+    mpz_init(p);
+    mpz_ui_pow_ui(p, 2, 1075);
+    char* big = mpz_get_str(nullptr, 10, p);
+    CHECK(exact::round_surd("1", "0", "0", big) == 0.0);           // 2^-1075: tie, to even (0)
+    CHECK(exact::round_surd("3", "0", "0", big) == 0x1p-1073);     // 3 * 2^-1075 -> 2^-1073
+    CHECK(exact::round_surd("0", "1", "1", big) == 0.0);           // sqrt(1) / 2^1075
+    CHECK(exact::round_surd("0", "1", "2", big) == 0x1p-1074);     // sqrt(2) / 2^1075: up
+    mpz_ui_pow_ui(p, 2, 1024);
+    char* huge = mpz_get_str(nullptr, 10, p);
+    CHECK(exact::round_surd(huge, "0", "0", "1") == INFINITY);
+    CHECK(exact::round_surd(huge, "0", "0", "-1") == -INFINITY);
+    void (*freefunc)(void*, size_t);
+    mp_get_memory_functions(nullptr, nullptr, &freefunc);
+    freefunc(big, std::strlen(big) + 1);
+    freefunc(huge, std::strlen(huge) + 1);
+    mpz_clear(p);
+}
+
+TEST_CASE("exact: rounding needs few precision steps on the oracle's own cases", "[exact][rounding]") {
+    Random r;
+    exact::rounding_stats() = {};
+    for (int i = 0; i < 2000; ++i) exact::intersect(r.shape(), r.line());
+    const auto& st = exact::rounding_stats();
+    CHECK(st.values > 1000);
+    CHECK(st.max_steps >= 1);
+    // Almost all values resolve at the first precision (64 bits).
+    CHECK(st.by_steps[0] * 100 >= st.values * 99);
+}
