@@ -52,7 +52,7 @@ Result seed::intersect(const Cylinder& s, const Line& l, Query q) {
 
 Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
-    double extent = std::fmax(std::fmax(max_abs(l.L0), max_abs(s.C)), std::fmax(max_abs(s.H), s.r));
+    double extent = std::max(std::max(max_abs(l.L0), max_abs(s.C)), std::max(max_abs(s.H), s.r));
     Prescale ps = prescale_for(extent, l.v);
     Vec3 C = ps.pos(s.C), L0 = ps.pos(l.L0), v = ps.dir(l.v);
     double r = ps.len(s.r);

@@ -49,12 +49,12 @@ Result seed::intersect(const EllipticCone& s, const Line& l, Query q) {
 
 Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
     if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
-    double extent = std::fmax(std::fmax(max_abs(l.L0), max_abs(s.C)),
-                              std::fmax(max_abs(s.H), std::fmax(max_abs(s.a), max_abs(s.b))));
+    double extent = std::max(std::max(max_abs(l.L0), max_abs(s.C)),
+                              std::max(max_abs(s.H), std::max(max_abs(s.a), max_abs(s.b))));
     Prescale ps = prescale_for(extent, l.v);
     Vec3 a = ps.pos(s.a), b = ps.pos(s.b), H = ps.pos(s.H), v = ps.dir(l.v);
     Vec3 c = H - ps.pos(s.C);
-    if (std::fmin(max_abs(a), std::fmin(max_abs(b), max_abs(c))) < min_relative_size)
+    if (std::min(max_abs(a), std::min(max_abs(b), max_abs(c))) < min_relative_size)
         return Result::failure(ErrorCode::out_of_range, "a,b,H-C");
     DualFrame f(a, b, c);
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), H);

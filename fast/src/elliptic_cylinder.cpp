@@ -42,11 +42,11 @@ Result seed::intersect(const EllipticCylinder& s, const Line& l, Query q) {
 
 Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
-    double extent = std::fmax(std::fmax(max_abs(l.L0), max_abs(s.C)),
-                              std::fmax(max_abs(s.a), std::fmax(max_abs(s.b), max_abs(s.c))));
+    double extent = std::max(std::max(max_abs(l.L0), max_abs(s.C)),
+                              std::max(max_abs(s.a), std::max(max_abs(s.b), max_abs(s.c))));
     Prescale ps = prescale_for(extent, l.v);
     Vec3 a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c), v = ps.dir(l.v);
-    if (std::fmin(max_abs(a), std::fmin(max_abs(b), max_abs(c))) < min_relative_size)
+    if (std::min(max_abs(a), std::min(max_abs(b), max_abs(c))) < min_relative_size)
         return Result::failure(ErrorCode::out_of_range, "a,b,c");
     DualFrame f(a, b, c);
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));

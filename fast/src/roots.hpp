@@ -3,6 +3,7 @@
 
 #include "support.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace linequad::detail {
@@ -64,7 +65,7 @@ inline Roots stable_roots(double A, double B, double C, double D) {
     double q = -(B + std::copysign(std::sqrt(D), B));
     double t0 = q / A, t1 = C / q;
     r.kind = Roots::two;
-    r.t[0] = std::fmin(t0, t1), r.t[1] = std::fmax(t0, t1);
+    r.t[0] = std::min(t0, t1), r.t[1] = std::max(t0, t1);
     return r;
 }
 

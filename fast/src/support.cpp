@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <initializer_list>
 
 namespace linequad {
@@ -57,25 +59,63 @@ std::string message(const Error& e) {
     return "?";
 }
 
-// Products of three doubles are exact only while nothing underflows, so each vector is first
-// scaled by its own power of two (which cannot change the determinant's sign).
-int det3_sign_exact(Vec3 a, Vec3 b, Vec3 c) {
-    auto unit = [](Vec3 u) {
-        double m = max_abs(u);
-        return m == 0 ? u : ldexp(u, -std::ilogb(m));
-    };
-    a = unit(a), b = unit(b), c = unit(c);
-    double det = dot(a, cross(b, c));
-    // Shewchuk's bound for a 3x3 determinant of values below 2: far from zero, the float sign is
-    // certain; otherwise evaluate exactly.
-    double permanent = std::fabs(a.x) * (std::fabs(b.y * c.z) + std::fabs(b.z * c.y)) +
-                       std::fabs(a.y) * (std::fabs(b.z * c.x) + std::fabs(b.x * c.z)) +
-                       std::fabs(a.z) * (std::fabs(b.x * c.y) + std::fabs(b.y * c.x));
+namespace {
+
+// |a| . (|b| x |c|): Shewchuk's bound on the rounding error of a . (b x c) is (7u + 56u^2)
+// times it; 2^-49 (16u) covers that and, for the cone, the rounding of c = H - C (at most
+// u (|H| + |C|) per component, accounted for by passing |H| + |C| for |c|).
+double permanent3(Vec3 a, Vec3 b, Vec3 c) {
+    return std::fabs(a.x) * (std::fabs(b.y * c.z) + std::fabs(b.z * c.y)) +
+           std::fabs(a.y) * (std::fabs(b.z * c.x) + std::fabs(b.x * c.z)) +
+           std::fabs(a.z) * (std::fabs(b.x * c.y) + std::fabs(b.y * c.x));
+}
+
+// The sign when the floating-point value is certain, else 0. Extreme magnitudes (where the
+// products may have overflowed or underflowed) are never certain.
+int filtered_sign(double det, double permanent) {
+    if (!(permanent < 0x1p+900 && permanent > 0x1p-900)) return 0;
     if (std::fabs(det) > 0x1p-49 * permanent) return det > 0 ? 1 : -1;
-    Expansion<64> e;
-    e.add_product(a.x, b.y, c.z), e.add_product(-a.x, b.z, c.y);
-    e.add_product(a.y, b.z, c.x), e.add_product(-a.y, b.x, c.z);
-    e.add_product(a.z, b.x, c.y), e.add_product(-a.z, b.y, c.x);
+    return 0;
+}
+
+// Products of three doubles are exact only while nothing underflows: each vector is scaled
+// by its own power of two first, which cannot change the determinant's sign.
+Vec3 unit_scaled(Vec3 u) {
+    double m = max_abs(u);
+    return m == 0 ? u : ldexp(u, -std::ilogb(m));
+}
+
+void add_det_terms(Expansion<128>& e, double s, Vec3 a, Vec3 b, Vec3 c) {
+    e.add_product(s * a.x, b.y, c.z), e.add_product(-s * a.x, b.z, c.y);
+    e.add_product(s * a.y, b.z, c.x), e.add_product(-s * a.y, b.x, c.z);
+    e.add_product(s * a.z, b.x, c.y), e.add_product(-s * a.z, b.y, c.x);
+}
+
+// The cone's frame uses c = H - C, which is not a double. det is linear in c, so
+// det[a b H-C] = det[a b H] - det[a b C]: both scaled by one power of two, then summed exactly.
+int cone_det_sign_exact(Vec3 a, Vec3 b, Vec3 C, Vec3 H) {
+    Vec3 habs{std::fabs(H.x) + std::fabs(C.x), std::fabs(H.y) + std::fabs(C.y),
+              std::fabs(H.z) + std::fabs(C.z)};
+    Vec3 c = H - C;
+    if (int s = filtered_sign(dot(a, cross(b, c)), permanent3(a, b, habs))) return s;
+    if (a == Vec3{} || b == Vec3{}) return 0;
+    double m = std::fmax(max_abs(C), max_abs(H));
+    int k = m == 0 ? 0 : std::ilogb(m);
+    C = ldexp(C, -k), H = ldexp(H, -k);
+    a = unit_scaled(a), b = unit_scaled(b);
+    Expansion<128> e;
+    add_det_terms(e, 1, a, b, H);
+    add_det_terms(e, -1, a, b, C);
+    return e.sign();
+}
+
+} // namespace
+
+int det3_sign_exact(Vec3 a, Vec3 b, Vec3 c) {
+    if (int s = filtered_sign(dot(a, cross(b, c)), permanent3(a, b, c))) return s;
+    a = unit_scaled(a), b = unit_scaled(b), c = unit_scaled(c);
+    Expansion<128> e;
+    add_det_terms(e, 1, a, b, c);
     return e.sign();
 }
 
@@ -106,30 +146,6 @@ Error check_all(const Line& l, std::initializer_list<Named> points) {
     return e;
 }
 
-// The cone's frame uses c = H - C, which is not a double; the determinant is linear in c, so
-// det[a b H-C] = det[a b H] - det[a b C], and both signs are exact. When the two differ in
-// sign or one vanishes the sign of the difference is known; otherwise compare exactly.
-bool frame_singular(Vec3 a, Vec3 b, Vec3 c) { return det3_sign_exact(a, b, c) == 0; }
-
-bool cone_frame_singular(Vec3 a, Vec3 b, Vec3 C, Vec3 H) {
-    // Both ends scaled by one power of two: exact, so the difference is unchanged in sign.
-    double m = std::fmax(max_abs(C), max_abs(H));
-    int k = m == 0 ? 0 : std::ilogb(m);
-    C = ldexp(C, -k), H = ldexp(H, -k);
-    auto unit = [](Vec3 u) { return ldexp(u, -std::ilogb(max_abs(u))); };
-    if (a == Vec3{} || b == Vec3{}) return true;
-    a = unit(a), b = unit(b);
-    Expansion<128> e;
-    Vec3 d[2] = {H, C};
-    for (int i = 0; i < 2; ++i) {
-        double s = i == 0 ? 1 : -1;
-        Vec3 c = d[i];
-        e.add_product(s * a.x, b.y, c.z), e.add_product(-s * a.x, b.z, c.y);
-        e.add_product(s * a.y, b.z, c.x), e.add_product(-s * a.y, b.x, c.z);
-        e.add_product(s * a.z, b.x, c.y), e.add_product(-s * a.z, b.y, c.x);
-    }
-    return e.sign() == 0;
-}
 
 } // namespace
 
@@ -169,10 +185,32 @@ Result finish_on_surface(double z0, double dz, double t_scale, Extent e, const L
     return r;
 }
 
+namespace {
+// 2^e for |e| <= 1000 built from its bits, and the binary exponent of a normal number read
+// from its bits: both exact, and inline (libm's ldexp and ilogb are calls).
+double pow2(int e) {
+    std::uint64_t bits = std::uint64_t(e + 1023) << 52;
+    double x;
+    std::memcpy(&x, &bits, sizeof x);
+    return x;
+}
+int exponent_of(double m) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &m, sizeof bits);
+    int biased = int((bits >> 52) & 0x7ff);
+    int e = biased == 0 ? (m == 0 ? 0 : std::ilogb(m)) : biased - 1023; // subnormals: libm
+    return std::clamp(e, -1000, 1000);
+}
+} // namespace
+
 Prescale prescale_for(double max_position, Vec3 v) {
+    int k = exponent_of(max_position), j = exponent_of(max_abs(v));
     Prescale p;
-    p.k = max_position == 0 ? 0 : std::ilogb(max_position);
-    p.j = std::ilogb(max_abs(v));
+    p.to_unit = pow2(-k);
+    p.dir_to_unit = pow2(-j);
+    // k - j may leave double's range: ldexp then overflows to inf or underflows, and finish()
+    // reports out_of_range for the non-finite t that follows.
+    p.t_factor = k - j >= -1000 && k - j <= 1000 ? pow2(k - j) : std::ldexp(1.0, k - j);
     return p;
 }
 
@@ -191,7 +229,7 @@ Error validate(const Cylinder& s, const Line& l) {
 Error validate(const EllipticCylinder& s, const Line& l) {
     Error e = check_all(l, {{s.C, "C"}, {s.a, "a"}, {s.b, "b"}, {s.c, "c"}});
     if (e.code != ErrorCode::none) return e;
-    if (s.a == Vec3{} || s.b == Vec3{} || s.c == Vec3{} || frame_singular(s.a, s.b, s.c))
+    if (s.a == Vec3{} || s.b == Vec3{} || s.c == Vec3{} || det3_sign_exact(s.a, s.b, s.c) == 0)
         return {ErrorCode::singular_frame, "a,b,c"};
     return {};
 }
@@ -200,7 +238,7 @@ Error validate(const EllipticCone& s, const Line& l) {
     Error e = check_all(l, {{s.C, "C"}, {s.H, "H"}, {s.a, "a"}, {s.b, "b"}});
     if (e.code != ErrorCode::none) return e;
     if (s.H == s.C) return {ErrorCode::degenerate_axis, "H-C"};
-    if (cone_frame_singular(s.a, s.b, s.C, s.H)) return {ErrorCode::singular_frame, "a,b,H-C"};
+    if (cone_det_sign_exact(s.a, s.b, s.C, s.H) == 0) return {ErrorCode::singular_frame, "a,b,H-C"};
     return {};
 }
 

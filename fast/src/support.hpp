@@ -43,13 +43,15 @@ Result finish(Candidate* c, int n, Extent e, const Line& l, Query q);
 Result finish_on_surface(double z0, double dz, double t_scale, Extent e, const Line& l);
 
 // Power-of-two scales that bring a scene near unit size without any rounding: positions and
-// lengths are multiplied by 2^-k, the direction by 2^-j, so t = t_scaled * 2^(k - j).
+// lengths are multiplied by 2^-k, the direction by 2^-j, so t = t_scaled * 2^(k - j). The
+// factors are kept as doubles (|k|, |j| <= 1000, so they are normal) because a multiply by a
+// power of two is exact and far cheaper than ldexp.
 struct Prescale {
-    int k = 0, j = 0;
-    Vec3 pos(Vec3 p) const { return ldexp(p, -k); }
-    double len(double x) const { return std::ldexp(x, -k); }
-    Vec3 dir(Vec3 v) const { return ldexp(v, -j); }
-    double t_scale() const { return std::ldexp(1.0, k - j); }
+    double to_unit = 1, dir_to_unit = 1, t_factor = 1;
+    Vec3 pos(Vec3 p) const { return to_unit * p; }
+    double len(double x) const { return to_unit * x; }
+    Vec3 dir(Vec3 v) const { return dir_to_unit * v; }
+    double t_scale() const { return t_factor; }
 };
 Prescale prescale_for(double max_position, Vec3 v);
 

@@ -1,6 +1,7 @@
 // Plain 3-vectors of doubles. Accurate variants of the products live in eft.hpp.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace linequad {
@@ -20,7 +21,7 @@ inline Vec3 cross(Vec3 a, Vec3 b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
-inline double max_abs(Vec3 a) { return std::fmax(std::fabs(a.x), std::fmax(std::fabs(a.y), std::fabs(a.z))); }
+inline double max_abs(Vec3 a) { return std::max(std::fabs(a.x), std::max(std::fabs(a.y), std::fabs(a.z))); }
 inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 inline Vec3 ldexp(Vec3 a, int e) { return {std::ldexp(a.x, e), std::ldexp(a.y, e), std::ldexp(a.z, e)}; }
 
