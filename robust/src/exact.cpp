@@ -17,16 +17,32 @@
 #include <CGAL/Mpzf.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <stdexcept>
+
 namespace linequad::exact {
 
 namespace {
 
-// export_to_mpq_t requires q = 0 on entry and writes nothing for a zero value.
-void to_mpq(const CGAL::Mpzf& x, mpq_ptr q) {
-    mpq_set_ui(q, 0, 1);
-    x.export_to_mpq_t(q);
+// Every value here is dyadic (see rounding.hpp); m 2^e from a canonical rational p / 2^k.
+void dyadic_from_mpq(mpq_srcptr q, Dyadic& d) {
+    std::size_t k = mpz_sizeinbase(mpq_denref(q), 2) - 1;
+    if (mpz_scan1(mpq_denref(q), 0) != k) throw std::logic_error("oracle value is not dyadic");
+    mpz_set(d.m, mpq_numref(q));
+    d.e = -long(k);
 }
-void to_mpq(const CGAL::Gmpq& x, mpq_ptr q) { mpq_set(q, x.mpq()); }
+
+void to_dyadic(const CGAL::Gmpq& x, Dyadic& d) { dyadic_from_mpq(x.mpq(), d); }
+
+void to_dyadic(const CGAL::Mpzf& x, Dyadic& d) {
+    thread_local struct Q {
+        mpq_t q;
+        Q() { mpq_init(q); }
+        ~Q() { mpq_clear(q); }
+    } scratch;
+    mpq_set_ui(scratch.q, 0, 1); // export_to_mpq_t requires 0 on entry and writes nothing for 0
+    x.export_to_mpq_t(scratch.q);
+    dyadic_from_mpq(scratch.q, d);
+}
 
 template <class NT>
 int sgn(const NT& x) {
@@ -43,6 +59,26 @@ int sign_surd(const NT& X, const NT& Y, const NT& D) {
     return cmp == CGAL::LARGER ? sx : cmp == CGAL::SMALLER ? sy : 0;
 }
 
+// Queues (X + Y sqrt(D)) / Den for rounding, in the form that has no cancellation.
+template <class NT>
+void queue(SurdRounder& r, const NT& X, const NT& Y, const NT& Den, const NT& D) {
+    SurdRounder::Value& v = r.next();
+    int sx = sgn(X), sy = CGAL::is_zero(D) ? 0 : sgn(Y);
+    to_dyadic(X, v.X);
+    to_dyadic(Den, v.Den);
+    if (sy == 0) {
+        v.form = SurdRounder::Form::rational;
+        return;
+    }
+    to_dyadic(Y, v.Y);
+    if (sx * sy >= 0) {
+        v.form = SurdRounder::Form::sum;
+    } else {
+        v.form = SurdRounder::Form::conjugate;
+        to_dyadic(NT(X * X - Y * Y * D), v.N2);
+    }
+}
+
 template <class NT>
 struct ExactRoot {
     NT N, Den;
@@ -50,22 +86,10 @@ struct ExactRoot {
     HitKind kind = HitKind::cross;
 };
 
-// Reusable scratch per thread: MPFR and GMP state are costly to create per call.
-struct Scratch {
-    SurdRounder rounder;
-    mpq_t D, X[8], Y[8], Den[8];
-    Scratch() {
-        mpq_init(D);
-        for (int i = 0; i < 8; ++i) mpq_inits(X[i], Y[i], Den[i], (mpq_ptr)0);
-    }
-    ~Scratch() {
-        mpq_clear(D);
-        for (int i = 0; i < 8; ++i) mpq_clears(X[i], Y[i], Den[i], (mpq_ptr)0);
-    }
-};
-Scratch& scratch() {
-    thread_local Scratch s;
-    return s;
+// One rounder per thread: MPFR and GMP state are costly to create per call.
+SurdRounder& rounder() {
+    thread_local SurdRounder r;
+    return r;
 }
 
 template <class NT>
@@ -119,15 +143,15 @@ Result on_surface(const LineQuadratic<NT>& q, const Line& l) {
     Result r;
     if (lo.bounded && hi.bounded && less(hi, lo)) return r;
     r.on_surface = true;
-    Scratch& s = scratch();
-    mpq_set_ui(s.D, 0, 1);
-    s.rounder.reset(s.D);
-    int ia = -1, ib = -1;
-    if (lo.bounded) to_mpq(lo.num, s.X[0]), to_mpq(lo.den, s.Den[0]), ia = s.rounder.add(s.X[0], nullptr, s.Den[0]);
-    if (hi.bounded) to_mpq(hi.num, s.X[1]), to_mpq(hi.den, s.Den[1]), ib = s.rounder.add(s.X[1], nullptr, s.Den[1]);
-    s.rounder.run();
-    r.s0 = ia >= 0 ? s.rounder.result(ia) : -INFINITY;
-    r.s1 = ib >= 0 ? s.rounder.result(ib) : INFINITY;
+    SurdRounder& rd = rounder();
+    rd.clear();
+    mpz_set_ui(rd.D().m, 0);
+    NT zero(0);
+    if (lo.bounded) queue(rd, lo.num, zero, lo.den, zero);
+    if (hi.bounded) queue(rd, hi.num, zero, hi.den, zero);
+    rd.run();
+    r.s0 = lo.bounded ? rd.result(0) : -INFINITY;
+    r.s1 = hi.bounded ? rd.result(lo.bounded ? 1 : 0) : INFINITY;
     return r;
 }
 
@@ -167,35 +191,27 @@ Result solve(const ShapeT& shape, const Line& l, Query query) {
     if (m == 0) return r;
 
     // Round t and, if asked, each coordinate of L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den.
-    Scratch& s = scratch();
-    to_mpq(D, s.D);
-    s.rounder.reset(s.D);
-    int index[2][4];
-    int slot = 0;
+    SurdRounder& rd = rounder();
+    rd.clear();
+    to_dyadic(D, rd.D());
     for (int j = 0; j < m; ++j) {
         const ExactRoot<NT>& rt = roots[kept[j]];
         NT S(rt.S);
-        to_mpq(rt.N, s.X[slot]), to_mpq(S, s.Y[slot]), to_mpq(rt.Den, s.Den[slot]);
-        index[j][0] = s.rounder.add(s.X[slot], s.Y[slot], s.Den[slot]);
-        ++slot;
+        queue(rd, rt.N, S, rt.Den, D);
         if (!query.points) continue;
         for (int c = 0; c < 3; ++c) {
             NT L0(l.L0[c]), v(l.v[c]);
-            to_mpq(NT(L0 * rt.Den + v * rt.N), s.X[slot]);
-            to_mpq(NT(v * S), s.Y[slot]);
-            to_mpq(rt.Den, s.Den[slot]);
-            index[j][1 + c] = s.rounder.add(s.X[slot], s.Y[slot], s.Den[slot]);
-            ++slot;
+            queue(rd, NT(L0 * rt.Den + v * rt.N), NT(v * S), rt.Den, D);
         }
     }
-    s.rounder.run();
+    rd.run();
+    std::size_t per_root = query.points ? 4 : 1;
     for (int j = 0; j < m; ++j) {
         Hit& h = r.hits[r.count++];
         h.kind = roots[kept[j]].kind;
-        h.t = s.rounder.result(index[j][0]);
+        h.t = rd.result(j * per_root);
         if (query.points)
-            h.p = {s.rounder.result(index[j][1]), s.rounder.result(index[j][2]),
-                   s.rounder.result(index[j][3])};
+            h.p = {rd.result(j * per_root + 1), rd.result(j * per_root + 2), rd.result(j * per_root + 3)};
     }
     return r;
 }
@@ -213,6 +229,16 @@ Result intersect(const Shape& s, const Line& l, Query q) {
 }
 Result intersect_gmpq(const Shape& s, const Line& l, Query q) {
     return std::visit([&](const auto& shape) { return solve<GmpqKernel>(shape, l, q); }, s);
+}
+
+double round_surd(const char* X, const char* Y, const char* D, const char* Den) {
+    CGAL::Gmpq x(X), y(Y), d(D), den(Den);
+    SurdRounder& rd = rounder();
+    rd.clear();
+    to_dyadic(d, rd.D());
+    queue(rd, x, y, den, d);
+    rd.run();
+    return rd.result(0);
 }
 
 const Solver& solver() {

@@ -1,4 +1,8 @@
-// Correct rounding of numbers (X + Y sqrt(D)) / Den with X, Y, D, Den exact rationals.
+// Correct rounding of numbers (X + Y sqrt(D)) / Den whose parts are exact dyadic numbers.
+//
+// Every exact quantity of the oracle is dyadic: the inputs are doubles and the derivation only
+// adds and multiplies. So each part is carried as an integer times a power of two and enters
+// MPFR through mpfr_set_z_2exp (rounded in a chosen direction, no division).
 #pragma once
 
 #include <gmp.h>
@@ -8,47 +12,62 @@
 
 namespace linequad::exact {
 
-// All values share one D (the discriminant of one case), so sqrt(D) is enclosed once per
-// precision. Usage: add() each value, run(), then result(i).
+struct Dyadic {
+    mpz_t m;     // the value is m * 2^e
+    long e = 0;
+    Dyadic() { mpz_init(m); }
+    ~Dyadic() { mpz_clear(m); }
+    Dyadic(const Dyadic&) = delete;
+    Dyadic& operator=(const Dyadic&) = delete;
+    int sign() const { return mpz_sgn(m); }
+};
+
+// One case's values share D (its discriminant), so sqrt(D) is enclosed once per precision.
+// Usage: set D(), fill slots from next(), run(), then result(i).
 class SurdRounder {
   public:
+    enum class Form {
+        rational,  // X / Den
+        sum,       // (X + Y sqrt(D)) / Den, X and Y of one sign: no cancellation
+        conjugate, // N2 / (Den (X - Y sqrt(D))) with N2 = X^2 - Y^2 D, for X, Y of opposite sign
+    };
+    struct Value {
+        Dyadic X, Y, Den, N2;
+        Form form = Form::rational;
+        bool done = false;
+        double out = 0;
+    };
+
     SurdRounder();
     ~SurdRounder();
     SurdRounder(const SurdRounder&) = delete;
     SurdRounder& operator=(const SurdRounder&) = delete;
 
-    void reset(mpq_srcptr D);
-    // Y may be null (a rational value). Returns the value's index.
-    int add(mpq_srcptr X, mpq_srcptr Y, mpq_srcptr Den);
+    Dyadic& D() { return D_; }
+    void clear() { used_ = 0; }
+    Value& next(); // a slot to fill, in order; its index is size() - 1
+    std::size_t size() const { return used_; }
     void run();
-    double result(int i) const { return values_[i].out; }
+    double result(std::size_t i) const { return values_[i].out; }
 
   private:
-    // A sign-definite interval: the value lies in sign * [lo, hi], 0 <= lo <= hi. Every
-    // operation below combines quantities of known sign without cancellation, so magnitudes
-    // suffice and each bound is rounded in one known direction.
+    // A sign-definite interval: the value lies in sign * [lo, hi], 0 <= lo <= hi. The forms
+    // above combine quantities of known sign without cancellation, so magnitudes suffice and
+    // each bound is rounded in one known direction.
     struct Mag {
         int sign = 0;
         mpfr_t lo, hi;
     };
-    struct Value {
-        mpq_t num;     // rational part: X / Den, or X^2 - Y^2 D (rationalised form)
-        mpq_t X, Y, Den;
-        int form = 0;  // 0: rational, 1: (X + Y sqrt D) / Den, 2: (X^2 - Y^2 D) / (Den (X - Y sqrt D))
-        bool done = false;
-        double out = 0;
-    };
 
-    void set_q(Mag& m, mpq_srcptr q);
-    void mul(Mag& r, const Mag& a, const Mag& b);
-    void div(Mag& r, const Mag& a, const Mag& b);
-    void add_same_sign(Mag& r, const Mag& a, const Mag& b);
+    void set(Mag& m, const Dyadic& d);
+    static void mul(Mag& r, const Mag& a, const Mag& b);
+    static void div(Mag& r, const Mag& a, const Mag& b);
+    static void add_same_sign(Mag& r, const Mag& a, const Mag& b);
     bool try_round(Value& v);
     void set_precision(mpfr_prec_t p);
 
-    mpq_t D_;
-    int sign_D_ = 0;
     static constexpr std::size_t capacity = 8; // two roots, each with t and three coordinates
+    Dyadic D_;
     Value values_[capacity];
     std::size_t used_ = 0;
     Mag sqrtD_, t1_, t2_, t3_, t4_;

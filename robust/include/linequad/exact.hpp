@@ -36,8 +36,8 @@ struct RoundingStats {
 };
 RoundingStats& rounding_stats();
 
-// Rounds (X + Y sqrt(D)) / Den to the nearest double, for exact decimal strings of rationals;
-// exposed for the tests of the rounding itself. D >= 0, Den != 0.
+// Rounds (X + Y sqrt(D)) / Den to the nearest double, for integers X, Y, D >= 0, Den != 0 given
+// as decimal strings; exposed for the tests of the rounding itself.
 double round_surd(const char* X, const char* Y, const char* D, const char* Den);
 
 } // namespace linequad::exact
