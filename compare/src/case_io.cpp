@@ -251,7 +251,10 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
         pr->error_message = e->type == Value::Type::string ? e->text : "error";
         const Value* code = obj.find("code");
         pr->error_code = code && code->type == Value::Type::string ? code->text : "error";
-        pr->result.error.code = ErrorCode::out_of_range; // any error; the code string says which
+        // The code names the kind of refusal; an unknown or malformed one stays "refused".
+        pr->result.error.code = ErrorCode::unknown_solver;
+        for (int c = int(ErrorCode::not_a_number); c <= int(ErrorCode::unknown_solver); ++c)
+            if (pr->error_code == code_name(ErrorCode(c))) pr->result.error.code = ErrorCode(c);
         return true;
     }
     const Value* hits = r.need("hits");

@@ -14,14 +14,16 @@
 // seed: seed 001 as written, with the unit axis h^ = h / |h| and a = v.v - (v.h^)^2 etc.
 //
 // stable: the cross-product form above, each cross product a Kahan difference of products, and
-//  - the discriminant in geometric form. With det = (v x h) . w (the triple product, which is
+//  - the discriminant in geometric form. With det = v . (w x h) (the triple product, which is
 //    |v x h| times the distance from the axis to the line, times |h|),
 //        D = B^2 - A C0 = (h.h) (r^2 A - det^2) = (h.h) (r sqrt(A) - |det|)(r sqrt(A) + |det|),
 //    so the sign of D is decided by a difference of two accurate numbers, not of two squares;
-//  - the origin moved to the point of closest approach to the axis, t_c = -B / A, before det is
-//    formed (det does not change, but its rounding error shrinks with |w|);
-//  - the roots t_c +- sqrt(D) / A, the smaller in magnitude from Vieta (t1 t2 = C0 / A) with
-//    C0 = (|w x h| - r|h|)(|w x h| + r|h|);
+//    det and v x h in double-double, with h = H - C exact (a line nearly along the axis makes
+//    both tiny differences);
+//  - the origin moved to the line's point of closest approach to the middle of the axis before
+//    B and C0 are formed (never farther than the caller's origin; det does not change);
+//  - the stable root pair q / A, C0 / q, then t = t_c + s, the root nearer the caller's origin
+//    from Vieta (t1 t2 = C0 / A) with C0 = (|w x h| - r|h|)(|w x h| + r|h|);
 //  - A = 0 exactly when the line is parallel to the axis: on the surface when C0 = 0, else no hit;
 //  - the scene prescaled by powers of two (exact) so no product overflows or underflows.
 #include "linequad/cylinder.hpp"
@@ -52,41 +54,54 @@ Result seed::intersect(const Cylinder& s, const Line& l, Query q) {
 
 Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
-    double extent = std::max(std::max(max_abs(l.L0), max_abs(s.C)), std::max(max_abs(s.H), s.r));
+    double extent = std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.H), s.r});
     Prescale ps = prescale_for(extent, l.v);
     Vec3 C = ps.pos(s.C), L0 = ps.pos(l.L0), v = ps.dir(l.v);
     double r = ps.len(s.r);
-    Vec3 h = ps.pos(s.H) - C;
+    // h = H - C exactly, as hi + lo: for a line nearly along the axis, v x h is a tiny
+    // difference that the rounding of H - C alone would swamp.
+    Vec3TwoTerm hx = difference_exact(ps.pos(s.H), C);
+    Vec3 h = hx.rounded();
     double hh = dot(h, h), hn = std::sqrt(hh);
     if (r < min_relative_size || hn < min_relative_size)
         return Result::failure(ErrorCode::out_of_range, "r,H-C");
 
     Vec3TwoTerm w = difference_exact(L0, C);
-    Vec3 w0 = w.hi + w.lo;
-    Vec3 vh = cross_accurate(v, h), wh = cross_accurate(w0, h);
-    double A = dot(vh, vh);
-    double rh = r * hn, wn = norm(wh);
-    double C0 = (wn - rh) * (wn + rh);
+    Vec3 vh = cross_dd(v, hx).rounded();
+    double A = dot(vh, vh), rh = r * hn;
     Extent e = s.finite ? Extent{0, hh} : Extent{-inf, inf};
     auto z_of = [&](double t) { return dot2(moved_origin(w, t, v), h); };
+    // C0 at the caller's origin, for Vieta's product of the roots.
+    double C0 = [&] {
+        double wn = norm(cross_dd(w.rounded(), hx).rounded());
+        return (wn - rh) * (wn + rh);
+    }();
 
     Roots roots;
     if (A == 0) { // parallel to the axis
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
-        return finish_roots(roots, ps.t_scale(), z_of, e, l, q, dot2(w0, h), dot(v, h));
+        return finish_roots(roots, ps.t_scale(), z_of, e, l, q, dot2(w.rounded(), h), dot(v, h));
     }
-    double tc = -dot2(vh, wh) / A;
-    double det = std::fabs(dot2(vh, moved_origin(w, tc, v)));
+    // The origin moved to the line's closest approach to the axis' midpoint: never farther
+    // than the caller's origin, so every later product is as small as the geometry allows.
+    double tc = -dot2(v, w.rounded() - 0.5 * h) / dot(v, v);
+    Vec3 wc = moved_origin(w, tc, v);
+    Vec3TwoTerm whc = cross_dd(wc, hx);
+    double B = dot2(vh, whc.rounded());
+    double wn = norm(whc.rounded());
+    double Cc = (wn - rh) * (wn + rh);
+    // det = v . (w x h): the line's distance to the axis times |v x h| |h|, a triple product
+    // in double-double (moving along the line does not change it).
+    double det = std::fabs(dot2(v, whc));
     double rA = r * std::sqrt(A);
     double gap = rA - det;
-    if (gap < 0) return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
-    if (gap == 0) {
-        roots.kind = Roots::tangent, roots.t[0] = tc;
-    } else {
-        double half = hn * std::sqrt(gap * (rA + det)) / A;
-        const double s_[2] = {-half, half};
-        roots.kind = Roots::two;
+    double D = gap < 0 ? -1 : hh * gap * (rA + det);
+    roots = stable_roots(A, B, Cc, D);
+    if (roots.kind == Roots::two) {
+        const double s_[2] = {roots.t[0], roots.t[1]};
         unshift(tc, s_, C0 / A, roots.t);
+    } else if (roots.kind == Roots::tangent) {
+        roots.t[0] += tc;
     }
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }

@@ -16,10 +16,10 @@
 // seed: M = T R S as written; a = v'.v' - 2 (v'.h)^2, b = 2 (v'.w - 2 (v'.h)(w.h)),
 // c = w.w - 2 (w.h)^2; textbook roots.
 //
-// stable: the dual frame; the origin moved to the line's closest approach to the apex (in the
-// unit cone's frame); each form x^2 + y^2 - z^2 evaluated as (rho - |z|)(rho + |z|) with
+// stable: the dual frame in double-double; the origin moved to the line's closest approach to
+// the apex; each form x^2 + y^2 - z^2 evaluated as (rho - |z|)(rho + |z|) with
 // rho = sqrt(x^2 + y^2); B as a compensated dot product; and the discriminant in geometric form:
-// with u = v' x w (Kahan cross product), Lagrange's identity in the metric diag(1, 1, -1) gives
+// with u = v' x w = M^T (v x w) / det (double-double triple products), Lagrange's identity in the metric diag(1, 1, -1) gives
 //     D = B^2 - A C0 = ux^2 + uy^2 - uz^2.
 // Roots are the stable pair q / A, C0 / q, then the root nearer the original origin by Vieta.
 #include "linequad/elliptic_cone.hpp"
@@ -53,8 +53,8 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
                               std::max(max_abs(s.H), std::max(max_abs(s.a), max_abs(s.b))));
     Prescale ps = prescale_for(extent, l.v);
     Vec3 a = ps.pos(s.a), b = ps.pos(s.b), H = ps.pos(s.H), v = ps.dir(l.v);
-    Vec3 c = H - ps.pos(s.C);
-    if (std::min(max_abs(a), std::min(max_abs(b), max_abs(c))) < min_relative_size)
+    Vec3TwoTerm c = difference_exact(H, ps.pos(s.C)); // exact: c = H - C is not a double
+    if (std::min(max_abs(a), std::min(max_abs(b), max_abs(c.hi))) < min_relative_size)
         return Result::failure(ErrorCode::out_of_range, "a,b,H-C");
     DualFrame f(a, b, c);
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), H);
@@ -62,13 +62,17 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
     Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
     auto z_of = [&](double t) { return f.local_z(moved_origin(w, t, v)); };
 
-    double tc = -dot2(vl, wl) / dot(vl, vl);
-    Vec3 wc = f.local(moved_origin(w, tc, v));
+    // Origin moved to the line's closest approach to the apex: never farther than the caller's.
+    double tc = -dot2(v, w.rounded()) / dot(v, v);
+    Vec3 wcw = moved_origin(w, tc, v), wc = f.local(wcw);
     double A = circle_minus_square(vl.x, vl.y, vl.z);
     const double vm[3] = {vl.x, vl.y, -vl.z}, wm[3] = {wc.x, wc.y, wc.z};
     double B = dot2(vm, wm);
     double Cc = circle_minus_square(wc.x, wc.y, wc.z);
-    Vec3 u = cross_accurate(vl, wc);
+    // u = v' x w' = M^T (v x w) / det, each component a double-double triple product.
+    Vec3TwoTerm vw = cross_dd(v, wcw);
+    Vec3 u = Vec3{dot2(a, vw), dot2(b, vw), dot2(c.hi, vw) + dot(c.lo, vw.hi)} ;
+    u = (1 / f.det) * u;
     double D = circle_minus_square(u.x, u.y, u.z);
     Roots roots = stable_roots(A, B, Cc, D);
     if (roots.kind == Roots::two) {

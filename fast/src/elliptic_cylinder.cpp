@@ -9,12 +9,13 @@
 //
 // seed: M = T R S built and inverted as the seed writes it; the textbook roots.
 //
-// stable: M^-1 as the dual frame (adjugate / determinant, no normalisation), then in the plane
-// of the unit circle, with u = v'x wy - v'y wx (a Kahan difference of products),
+// stable: M^-1 as the dual frame (adjugate / determinant in double-double, no normalisation),
+// then in the plane of the unit circle, with u = v'x wy - v'y wx = c . (v x w) / det,
 //     D = B^2 - A C0 = A - u^2 = (sqrt(A) - |u|)(sqrt(A) + |u|)
-// (|u| / sqrt(A) is the distance from the axis to the line: D < 0 iff it exceeds 1); the origin
-// moved to the closest approach to the axis first, and the roots paired as for the circular
-// cylinder (src/cylinder.cpp). A = 0 exactly when v' is along the axis.
+// (|u| / sqrt(A) is the distance from the axis to the line: D < 0 iff it exceeds 1), u as a
+// double-double triple product; the origin moved to the closest approach to the axis' midpoint,
+// and the roots paired as for the circular cylinder (src/cylinder.cpp). A = 0 exactly when v'
+// is along the axis.
 #include "linequad/elliptic_cylinder.hpp"
 
 #include "frame.hpp"
@@ -42,15 +43,14 @@ Result seed::intersect(const EllipticCylinder& s, const Line& l, Query q) {
 
 Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
-    double extent = std::max(std::max(max_abs(l.L0), max_abs(s.C)),
-                              std::max(max_abs(s.a), std::max(max_abs(s.b), max_abs(s.c))));
+    double extent = std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.a), max_abs(s.b), max_abs(s.c)});
     Prescale ps = prescale_for(extent, l.v);
     Vec3 a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c), v = ps.dir(l.v);
-    if (std::min(max_abs(a), std::min(max_abs(b), max_abs(c))) < min_relative_size)
+    if (std::min({max_abs(a), max_abs(b), max_abs(c)}) < min_relative_size)
         return Result::failure(ErrorCode::out_of_range, "a,b,c");
-    DualFrame f(a, b, c);
+    DualFrame f(a, b, {c, {}});
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
-    Vec3 vl = f.local(v), wl = f.local(w.hi + w.lo);
+    Vec3 vl = f.local(v), wl = f.local(w.rounded());
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
     auto z_of = [&](double t) { return f.local_z(moved_origin(w, t, v)); };
 
@@ -61,20 +61,23 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
         return finish_roots(roots, ps.t_scale(), z_of, e, l, q, wl.z, vl.z);
     }
-    const double vxy[2] = {vl.x, vl.y}, wxy[2] = {wl.x, wl.y};
-    double tc = -dot2(vxy, wxy) / A;
-    Vec3 wc = f.local(moved_origin(w, tc, v));
-    double u = std::fabs(difference_of_products(vl.x, wc.y, vl.y, wc.x));
+    // Origin moved to the closest approach to the axis' midpoint (see cylinder.cpp).
+    double tc = -dot2(v, w.rounded() - 0.5 * c) / dot(v, v);
+    Vec3 wc = moved_origin(w, tc, v);
+    Vec3 wcl = f.local(wc);
+    const double vxy[2] = {vl.x, vl.y}, wxy[2] = {wcl.x, wcl.y};
+    double B = dot2(vxy, wxy);
+    double Cc = circle_minus_square(wcl.x, wcl.y, 1);
+    // u = v'x w'y - v'y w'x = c . (v x w) / det: a triple product in double-double.
+    double u = std::fabs(dot2(c, cross_dd(v, wc)) / f.det);
     double sA = std::sqrt(A);
     double gap = sA - u;
-    if (gap < 0) return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
-    if (gap == 0) {
-        roots.kind = Roots::tangent, roots.t[0] = tc;
-    } else {
-        double half = std::sqrt(gap * (sA + u)) / A;
-        const double s_[2] = {-half, half};
-        roots.kind = Roots::two;
+    roots = stable_roots(A, B, Cc, gap < 0 ? -1 : gap * (sA + u));
+    if (roots.kind == Roots::two) {
+        const double s_[2] = {roots.t[0], roots.t[1]};
         unshift(tc, s_, C0 / A, roots.t);
+    } else if (roots.kind == Roots::tangent) {
+        roots.t[0] += tc;
     }
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }

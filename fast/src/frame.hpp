@@ -33,15 +33,16 @@ inline Vec3 apply_vector(const Eigen::Matrix4d& m, Vec3 v) {
 }
 
 // M^-1 without forming M: its rows are the dual vectors (b x c, c x a, a x b) / det[a b c]
-// (adjugate over determinant, erratum 3), each cross product accurate to 2 ulps.
+// (adjugate over determinant, erratum 3), each kept in double-double: for a line nearly along
+// the axis, v . (b x c) is a tiny difference that a rounded b x c would swamp. c may carry a
+// low part (the cone's c = H - C is not a double).
 struct DualFrame {
-    Vec3 nx, ny, nz;
+    Vec3TwoTerm nx, ny, nz;
     double det;
-    DualFrame(Vec3 a, Vec3 b, Vec3 c)
-        : nx(cross_accurate(b, c)), ny(cross_accurate(c, a)), nz(cross_accurate(a, b)),
-          det(dot2(a, nx)) {}
-    Vec3 local(Vec3 u) const { return {dot2(nx, u) / det, dot2(ny, u) / det, dot2(nz, u) / det}; }
-    double local_z(Vec3 u) const { return dot2(nz, u) / det; }
+    DualFrame(Vec3 a, Vec3 b, const Vec3TwoTerm& c)
+        : nx(cross_dd(b, c)), ny(cross_dd(c, a)), nz(cross_dd(a, b)), det(dot2(a, nx)) {}
+    Vec3 local(Vec3 u) const { return {dot2(u, nx) / det, dot2(u, ny) / det, dot2(u, nz) / det}; }
+    double local_z(Vec3 u) const { return dot2(u, nz) / det; }
 };
 
 } // namespace linequad::detail

@@ -63,10 +63,54 @@ inline double dot2(Vec3 a, Vec3 b) {
     return dot2(x, y);
 }
 
-// (p - q) as an unevaluated sum, per component: exact.
+// a + b when |a| >= |b| or a = 0 (Dekker): exact as hi + lo.
+inline TwoTerm fast_two_sum(double a, double b) {
+    double s = a + b;
+    return {s, b - (s - a)};
+}
+
+// a*b - c*d as hi + lo, accurate to a few units of u^2 |ab| + u |ab - cd| (a double-double):
+// what a tiny cross product of nearly parallel vectors needs.
+inline TwoTerm difference_of_products_dd(double a, double b, double c, double d) {
+    TwoTerm p = two_prod(a, b), q = two_prod(c, d);
+    TwoTerm s = two_sum(p.hi, -q.hi);
+    return fast_two_sum(s.hi, s.lo + (p.lo - q.lo));
+}
+
 struct Vec3TwoTerm {
     Vec3 hi, lo;
+    Vec3 rounded() const { return hi + lo; }
 };
+
+// a x b in double-double.
+inline Vec3TwoTerm cross_dd(Vec3 a, Vec3 b) {
+    TwoTerm x = difference_of_products_dd(a.y, b.z, a.z, b.y);
+    TwoTerm y = difference_of_products_dd(a.z, b.x, a.x, b.z);
+    TwoTerm z = difference_of_products_dd(a.x, b.y, a.y, b.x);
+    return {{x.hi, y.hi, z.hi}, {x.lo, y.lo, z.lo}};
+}
+
+// a x (b_hi + b_lo): the small part's cross product joins the low part (its own rounding is
+// of order u |a| |b_lo| <= u^2 |a| |b|).
+inline Vec3TwoTerm cross_dd(Vec3 a, const Vec3TwoTerm& b) {
+    Vec3TwoTerm r = cross_dd(a, b.hi);
+    r.lo = r.lo + cross(a, b.lo);
+    return r;
+}
+inline Vec3TwoTerm cross_dd(const Vec3TwoTerm& a, Vec3 b) {
+    Vec3TwoTerm r = cross_dd(a.hi, b);
+    r.lo = r.lo + cross(a.lo, b);
+    return r;
+}
+
+// u . (n_hi + n_lo), compensated: a triple product accurate even when it nearly vanishes.
+inline double dot2(Vec3 u, const Vec3TwoTerm& n) {
+    const double x[6] = {u.x, u.y, u.z, u.x, u.y, u.z};
+    const double y[6] = {n.hi.x, n.hi.y, n.hi.z, n.lo.x, n.lo.y, n.lo.z};
+    return dot2(x, y);
+}
+
+// (p - q) as an unevaluated sum, per component: exact.
 inline Vec3TwoTerm difference_exact(Vec3 p, Vec3 q) {
     TwoTerm x = two_sum(p.x, -q.x), y = two_sum(p.y, -q.y), z = two_sum(p.z, -q.z);
     return {{x.hi, y.hi, z.hi}, {x.lo, y.lo, z.lo}};

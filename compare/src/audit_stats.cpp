@@ -1,0 +1,222 @@
+// Mergeable statistics and the grading of one result against the oracle's.
+#include "linequad/audit.hpp"
+
+#include "linequad/case_io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace linequad::audit {
+
+std::uint64_t ulps_between(double a, double b) {
+    if (std::isnan(a) || std::isnan(b)) return std::numeric_limits<std::uint64_t>::max();
+    auto ordinal = [](double x) {
+        std::int64_t i;
+        std::memcpy(&i, &x, sizeof i);
+        // Monotonic map of doubles to integers; -0 and +0 both map to 0.
+        return i < 0 ? -(i & 0x7fffffffffffffff) : i;
+    };
+    std::int64_t x = ordinal(a), y = ordinal(b);
+    return x > y ? std::uint64_t(x) - std::uint64_t(y) : std::uint64_t(y) - std::uint64_t(x);
+}
+
+int Histogram::bucket(std::uint64_t u) {
+    if (u < std::uint64_t(exact)) return int(u);
+    int b = exact + int(std::floor(4 * std::log2(double(u) / 16.0)));
+    return std::min(std::max(b, exact), bins - 1);
+}
+
+double Histogram::upper_edge(int b) {
+    if (b < exact) return b;
+    return 16.0 * std::exp2((b - exact + 1) / 4.0);
+}
+
+std::uint64_t Histogram::total() const {
+    std::uint64_t n = 0;
+    for (auto c : count) n += c;
+    return n;
+}
+
+double Histogram::quantile(double q) const {
+    std::uint64_t n = total();
+    if (n == 0) return 0;
+    std::uint64_t need = std::uint64_t(std::ceil(q * double(n))), seen = 0;
+    for (int b = 0; b < bins; ++b) {
+        seen += count[b];
+        if (seen >= need && seen > 0) return upper_edge(b);
+    }
+    return upper_edge(bins - 1);
+}
+
+void Histogram::merge(const Histogram& o) {
+    for (int b = 0; b < bins; ++b) count[b] += o.count[b];
+}
+
+void TimeHistogram::add(double ns) {
+    int b = ns <= 0.25 ? 0 : int(std::floor(16 * std::log2(ns / 0.25)));
+    ++count[std::min(std::max(b, 0), bins - 1)];
+}
+
+double TimeHistogram::median() const {
+    std::uint64_t n = 0;
+    for (auto c : count) n += c;
+    if (n == 0) return 0;
+    std::uint64_t seen = 0;
+    for (int b = 0; b < bins; ++b) {
+        seen += count[b];
+        if (2 * seen >= n) return 0.25 * std::exp2((b + 0.5) / 16.0); // bucket centre: within 2.2%
+    }
+    return 0;
+}
+
+void TimeHistogram::merge(const TimeHistogram& o) {
+    for (int b = 0; b < bins; ++b) count[b] += o.count[b];
+}
+
+const char* mismatch_name(int m) {
+    static const char* const names[mismatch_kinds] = {
+        "hit_count", "tangent_missed", "tangent_invented", "on_surface_missed",
+        "on_surface_invented", "nonfinite", "refused"};
+    return names[m];
+}
+
+namespace {
+bool worse(const Worst& a, const Worst& b) {
+    if (a.mismatch != b.mismatch) return a.mismatch;
+    return a.ulps > b.ulps;
+}
+void keep(std::vector<Worst>& list, Worst w) {
+    list.push_back(std::move(w));
+    std::stable_sort(list.begin(), list.end(), worse);
+    if (list.size() > Row::keep_worst) list.resize(Row::keep_worst);
+}
+bool qualifies(const std::vector<Worst>& list, bool mismatch, std::uint64_t ulps) {
+    if (list.size() < Row::keep_worst) return mismatch || ulps > 0;
+    Worst w;
+    w.mismatch = mismatch, w.ulps = ulps;
+    return worse(w, list.back());
+}
+bool finite_result(const Result& r) {
+    for (int i = 0; i < r.count; ++i)
+        if (!std::isfinite(r.hits[i].t) || !is_finite(r.hits[i].p)) return false;
+    return !r.on_surface || (!std::isnan(r.s0) && !std::isnan(r.s1));
+}
+// A point's error in ulps of its largest coordinate: coordinates near zero would otherwise
+// report enormous relative errors that say nothing about the hit.
+std::uint64_t point_ulps(Vec3 got, Vec3 want) {
+    double scale = max_abs(want);
+    double err = max_abs(got - want);
+    if (err == 0) return 0;
+    if (!std::isfinite(err)) return std::numeric_limits<std::uint64_t>::max();
+    double ulp = scale == 0 ? std::numeric_limits<double>::denorm_min()
+                            : std::nextafter(scale, INFINITY) - scale;
+    double u = std::ceil(err / ulp);
+    return u >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(u);
+}
+} // namespace
+
+void Row::merge(const Row& o) {
+    cases += o.cases, graded_roots += o.graded_roots, graded_coords += o.graded_coords;
+    for (int m = 0; m < mismatch_kinds; ++m) mismatches[m] += o.mismatches[m];
+    cases_mismatched += o.cases_mismatched;
+    t_error.merge(o.t_error), p_error.merge(o.p_error);
+    t_max = std::max(t_max, o.t_max), p_max = std::max(p_max, o.p_max);
+    t_sum += o.t_sum, t_bits_sum += o.t_bits_sum;
+    ns.merge(o.ns);
+    for (const Worst& w : o.worst) keep(worst, w);
+}
+
+void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
+           Row& row, CurvePoint* curve, bool points) {
+    bool flags[mismatch_kinds] = {};
+    ++row.cases;
+    std::uint64_t case_max = 0;
+    if (!oracle.ok() || !got.ok()) {
+        if (oracle.ok() != got.ok() || oracle.error.code != got.error.code) flags[refused] = true;
+    } else if (!finite_result(got) && finite_result(oracle)) {
+        flags[nonfinite] = true;
+    } else if (oracle.on_surface != got.on_surface) {
+        flags[oracle.on_surface ? on_surface_missed : on_surface_invented] = true;
+    } else {
+        auto tangents = [](const Result& r) {
+            int n = 0;
+            for (int i = 0; i < r.count; ++i) n += r.hits[i].kind == HitKind::tangent;
+            return n;
+        };
+        int to = tangents(oracle), tg = tangents(got);
+        if (to > tg) flags[tangent_missed] = true;
+        if (tg > to) flags[tangent_invented] = true;
+        if (oracle.count != got.count) flags[hit_count] = true;
+        bool classified = !flags[hit_count] && !flags[tangent_missed] && !flags[tangent_invented];
+        if (classified) {
+            auto add_t = [&](double g, double o) {
+                std::uint64_t u = ulps_between(g, o);
+                row.t_error.add(u);
+                if (curve) curve->t_error.add(u);
+                row.t_max = std::max(row.t_max, u);
+                row.t_sum += double(u);
+                row.t_bits_sum += std::log2(1.0 + double(u));
+                ++row.graded_roots;
+                case_max = std::max(case_max, u);
+            };
+            if (oracle.on_surface) {
+                add_t(got.s0, oracle.s0);
+                add_t(got.s1, oracle.s1);
+            }
+            for (int i = 0; i < oracle.count; ++i) {
+                add_t(got.hits[i].t, oracle.hits[i].t);
+                if (!points) continue;
+                std::uint64_t u = point_ulps(got.hits[i].p, oracle.hits[i].p);
+                row.p_error.add(u);
+                row.p_max = std::max(row.p_max, u);
+                ++row.graded_coords;
+            }
+        }
+    }
+    bool mismatch = false;
+    for (int m = 0; m < mismatch_kinds; ++m)
+        if (flags[m]) ++row.mismatches[m], mismatch = true;
+    row.cases_mismatched += mismatch;
+    if (curve) {
+        ++curve->cases;
+        curve->mismatched += mismatch;
+        curve->t_max = std::max(curve->t_max, case_max);
+    }
+    if (qualifies(row.worst, mismatch, case_max)) {
+        Worst w;
+        w.mismatch = mismatch, w.ulps = case_max;
+        w.case_line = format_case(c);
+        w.solver_line = format_result(c.id, solver, got);
+        w.oracle_line = format_result(c.id, "exact", oracle);
+        keep(row.worst, std::move(w));
+    }
+}
+
+void Report::merge(const Report& o) {
+    for (const auto& [key, row] : o.rows) rows[key].merge(row);
+    for (const auto& [key, points] : o.curves)
+        for (const auto& [k, p] : points) {
+            CurvePoint& q = curves[key][k];
+            q.cases += p.cases, q.mismatched += p.mismatched;
+            q.t_max = std::max(q.t_max, p.t_max);
+            q.t_error.merge(p.t_error);
+        }
+    for (int i = 0; i < 8; ++i) oracle_steps[i] += o.oracle_steps[i];
+    complete = complete && o.complete;
+    seconds += o.seconds;
+    for (const std::string& s : o.solvers)
+        if (std::find(solvers.begin(), solvers.end(), s) == solvers.end()) solvers.push_back(s);
+}
+
+Row Report::total(const std::string& solver) const {
+    Row t;
+    std::string suffix = "/" + solver;
+    for (const auto& [key, row] : rows)
+        if (key.size() > suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
+            t.merge(row);
+    return t;
+}
+
+} // namespace linequad::audit

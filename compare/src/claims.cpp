@@ -1,0 +1,33 @@
+// What the README claims for each solver, checked by `linequad audit --check` (run in CI).
+#include "linequad/audit.hpp"
+
+namespace linequad::audit {
+
+std::vector<std::string> broken_claims(const Report& r) {
+    std::vector<std::string> broken;
+    for (const auto& [key, row] : r.rows) {
+        std::string family = key.substr(0, key.find('/'));
+        std::string solver = key.substr(key.rfind('/') + 1);
+        auto claim = [&](bool holds, const std::string& what) {
+            if (!holds) broken.push_back(key + ": " + what);
+        };
+        // Every solver: no NaN or infinity where the oracle has finite values, and the same
+        // verdict on bad input (validation is shared and exact).
+        claim(row.mismatches[nonfinite] == 0, "returned NaN or infinity");
+        if (solver == "stable") {
+            // On generic cases stable classifies like the oracle and its t error has p99 <= 32
+            // ulps. (Its maximum follows the case's condition number, which random cases can
+            // make large: a 1-ulp change of the input moves some roots by 10^2 ulps.)
+            if (family == "generic") {
+                claim(row.cases_mismatched == 0, std::to_string(row.cases_mismatched) + " generic cases misclassified");
+                double p99 = row.t_error.quantile(0.99);
+                claim(p99 <= 32, "t error p99 " + std::to_string(p99) + " ulps > 32 on generic cases");
+            }
+            // It refuses (out_of_range) only inputs whose magnitudes double cannot hold.
+            claim(row.mismatches[refused] == 0 || family == "scale", "refused a case within double's range");
+        }
+    }
+    return broken;
+}
+
+} // namespace linequad::audit

@@ -1,0 +1,298 @@
+// Case generators. Exact constructions (tangents, lines on the surface, hits at the extent's
+// ends) use small-integer frames and dyadic parameters so that every coordinate is computed
+// without rounding; the nominal 2^-k perturbations are then applied in double, and the oracle
+// decides what the resulting doubles really are.
+#include "linequad/families.hpp"
+
+#include <cmath>
+#include <random>
+
+namespace linequad {
+
+namespace {
+
+const char* const names[family_count] = {"generic", "near_tangent", "axis_parallel", "apex",
+                                         "generator", "degenerate_frame", "scale", "extent_edge"};
+
+std::uint64_t splitmix(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+struct Rng {
+    std::mt19937_64 g;
+    double real(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(g); }
+    int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(g); }
+    bool coin() { return g() & 1; }
+    Vec3 vec(double s) { return {real(-s, s), real(-s, s), real(-s, s)}; }
+    Vec3 ivec(int s) { return {double(integer(-s, s)), double(integer(-s, s)), double(integer(-s, s))}; }
+    double dyadic(int bits) { return std::ldexp(double(integer(0, (1 << bits) - 1)), -bits); } // [0, 1)
+};
+
+// A frame: origin, a, b, c. Every shape is described by one: the cylinder's a, b are
+// orthogonal to c = H - C with length r (approximately, when not integer).
+struct Frame {
+    Vec3 O, a, b, c;
+};
+
+bool well_shaped(Vec3 a, Vec3 b, Vec3 c, double ratio) {
+    double n = norm(a) * norm(b) * norm(c);
+    return n > 0 && std::fabs(dot(a, cross(b, c))) >= ratio * n;
+}
+
+Frame random_frame(Rng& r, double scale = 2) {
+    for (;;) {
+        Frame f{r.vec(4), r.vec(scale), r.vec(scale), r.vec(scale)};
+        if (well_shaped(f.a, f.b, f.c, 0.2)) return f;
+    }
+}
+
+// Small-integer frames: every dyadic combination of them is exact.
+Frame integer_frame(Rng& r) {
+    for (;;) {
+        Frame f{r.ivec(6), r.ivec(4), r.ivec(4), r.ivec(4)};
+        if (well_shaped(f.a, f.b, f.c, 0.2)) return f;
+    }
+}
+
+// An integer frame for the circular cylinder: the axis along a coordinate axis (permuted and
+// signed), a and b the other two axes times the integer radius.
+Frame integer_circular_frame(Rng& r) {
+    int axis = r.integer(0, 2);
+    double len = r.integer(1, 12) * (r.coin() ? 1 : -1), radius = r.integer(1, 6);
+    Vec3 e[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    Frame f;
+    f.O = r.ivec(6);
+    f.c = len * e[axis];
+    f.a = radius * e[(axis + 1) % 3];
+    f.b = radius * e[(axis + 2) % 3];
+    return f;
+}
+
+// A cylinder frame with a, b orthogonal to c and of equal length (rounded).
+Frame circular_from(Vec3 O, Vec3 c, double radius) {
+    Vec3 t = std::fabs(c.x) < std::fabs(c.y) ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    Vec3 a = cross(c, t);
+    a = (radius / norm(a)) * a;
+    Vec3 b = cross(c, a);
+    b = (radius / norm(b)) * b;
+    return {O, a, b, c};
+}
+
+Frame frame_for(Rng& r, int shape, bool integer) {
+    if (shape == 0) {
+        if (integer) return integer_circular_frame(r);
+        Vec3 c = r.vec(4);
+        while (norm(c) < 0.5) c = r.vec(4);
+        return circular_from(r.vec(4), c, r.real(0.25, 3));
+    }
+    return integer ? integer_frame(r) : random_frame(r);
+}
+
+Shape shape_from(const Frame& f, int shape, bool finite = true) {
+    switch (shape) {
+    case 0: return Cylinder{f.O, f.O + f.c, norm(f.a), finite};
+    case 1: return EllipticCylinder{f.O, f.a, f.b, f.c, finite};
+    default: return EllipticCone{f.O - f.c, f.O, f.a, f.b, finite}; // apex at O, base at O - c
+    }
+}
+
+// The cylinder's radius must be a double: integer frames have integer radii, random frames
+// use norm(a) rounded, and the surface is then the oracle's business.
+
+// A world point from local coordinates: O + x a + y b + z c (apex frame for the cone).
+Vec3 world(const Frame& f, double x, double y, double z) { return f.O + x * f.a + y * f.b + z * f.c; }
+Vec3 world_vec(const Frame& f, double x, double y, double z) { return x * f.a + y * f.b + z * f.c; }
+
+// The local extent: cylinders z in [0, 1], the cone z in [-1, 0].
+double z_inside(Rng& r, int shape) { return shape == 2 ? -r.real(0.1, 0.9) : r.real(0.1, 0.9); }
+double z_dyadic(Rng& r, int shape) {
+    double z = 0.125 + 0.75 * r.dyadic(6);
+    return shape == 2 ? -z : z;
+}
+// Radius of the surface at local height z: 1 for cylinders, |z| for the cone.
+double radius_at(int shape, double z) { return shape == 2 ? std::fabs(z) : 1.0; }
+
+Line generic_line(Rng& r, const Frame& f, int shape) {
+    double z = z_inside(r, shape);
+    Vec3 target = world(f, r.real(-1, 1) * radius_at(shape, z), r.real(-1, 1) * radius_at(shape, z), z);
+    Vec3 from = target + r.vec(8);
+    if (r.integer(0, 4) == 0) return {from, r.vec(2)}; // a fifth aim anywhere
+    return {from, target - from};
+}
+
+Case near_tangent(Rng& r, int shape, int k) {
+    bool exact = k == 0;
+    Frame f = frame_for(r, shape, exact);
+    double z = exact ? z_dyadic(r, shape) : z_inside(r, shape);
+    double rho = radius_at(shape, z);
+    // Touch at local (rho, 0, z) (exact) or at angle theta; the tangent direction lies in the
+    // tangent plane: along the circle, plus some of the generator (or the axis).
+    double theta = exact ? 0.5 * M_PI * r.integer(0, 3) : r.real(0, 2 * M_PI);
+    double cs = std::cos(theta), sn = std::sin(theta);
+    if (exact) cs = std::round(cs), sn = std::round(sn);
+    double mu = exact ? r.dyadic(3) * (r.coin() ? 1 : -1) : r.real(-1, 1);
+    double side = k == 0 ? 1 : 1 + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k);
+    Vec3 P = world(f, side * rho * cs, side * rho * sn, z);
+    Vec3 d = world_vec(f, -sn, cs, 0);
+    if (shape == 2) d = d + mu * world_vec(f, cs, sn, z < 0 ? -1 : 1); // generator through P
+    else d = d + mu * f.c;
+    Case c;
+    c.shape = shape_from(f, shape);
+    double back = exact ? 2 : r.real(0.5, 3);
+    c.line = {P - back * d, d};
+    c.k = k;
+    return c;
+}
+
+Case axis_parallel(Rng& r, int shape, int k) {
+    bool on_surface = k == 0 && r.coin();
+    Frame f = frame_for(r, shape, on_surface || k == 0);
+    double z = k == 0 ? z_dyadic(r, shape) : z_inside(r, shape);
+    // k = 0: exactly parallel, inside (radius 1/2), outside (2) or on the surface (1).
+    double radius = on_surface ? 1 : (r.coin() ? 0.5 : 2);
+    if (shape == 2) radius *= std::fabs(z);
+    Vec3 P = world(f, radius, 0, z);
+    Vec3 d = f.c;
+    if (k > 0) d = d + std::ldexp(1.0, -k) * world_vec(f, r.real(-1, 1), r.real(-1, 1), 0);
+    Case c;
+    c.shape = shape_from(f, shape, r.integer(0, 3) != 0);
+    c.line = {P - (on_surface ? 1.0 : r.real(0.5, 2)) * d, d};
+    c.k = k;
+    return c;
+}
+
+Case apex(Rng& r, int k) {
+    bool exact = k == 0;
+    Frame f = frame_for(r, 2, exact);
+    Vec3 d = exact ? world_vec(f, r.integer(-3, 3) * 0.25, r.integer(-3, 3) * 0.25, -1)
+                   : world_vec(f, r.real(-2, 2), r.real(-2, 2), -1);
+    Vec3 P = f.O;
+    if (!exact) P = P + std::ldexp(1.0, -k) * cross(d, r.vec(1)); // 2^-k from the apex
+    Case c;
+    c.shape = shape_from(f, 2, r.integer(0, 3) != 0);
+    c.line = {P - d, d};
+    c.k = k;
+    return c;
+}
+
+Case generator(Rng& r, int k) {
+    Frame f = frame_for(r, 2, k == 0);
+    // (3/8, 1/2, -5/8) and its sign/axis variants: x^2 + y^2 = z^2 exactly.
+    double x = 0.375, y = 0.5;
+    if (r.coin()) std::swap(x, y);
+    if (r.coin()) x = -x;
+    if (r.coin()) y = -y;
+    Vec3 d = world_vec(f, x, y, -0.625);
+    if (k > 0) d = d + std::ldexp(1.0, -k) * world_vec(f, r.real(-1, 1), r.real(-1, 1), r.real(-1, 1));
+    Vec3 from = world(f, r.real(-0.5, 0.5), r.real(-0.5, 0.5), -r.real(0.2, 0.8)) - r.real(0, 2) * d;
+    Case c;
+    c.shape = shape_from(f, 2, r.integer(0, 3) != 0);
+    c.line = {from, d};
+    c.k = k;
+    return c;
+}
+
+Case degenerate_frame(Rng& r, int shape, int k) {
+    Frame f = frame_for(r, shape, false);
+    double e = std::ldexp(1.0, -k);
+    int kind = r.integer(0, 3);
+    if (shape == 0) kind = kind % 2 + 2; // only thin and flat for the circular cylinder
+    switch (kind) {
+    case 0: f.c = f.a + f.b + (e / norm(f.a)) * cross(f.a, f.b); break; // nearly singular
+    case 1: f.c = f.a + e * norm(f.a) * (f.c - (dot(f.c, f.a) / dot(f.a, f.a)) * f.a); break;
+    case 2: f.a = e * f.a, f.b = e * f.b; break; // very thin
+    default: f.c = e * f.c, f.O = e * f.O; break; // very flat, near the origin so H - C survives
+    }
+    if (shape == 0) f = circular_from(f.O, f.c, norm(f.a));
+    Case c;
+    c.shape = shape_from(f, shape);
+    c.line = generic_line(r, f, shape);
+    c.k = k;
+    return c;
+}
+
+Case scale(Rng& r, int shape, int k) {
+    Frame f = frame_for(r, shape, false);
+    int exponent = r.coin() ? k : -k;
+    double s = std::ldexp(1.0, exponent);
+    Line l = generic_line(r, f, shape);
+    // Half of the cases: the whole scene scaled by 2^+-k (exact). The other half: a unit
+    // shape moved up to 2^50 from the origin, the line's origin with it.
+    if (r.coin()) {
+        f = {s * f.O, s * f.a, s * f.b, s * f.c};
+        l = {s * l.L0, s * l.v};
+    } else {
+        Vec3 far = std::ldexp(1.0, std::min(k, 50)) * r.vec(1);
+        f.O = f.O + far;
+        l.L0 = l.L0 + far;
+    }
+    Case c;
+    c.shape = shape_from(f, shape);
+    c.line = l;
+    c.k = k;
+    return c;
+}
+
+Case extent_edge(Rng& r, int shape, int k) {
+    Frame f = frame_for(r, shape, true);
+    // A line through a point exactly on the rim (z = 0 or 1, -1 or 0 for the cone's base
+    // and... the apex rim is a point) and another surface point, then moved by 2^-k along the
+    // axis (k = 0: not moved).
+    double z_end = shape == 2 ? -1 : (r.coin() ? 0 : 1);
+    Vec3 P = world(f, 1, 0, z_end);
+    double z2 = z_dyadic(r, shape);
+    Vec3 Q = world(f, 0, radius_at(shape, z2), z2);
+    Vec3 d = Q - P;
+    if (k > 0) P = P + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k) * f.c;
+    Case c;
+    c.shape = shape_from(f, shape);
+    c.line = {P - 0.5 * d, d};
+    c.k = k;
+    return c;
+}
+
+} // namespace
+
+const char* family_name(Family f) { return names[int(f)]; }
+
+bool parse_family(std::string_view name, Family* f) {
+    for (int i = 0; i < family_count; ++i)
+        if (name == names[i]) return *f = Family(i), true;
+    return false;
+}
+
+bool family_applies(Family f, int shape) {
+    return (f != Family::apex && f != Family::generator) || shape == 2;
+}
+
+Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint64_t index) {
+    std::uint64_t key = splitmix(seed) ^ splitmix(std::uint64_t(fam) * 1000003 + std::uint64_t(shape) * 101 + std::uint64_t(range));
+    Rng r{std::mt19937_64(splitmix(key ^ splitmix(index)))};
+    Case c;
+    switch (fam) {
+    case Family::generic: {
+        bool integer = r.integer(0, 9) == 0;
+        Frame f = frame_for(r, shape, integer);
+        c.shape = shape_from(f, shape, r.integer(0, 4) != 0);
+        c.line = generic_line(r, f, shape);
+        break;
+    }
+    case Family::near_tangent: c = near_tangent(r, shape, int(index % 61)); break;
+    case Family::axis_parallel: c = axis_parallel(r, shape, int(index % 61)); break;
+    case Family::apex: c = apex(r, int(index % 61)); break;
+    case Family::generator: c = generator(r, int(index % 61)); break;
+    case Family::degenerate_frame: c = degenerate_frame(r, shape, 1 + int(index % 60)); break;
+    case Family::scale: c = scale(r, shape, int(index % 64) * 8); break;
+    case Family::extent_edge: c = extent_edge(r, shape, index % 3 == 0 ? 0 : 40 + int(index % 14)); break;
+    }
+    c.line.range = range;
+    c.family = family_name(fam);
+    c.id = "\"" + std::string(family_name(fam)) + "/" + std::to_string(shape) + "/" +
+           range_name(range) + "/" + std::to_string(seed) + "/" + std::to_string(index) + "\"";
+    return c;
+}
+
+} // namespace linequad

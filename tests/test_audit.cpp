@@ -1,0 +1,205 @@
+// The audit: deterministic families, exact shard merging, report round trips, grading of
+// result files, malformed input and interruption.
+#include "support.hpp"
+
+#include "linequad/audit.hpp"
+#include "linequad/exact.hpp"
+#include "linequad/validate.hpp"
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+using namespace linequad;
+using namespace linequad::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+    fs::path p = fs::temp_directory_path() / ("linequad_test_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+}
+
+// The parts of a row that must merge exactly (timings and the choice among equally bad worst
+// cases may differ).
+void require_same(const audit::Row& a, const audit::Row& b) {
+    CHECK(a.cases == b.cases);
+    CHECK(a.graded_roots == b.graded_roots);
+    CHECK(a.graded_coords == b.graded_coords);
+    CHECK(a.cases_mismatched == b.cases_mismatched);
+    CHECK(a.mismatches == b.mismatches);
+    CHECK(a.t_error.count == b.t_error.count);
+    CHECK(a.p_error.count == b.p_error.count);
+    CHECK(a.t_max == b.t_max);
+    CHECK(a.p_max == b.p_max);
+    CHECK(a.t_sum == b.t_sum);
+}
+
+audit::Options small(std::uint64_t cases) {
+    audit::Options o;
+    o.cases_per_group = cases;
+    o.seed = 5;
+    o.plots = false;
+    return o;
+}
+
+} // namespace
+
+TEST_CASE("families: every case is valid, reproducible alone, and exercises its family", "[audit]") {
+    for (int f = 0; f < family_count; ++f)
+        for (int shape = 0; shape < 3; ++shape) {
+            if (!family_applies(Family(f), shape)) continue;
+            int hits = 0;
+            for (std::uint64_t i = 0; i < 200; ++i) {
+                Case c = make_case(Family(f), shape, Range::line, 9, i);
+                INFO(format_case(c));
+                // Only the degenerate family may produce frames that are exactly singular.
+                ErrorCode v = validate(c.shape, c.line).code;
+                if (Family(f) == Family::degenerate_frame) REQUIRE((v == ErrorCode::none || v == ErrorCode::singular_frame));
+                else REQUIRE(v == ErrorCode::none);
+                REQUIRE(format_case(make_case(Family(f), shape, Range::line, 9, i)) == format_case(c));
+                hits += exact::intersect(c.shape, c.line).any_hit();
+            }
+            INFO(family_name(Family(f)) << " shape " << shape);
+            // The families aim at the shapes (lines exactly along the axis meet only the
+            // lateral surface they lie on, so that family hits less often).
+            CHECK(hits > (Family(f) == Family::axis_parallel ? 20 : 40));
+        }
+    // Exactly tangent lines (near_tangent, k = 0) are tangent for the oracle.
+    int tangent = 0;
+    for (std::uint64_t i = 0; i < 61 * 20; i += 61)
+        for (int shape = 0; shape < 3; ++shape) {
+            Result r = exact::intersect(make_case(Family::near_tangent, shape, Range::line, 3, i).shape,
+                                        make_case(Family::near_tangent, shape, Range::line, 3, i).line);
+            tangent += r.count == 1 && r.hits[0].kind == HitKind::tangent;
+        }
+    CHECK(tangent >= 55); // 60 lines; a few may touch outside the finite extent
+}
+
+TEST_CASE("audit: shards merge into exactly the unsharded report", "[audit]") {
+    audit::Options whole = small(60);
+    whole.families = {Family::generic, Family::near_tangent, Family::apex};
+    audit::Report full = audit::run(whole);
+    audit::Report merged;
+    for (int k = 0; k < 3; ++k) {
+        audit::Options part = whole;
+        part.shard = k, part.shards = 3;
+        audit::Report r = audit::run(part);
+        // Through the JSON format, as shards from other machines arrive.
+        fs::path dir = scratch("shard" + std::to_string(k));
+        audit::write_json(r, (dir / "report.json").string());
+        audit::Report back;
+        std::string why;
+        REQUIRE(audit::read_json((dir / "report.json").string(), &back, &why));
+        if (k == 0) merged = back;
+        else merged.merge(back);
+        fs::remove_all(dir);
+    }
+    REQUIRE(merged.rows.size() == full.rows.size());
+    for (const auto& [key, row] : full.rows) {
+        INFO(key);
+        require_same(merged.rows.at(key), row);
+    }
+    for (const auto& [key, points] : full.curves)
+        for (const auto& [k, p] : points) {
+            CHECK(merged.curves.at(key).at(k).cases == p.cases);
+            CHECK(merged.curves.at(key).at(k).t_error.count == p.t_error.count);
+        }
+}
+
+TEST_CASE("audit: grading a results file gives the in-process verdict", "[audit]") {
+    fs::path dir = scratch("results");
+    audit::Options o = small(40);
+    o.families = {Family::near_tangent, Family::axis_parallel};
+    o.solvers = {"stable"};
+    audit::Report direct = audit::run(o);
+    {
+        std::ofstream cases(dir / "cases.jsonl"), results(dir / "results.jsonl");
+        audit::for_each_case(o, [&](const Case& c) {
+            cases << format_case(c) << "\n";
+            results << format_result(c.id, "stable", run("stable", c.shape, c.line)) << "\n";
+        });
+    }
+    audit::Options g = o;
+    g.cases_file = (dir / "cases.jsonl").string();
+    g.results_file = (dir / "results.jsonl").string();
+    audit::Report graded = audit::run(g);
+    for (const auto& [key, row] : direct.rows) {
+        INFO(key);
+        REQUIRE(graded.rows.count(key));
+        require_same(graded.rows.at(key), row);
+    }
+    fs::remove_all(dir);
+}
+
+TEST_CASE("audit: unanswered cases count as refused and malformed files are named", "[audit]") {
+    fs::path dir = scratch("malformed");
+    audit::Options o = small(5);
+    o.families = {Family::generic};
+    {
+        std::ofstream cases(dir / "cases.jsonl"), results(dir / "results.jsonl");
+        bool first = true;
+        audit::for_each_case(o, [&](const Case& c) {
+            cases << format_case(c) << "\n";
+            if (first) results << format_result(c.id, "mine", run("stable", c.shape, c.line)) << "\n";
+            first = false;
+        });
+        results << "{not json\n";
+    }
+    o.cases_file = (dir / "cases.jsonl").string();
+    o.results_file = (dir / "results.jsonl").string();
+    audit::Report r = audit::run(o);
+    audit::Row t = r.total("mine");
+    CHECK(t.cases == 45); // 5 cases x 3 shapes x 3 ranges
+    CHECK(t.mismatches[audit::refused] == 44);
+
+    std::ofstream(dir / "bad_cases.jsonl") << format_case(make_case(Family::generic, 0, Range::line, 1, 0))
+                                           << "\n{\"id\":2,\"shape\":\"cylinder\"}\n";
+    o.cases_file = (dir / "bad_cases.jsonl").string();
+    try {
+        audit::run(o);
+        FAIL("a malformed cases file must be refused");
+    } catch (const std::exception& e) {
+        CHECK_THAT(e.what(), Catch::Contains("line 2") && Catch::Contains("field \"L0\": missing"));
+    }
+    fs::remove_all(dir);
+}
+
+TEST_CASE("audit: a stopped run keeps what it measured", "[audit]") {
+    fs::path dir = scratch("interrupted");
+    audit::Options o = small(200000); // far more than can run before the stop
+    o.out_dir = dir.string();
+    std::thread stopper([] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        std::raise(SIGINT);
+    });
+    audit::Report r = audit::run(o);
+    stopper.join();
+    CHECK_FALSE(r.complete);
+    audit::Report saved;
+    std::string why;
+    REQUIRE(audit::read_json((dir / "report.json").string(), &saved, &why));
+    CHECK_FALSE(saved.complete);
+    CHECK(saved.total("stable").cases > 0);
+    CHECK(fs::exists(dir / "report.md"));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("audit: ulps and histograms", "[audit]") {
+    CHECK(audit::ulps_between(1.0, 1.0) == 0);
+    CHECK(audit::ulps_between(1.0, std::nextafter(1.0, 2.0)) == 1);
+    CHECK(audit::ulps_between(-0.0, 0.0) == 0);
+    CHECK(audit::ulps_between(-0x1p-1074, 0x1p-1074) == 2);
+    audit::Histogram h;
+    for (int i = 0; i < 99; ++i) h.add(1);
+    h.add(1000);
+    CHECK(h.quantile(0.5) == 1);
+    CHECK(h.quantile(0.99) == 1);
+    CHECK(h.quantile(1.0) >= 1000);
+    CHECK(h.quantile(1.0) <= 1000 * 1.19); // quarter-octave buckets above 16
+}
