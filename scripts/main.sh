@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# The main job: install, build, and solve the shipped example cases with every solver.
+# The main job: install, build, solve the shipped examples with every solver, then the default
+# audit campaign (reports/latest: report.md, report.json, figures).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 ./build/compare/linequad --version
 ./build/compare/linequad solve --solver all examples/cases.jsonl
+./build/compare/linequad audit --out reports/latest

@@ -5,7 +5,9 @@ namespace linequad::audit {
 
 std::vector<std::string> broken_claims(const Report& r) {
     std::vector<std::string> broken;
-    for (const auto& [key, row] : r.rows) {
+    for (const auto& entry : r.rows) {
+        const std::string& key = entry.first;
+        const Row& row = entry.second;
         std::string family = key.substr(0, key.find('/'));
         std::string solver = key.substr(key.rfind('/') + 1);
         auto claim = [&](bool holds, const std::string& what) {

@@ -49,7 +49,10 @@ Result seed::intersect(const Cylinder& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "coefficients");
     Extent e = s.finite ? Extent{0, hn} : Extent{-inf, inf};
     auto z_of = [&](double t) { return wh + t * vh; };
-    return finish_roots(textbook_roots(a, b, c), 1, z_of, e, l, q, wh, vh);
+    Roots roots = textbook_roots(a, b, c);
+    if (seed_undecidable(roots, a, b * b - 4 * a * c, {s.C, s.H, l.L0, l.v, {s.r, 0, 0}}))
+        return Result::failure(ErrorCode::out_of_range, "coefficients");
+    return finish_roots(roots, 1, z_of, e, l, q, wh, vh);
 }
 
 Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
@@ -67,6 +70,7 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "r,H-C");
 
     Vec3TwoTerm w = difference_exact(L0, C);
+    bool fragile = fragile_scene(extent, {s.C, s.H, l.L0, {s.r, 0, 0}}, l.v);
     Vec3 vh = cross_dd(v, hx).rounded();
     double A = dot(vh, vh), rh = r * hn;
     Extent e = s.finite ? Extent{0, hh} : Extent{-inf, inf};
@@ -80,6 +84,7 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     Roots roots;
     if (A == 0) { // parallel to the axis
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
+        if (undecidable(roots, fragile, A, C0)) return Result::failure(ErrorCode::out_of_range, "v,H-C");
         return finish_roots(roots, ps.t_scale(), z_of, e, l, q, dot2(w.rounded(), h), dot(v, h));
     }
     // The origin moved to the line's closest approach to the axis' midpoint: never farther
@@ -97,6 +102,7 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     double gap = rA - det;
     double D = gap < 0 ? -1 : hh * gap * (rA + det);
     roots = stable_roots(A, B, Cc, D);
+    if (undecidable(roots, fragile, A, D)) return Result::failure(ErrorCode::out_of_range, "v,H-C");
     if (roots.kind == Roots::two) {
         const double s_[2] = {roots.t[0], roots.t[1]};
         unshift(tc, s_, C0 / A, roots.t);

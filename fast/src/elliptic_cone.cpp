@@ -44,7 +44,10 @@ Result seed::intersect(const EllipticCone& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "coefficients");
     Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
     auto z_of = [&](double t) { return w.z + t * v.z; };
-    return finish_roots(textbook_roots(a, b, c), 1, z_of, e, l, q, w.z, v.z);
+    Roots roots = textbook_roots(a, b, c);
+    if (seed_undecidable(roots, a, b * b - 4 * a * c, {s.C, s.H, s.a, s.b, l.L0, l.v}))
+        return Result::failure(ErrorCode::out_of_range, "coefficients");
+    return finish_roots(roots, 1, z_of, e, l, q, w.z, v.z);
 }
 
 Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
@@ -75,6 +78,9 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
     u = (1 / f.det) * u;
     double D = circle_minus_square(u.x, u.y, u.z);
     Roots roots = stable_roots(A, B, Cc, D);
+    bool fragile = fragile_scene(extent, {s.C, s.H, s.a, s.b, l.L0}, l.v);
+    if (undecidable(roots, fragile, A, D) || (A == 0 && fragile))
+        return Result::failure(ErrorCode::out_of_range, "v,a,b,H-C");
     if (roots.kind == Roots::two) {
         const double s_[2] = {roots.t[0], roots.t[1]};
         unshift(tc, s_, circle_minus_square(wl.x, wl.y, wl.z) / A, roots.t);

@@ -38,7 +38,10 @@ Result seed::intersect(const EllipticCylinder& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "coefficients");
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
     auto z_of = [&](double t) { return w.z + t * v.z; };
-    return finish_roots(textbook_roots(a, b, c), 1, z_of, e, l, q, w.z, v.z);
+    Roots roots = textbook_roots(a, b, c);
+    if (seed_undecidable(roots, a, b * b - 4 * a * c, {s.C, s.a, s.b, s.c, l.L0, l.v}))
+        return Result::failure(ErrorCode::out_of_range, "coefficients");
+    return finish_roots(roots, 1, z_of, e, l, q, w.z, v.z);
 }
 
 Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
@@ -51,6 +54,7 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     DualFrame f(a, b, {c, {}});
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
     Vec3 vl = f.local(v), wl = f.local(w.rounded());
+    bool fragile = fragile_scene(extent, {s.C, s.a, s.b, s.c, l.L0}, l.v);
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
     auto z_of = [&](double t) { return f.local_z(moved_origin(w, t, v)); };
 
@@ -59,6 +63,7 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     Roots roots;
     if (A == 0) { // along the axis
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
+        if (undecidable(roots, fragile, A, C0)) return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
         return finish_roots(roots, ps.t_scale(), z_of, e, l, q, wl.z, vl.z);
     }
     // Origin moved to the closest approach to the axis' midpoint (see cylinder.cpp).
@@ -72,7 +77,9 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     double u = std::fabs(dot2(c, cross_dd(v, wc)) / f.det);
     double sA = std::sqrt(A);
     double gap = sA - u;
-    roots = stable_roots(A, B, Cc, gap < 0 ? -1 : gap * (sA + u));
+    double D = gap < 0 ? -1 : gap * (sA + u);
+    roots = stable_roots(A, B, Cc, D);
+    if (undecidable(roots, fragile, A, D)) return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
     if (roots.kind == Roots::two) {
         const double s_[2] = {roots.t[0], roots.t[1]};
         unshift(tc, s_, C0 / A, roots.t);

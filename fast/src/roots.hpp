@@ -69,6 +69,27 @@ inline Roots stable_roots(double A, double B, double C, double D) {
     return r;
 }
 
+// True when a decision rests on a zero or a near-underflow that underflow may have produced
+// (see has_tiny_component): the solver must refuse.
+inline bool undecidable(const Roots& r, bool fragile, double A, double D) {
+    if (underflow_zone(A) || underflow_zone(D)) return true;
+    if (!fragile) return false;
+    return A == 0 || D == 0 || r.kind == Roots::on_surface || r.kind == Roots::tangent;
+}
+
+// The seed solvers do not prescale: the same guard, with the raw inputs' own magnitudes. A
+// scene whose nonzero components span more than 2^480 cannot decide a zero in double.
+inline bool seed_undecidable(const Roots& r, double a, double disc, std::initializer_list<Vec3> inputs) {
+    double largest = 0;
+    for (Vec3 u : inputs) largest = std::max(largest, max_abs(u));
+    bool fragile = false;
+    for (Vec3 u : inputs)
+        for (int i = 0; i < 3; ++i)
+            if (u[i] != 0 && std::fabs(u[i]) < min_relative_size * largest) fragile = true;
+    bool extreme = largest > 0x1p+240 || largest < 0x1p-240;
+    return undecidable(r, fragile || extreme, a, disc) || (extreme && underflow_zone(disc));
+}
+
 // Turns roots into candidates (t scaled back by t_scale, z from the functor) and finishes.
 template <class AxialOf>
 Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e, const Line& l, Query q,

@@ -162,9 +162,12 @@ Result finish(Candidate* c, int n, Extent e, const Line& l, Query q) {
         Hit& h = r.hits[r.count++];
         h.t = c[i].t;
         h.kind = c[i].kind;
-        if (q.points)
+        if (q.points) {
             h.p = {std::fma(h.t, l.v.x, l.L0.x), std::fma(h.t, l.v.y, l.L0.y),
                    std::fma(h.t, l.v.z, l.L0.z)};
+            // A hit whose point lies beyond double's range is refused, not returned as inf.
+            if (!is_finite(h.p)) return Result::failure(ErrorCode::out_of_range, "p");
+        }
         if (q.need != Need::all) break; // sorted, so the first kept is also the nearest
     }
     return r;
@@ -202,6 +205,17 @@ int exponent_of(double m) {
     return std::clamp(e, -1000, 1000);
 }
 } // namespace
+
+bool fragile_scene(double extent, std::initializer_list<Vec3> positions, Vec3 v) {
+    auto tiny = [](Vec3 u, double scale) {
+        for (int i = 0; i < 3; ++i)
+            if (u[i] != 0 && std::fabs(u[i]) < min_relative_size * scale) return true;
+        return false;
+    };
+    for (Vec3 p : positions)
+        if (tiny(p, extent)) return true;
+    return tiny(v, max_abs(v));
+}
 
 Prescale prescale_for(double max_position, Vec3 v) {
     int k = exponent_of(max_position), j = exponent_of(max_abs(v));

@@ -7,6 +7,7 @@
 #include "linequad/validate.hpp"
 
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 
 namespace linequad::detail {
@@ -35,7 +36,8 @@ inline bool in_range(double t, Range r) {
 }
 
 // Keeps the candidates inside extent and range, sorted by t, as many as q.need asks for, and
-// their points when q.points. Candidates with a non-finite t or z give an out_of_range error.
+// their points when q.points. Candidates with a non-finite t or z, and points that overflow,
+// give an out_of_range error.
 Result finish(Candidate* c, int n, Extent e, const Line& l, Query q);
 
 // The line lies on the surface: z(t) = z0 + (t / t_scale) dz. The interval of t where it is
@@ -54,6 +56,16 @@ struct Prescale {
     double t_scale() const { return t_factor; }
 };
 Prescale prescale_for(double max_position, Vec3 v);
+
+// Exact zeros decide the parallel, tangent and on-surface cases. They can be trusted only when
+// no product of the prescaled inputs can have underflowed: every nonzero component of a
+// position at least min_relative_size of the scene's extent (and of v, of v's largest), so that
+// products of four stay normal. Checked on the original inputs: prescaling itself may flush
+// such a component to zero. Otherwise a zero, or a decisive quantity below tiny_decisive, may be
+// an underflow, and the solvers refuse (out_of_range) rather than guess.
+bool fragile_scene(double extent, std::initializer_list<Vec3> positions, Vec3 v);
+constexpr double tiny_decisive = 0x1p-900;
+inline bool underflow_zone(double x) { return x != 0 && std::fabs(x) < tiny_decisive; }
 
 // After prescaling, sizes below this (relative to the scene) would underflow when multiplied
 // four times; the stable solvers refuse them with out_of_range rather than guess.
