@@ -24,18 +24,22 @@ void solve(benchmark::State& state, const Solver* solver, int shape, Query q) {
         benchmark::DoNotOptimize(r);
     }
     state.counters["hits/solve"] = double(hits) / double(state.iterations());
-    state.counters["solves/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["solves/s"] =
+        benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 int register_all() {
     std::vector<const Solver*> solvers;
-    for (const Solver& s : fast_solvers()) solvers.push_back(&s);
+    for (const Solver& s : fast_solvers())
+        solvers.push_back(&s);
     solvers.push_back(&exact::solver());
     for (int shape = 0; shape < 3; ++shape)
         for (const Solver* s : solvers) {
             std::string name = std::string(shape_names[shape]) + "/" + std::string(s->name);
-            benchmark::RegisterBenchmark((name + "/points").c_str(), solve, s, shape, Query{Need::all, true});
-            benchmark::RegisterBenchmark((name + "/no_points").c_str(), solve, s, shape, Query{Need::all, false});
+            benchmark::RegisterBenchmark((name + "/points").c_str(), solve, s, shape,
+                                         Query{Need::all, true});
+            benchmark::RegisterBenchmark((name + "/no_points").c_str(), solve, s, shape,
+                                         Query{Need::all, false});
         }
     return 0;
 }

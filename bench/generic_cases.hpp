@@ -16,7 +16,9 @@ struct GenericCase {
 
 inline std::vector<GenericCase> generic_cases(int shape_index, int n, unsigned seed = 1) {
     std::mt19937_64 rng(seed);
-    auto real = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+    auto real = [&](double lo, double hi) {
+        return std::uniform_real_distribution<double>(lo, hi)(rng);
+    };
     auto vec = [&](double s) { return Vec3{real(-s, s), real(-s, s), real(-s, s)}; };
     std::vector<GenericCase> out;
     while (int(out.size()) < n) {
@@ -25,9 +27,15 @@ inline std::vector<GenericCase> generic_cases(int shape_index, int n, unsigned s
         Shape s;
         Vec3 middle;
         switch (shape_index) {
-        case 0: s = Cylinder{C, C + c, real(0.5, 2)}, middle = C + 0.5 * c; break;
-        case 1: s = EllipticCylinder{C, a, b, c}, middle = C + 0.5 * c; break;
-        default: s = EllipticCone{C, C + c, a, b}, middle = C + 0.5 * c; break;
+        case 0:
+            s = Cylinder{C, C + c, real(0.5, 2)}, middle = C + 0.5 * c;
+            break;
+        case 1:
+            s = EllipticCylinder{C, a, b, c}, middle = C + 0.5 * c;
+            break;
+        default:
+            s = EllipticCone{C, C + c, a, b}, middle = C + 0.5 * c;
+            break;
         }
         Vec3 from = vec(4);
         out.push_back({s, {from, middle + vec(0.3) - from, Range::line}});

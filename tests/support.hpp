@@ -18,13 +18,17 @@ inline Result run(const std::string& solver, const Shape& s, const Line& l, Quer
     return (*f)(s, l, q);
 }
 
-inline std::string describe(const Result& r) { return format_result("0", "?", r); }
+inline std::string describe(const Result& r) {
+    return format_result("0", "?", r);
+}
 
 // The solvers that must return exact answers where the arithmetic of a case is exact.
 inline const char* const every_solver[] = {"seed", "stable", "exact"};
 
 // Two points on a surface: the line through them meets it exactly at t = 0 and t = 1.
-inline Line through(Vec3 p, Vec3 q, Range range = Range::line) { return {p, q - p, range}; }
+inline Line through(Vec3 p, Vec3 q, Range range = Range::line) {
+    return {p, q - p, range};
+}
 
 // |a - b| in units in the last place of b (0 when equal; infinite if either is not finite).
 inline double ulps(double a, double b) {
@@ -38,13 +42,19 @@ inline double ulps(double a, double b) {
 // root is O(1..100) and the roots are well separated (no tangency), so each coefficient carries
 // a few ulps and the roots at most a few dozen; 64 ulps of max(1, |expected|) bounds that with
 // room and still fails on any real mistake (a wrong formula is off by O(1)).
-inline bool exact_solver(const std::string& solver) { return solver == "exact"; }
-inline double fast_tolerance(double expected) { return 64 * 0x1p-53 * std::fmax(1.0, std::fabs(expected)); }
+inline bool exact_solver(const std::string& solver) {
+    return solver == "exact";
+}
+inline double fast_tolerance(double expected) {
+    return 64 * 0x1p-53 * std::fmax(1.0, std::fabs(expected));
+}
 
 inline void check_t(const std::string& solver, double got, double expected) {
     INFO(solver << ": t = " << hex(got) << ", expected " << hex(expected));
-    if (exact_solver(solver) || std::isinf(expected)) CHECK(got == expected);
-    else CHECK(std::fabs(got - expected) <= fast_tolerance(expected));
+    if (exact_solver(solver) || std::isinf(expected))
+        CHECK(got == expected);
+    else
+        CHECK(std::fabs(got - expected) <= fast_tolerance(expected));
 }
 
 inline void check_p(const std::string& solver, Vec3 got, Vec3 expected) {

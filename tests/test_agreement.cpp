@@ -12,7 +12,9 @@ namespace {
 
 struct Generic {
     std::mt19937_64 rng{99};
-    double real(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+    double real(double lo, double hi) {
+        return std::uniform_real_distribution<double>(lo, hi)(rng);
+    }
     Vec3 vec(double s) { return {real(-s, s), real(-s, s), real(-s, s)}; }
     // Frames far from singular: |det| >= |a||b||c| / 4.
     bool well_shaped(Vec3 a, Vec3 b, Vec3 c) {
@@ -23,9 +25,12 @@ struct Generic {
             Vec3 C = vec(2), a = vec(2), b = vec(2), c = vec(2);
             if (!well_shaped(a, b, c)) continue;
             switch (rng() % 3) {
-            case 0: return Cylinder{C, C + c, real(0.5, 2), true};
-            case 1: return EllipticCylinder{C, a, b, c, true};
-            default: return EllipticCone{C, C + c, a, b, true};
+            case 0:
+                return Cylinder{C, C + c, real(0.5, 2), true};
+            case 1:
+                return EllipticCylinder{C, a, b, c, true};
+            default:
+                return EllipticCone{C, C + c, a, b, true};
             }
         }
     }
@@ -61,8 +66,10 @@ TEST_CASE("fast solvers agree with the oracle on well-conditioned generic cases"
         Vec3 middle = std::visit(
             [](const auto& x) {
                 using T = std::decay_t<decltype(x)>;
-                if constexpr (std::is_same_v<T, EllipticCylinder>) return x.C + 0.5 * x.c;
-                else return 0.5 * (x.C + x.H);
+                if constexpr (std::is_same_v<T, EllipticCylinder>)
+                    return x.C + 0.5 * x.c;
+                else
+                    return 0.5 * (x.C + x.H);
             },
             s);
         Vec3 from = g.vec(4);
@@ -75,10 +82,12 @@ TEST_CASE("fast solvers agree with the oracle on well-conditioned generic cases"
             Result f = run(name, s, l);
             Case c;
             c.shape = s, c.line = l;
-            INFO(name << "\n" << format_case(c) << "\nexact " << describe(e) << "\nfast  " << describe(f));
+            INFO(name << "\n"
+                      << format_case(c) << "\nexact " << describe(e) << "\nfast  " << describe(f));
             REQUIRE(f.count == 2);
             for (int j = 0; j < 2; ++j) {
-                double err = std::fabs(f.hits[j].t - e.hits[j].t) / std::fmax(1.0, std::fabs(e.hits[j].t));
+                double err =
+                    std::fabs(f.hits[j].t - e.hits[j].t) / std::fmax(1.0, std::fabs(e.hits[j].t));
                 worst[k] = std::fmax(worst[k], err);
                 // Frames with |det| >= |a||b||c|/4, roots apart by 1% and O(1) inputs: the
                 // seed's cancellation amplifies rounding by at most ~1e4 here, so 1e-10 holds

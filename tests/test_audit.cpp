@@ -19,7 +19,8 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path scratch(const std::string& name) {
-    fs::path p = fs::temp_directory_path() / ("linequad_test_" + name + "_" + std::to_string(::getpid()));
+    fs::path p =
+        fs::temp_directory_path() / ("linequad_test_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(p);
     fs::create_directories(p);
     return p;
@@ -50,7 +51,8 @@ audit::Options small(std::uint64_t cases) {
 
 } // namespace
 
-TEST_CASE("families: every case is valid, reproducible alone, and exercises its family", "[audit]") {
+TEST_CASE("families: every case is valid, reproducible alone, and exercises its family",
+          "[audit]") {
     for (int f = 0; f < family_count; ++f)
         for (int shape = 0; shape < 3; ++shape) {
             if (!family_applies(Family(f), shape)) continue;
@@ -60,9 +62,12 @@ TEST_CASE("families: every case is valid, reproducible alone, and exercises its 
                 INFO(format_case(c));
                 // Only the degenerate family may produce frames that are exactly singular.
                 ErrorCode v = validate(c.shape, c.line).code;
-                if (Family(f) == Family::degenerate_frame) REQUIRE((v == ErrorCode::none || v == ErrorCode::singular_frame));
-                else REQUIRE(v == ErrorCode::none);
-                REQUIRE(format_case(make_case(Family(f), shape, Range::line, 9, i)) == format_case(c));
+                if (Family(f) == Family::degenerate_frame)
+                    REQUIRE((v == ErrorCode::none || v == ErrorCode::singular_frame));
+                else
+                    REQUIRE(v == ErrorCode::none);
+                REQUIRE(format_case(make_case(Family(f), shape, Range::line, 9, i)) ==
+                        format_case(c));
                 hits += exact::intersect(c.shape, c.line).any_hit();
             }
             INFO(family_name(Family(f)) << " shape " << shape);
@@ -74,8 +79,9 @@ TEST_CASE("families: every case is valid, reproducible alone, and exercises its 
     int tangent = 0;
     for (std::uint64_t i = 0; i < 61 * 20; i += 61)
         for (int shape = 0; shape < 3; ++shape) {
-            Result r = exact::intersect(make_case(Family::near_tangent, shape, Range::line, 3, i).shape,
-                                        make_case(Family::near_tangent, shape, Range::line, 3, i).line);
+            Result r =
+                exact::intersect(make_case(Family::near_tangent, shape, Range::line, 3, i).shape,
+                                 make_case(Family::near_tangent, shape, Range::line, 3, i).line);
             tangent += r.count == 1 && r.hits[0].kind == HitKind::tangent;
         }
     CHECK(tangent >= 55); // 60 lines; a few may touch outside the finite extent
@@ -96,8 +102,10 @@ TEST_CASE("audit: shards merge into exactly the unsharded report", "[audit]") {
         audit::Report back;
         std::string why;
         REQUIRE(audit::read_json((dir / "report.json").string(), &back, &why));
-        if (k == 0) merged = back;
-        else merged.merge(back);
+        if (k == 0)
+            merged = back;
+        else
+            merged.merge(back);
         fs::remove_all(dir);
     }
     REQUIRE(merged.rows.size() == full.rows.size());
@@ -146,7 +154,8 @@ TEST_CASE("audit: unanswered cases count as refused and malformed files are name
         bool first = true;
         audit::for_each_case(o, [&](const Case& c) {
             cases << format_case(c) << "\n";
-            if (first) results << format_result(c.id, "mine", run("stable", c.shape, c.line)) << "\n";
+            if (first)
+                results << format_result(c.id, "mine", run("stable", c.shape, c.line)) << "\n";
             first = false;
         });
         results << "{not json\n";
@@ -158,8 +167,9 @@ TEST_CASE("audit: unanswered cases count as refused and malformed files are name
     CHECK(t.cases == 45); // 5 cases x 3 shapes x 3 ranges
     CHECK(t.mismatches[audit::refused] == 44);
 
-    std::ofstream(dir / "bad_cases.jsonl") << format_case(make_case(Family::generic, 0, Range::line, 1, 0))
-                                           << "\n{\"id\":2,\"shape\":\"cylinder\"}\n";
+    std::ofstream(dir / "bad_cases.jsonl")
+        << format_case(make_case(Family::generic, 0, Range::line, 1, 0))
+        << "\n{\"id\":2,\"shape\":\"cylinder\"}\n";
     o.cases_file = (dir / "bad_cases.jsonl").string();
     try {
         audit::run(o);
@@ -196,7 +206,8 @@ TEST_CASE("audit: ulps and histograms", "[audit]") {
     CHECK(audit::ulps_between(-0.0, 0.0) == 0);
     CHECK(audit::ulps_between(-0x1p-1074, 0x1p-1074) == 2);
     audit::Histogram h;
-    for (int i = 0; i < 99; ++i) h.add(1);
+    for (int i = 0; i < 99; ++i)
+        h.add(1);
     h.add(1000);
     CHECK(h.quantile(0.5) == 1);
     CHECK(h.quantile(0.99) == 1);

@@ -10,9 +10,10 @@ using namespace linequad::test;
 TEST_CASE("case format: numbers as hex floats / decimals and special values", "[case_io]") {
     Case c;
     std::string why;
-    REQUIRE(parse_case(R"({"id":7,"shape":"cylinder","C":["0x1.8p+1",0.1,"-2e3"],"H":[0,0,"1"],)"
-                       R"("r":"0x1p-1074","L0":["inf","-inf","nan"],"v":[1,0,0],"range":"ray","finite":false})",
-                       &c, &why));
+    REQUIRE(parse_case(
+        R"({"id":7,"shape":"cylinder","C":["0x1.8p+1",0.1,"-2e3"],"H":[0,0,"1"],)"
+        R"("r":"0x1p-1074","L0":["inf","-inf","nan"],"v":[1,0,0],"range":"ray","finite":false})",
+        &c, &why));
     const auto& cyl = std::get<Cylinder>(c.shape);
     CHECK(c.id == "7");
     CHECK(cyl.C.x == 3.0);
@@ -86,17 +87,24 @@ TEST_CASE("case format: malformed lines name the field", "[case_io]") {
         const char* line;
         const char* says;
     } bad[] = {
-        {R"({"id":1,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"L0":[0,0,0],"v":[1,0,0]})", "field \"r\": missing"},
+        {R"({"id":1,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"L0":[0,0,0],"v":[1,0,0]})",
+         "field \"r\": missing"},
         {R"({"id":1,"shape":"torus"})", "field \"shape\""},
-        {R"({"id":1,"shape":"cylinder","C":[0,0],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0]})", "field \"C\""},
-        {R"({"id":1,"shape":"cylinder","C":[0,0,"x"],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0]})", "field \"C\""},
-        {R"({"id":1,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0],"a":[1,0,0]})", "field \"a\""},
-        {R"({"id":1,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0],"range":"beam"})", "field \"range\""},
-        {R"({"id":1,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0],"finite":1})", "field \"finite\""},
+        {R"({"id":1,"shape":"cylinder","C":[0,0],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0]})",
+         "field \"C\""},
+        {R"({"id":1,"shape":"cylinder","C":[0,0,"x"],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0]})",
+         "field \"C\""},
+        {R"({"id":1,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0],"a":[1,0,0]})",
+         "field \"a\""},
+        {R"({"id":1,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0],"range":"beam"})",
+         "field \"range\""},
+        {R"({"id":1,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0],"finite":1})",
+         "field \"finite\""},
         {R"({"id":1,"shape":"cylinder",)", "not valid JSON"},
         {R"([1,2,3])", "not a JSON object"},
         {R"({"id":1,"id":2})", "duplicate field"},
-        {R"({"id":1,"shape":"cylinder","C":[0,0,"0x1p+"],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0]})", "field \"C\""},
+        {R"({"id":1,"shape":"cylinder","C":[0,0,"0x1p+"],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0]})",
+         "field \"C\""},
     };
     for (const Bad& b : bad) {
         Case c;

@@ -29,7 +29,7 @@ TEST_CASE("cylinder: tilted axis with integer frame / radius 25", "[cylinder]") 
     // Axis (3, 4, 0); e1 = (0, 0, 1), e2 = (-4, 3, 0) / 5 are orthonormal to it. The points
     // C + 20 e1 + 15 e2 + s h are at distance 25 from the axis, with exact coordinates.
     Cylinder tilted{{1, 1, 1}, {1 + 30, 1 + 40, 1}, 25};
-    Vec3 p{1 - 12 + 3, 1 + 9 + 4, 1 + 20};  // s = 1/10
+    Vec3 p{1 - 12 + 3, 1 + 9 + 4, 1 + 20};   // s = 1/10
     Vec3 q{1 + 12 + 15, 1 - 9 + 20, 1 - 20}; // e1 -> -20, e2 -> -15, s = 1/2
     Result r = run("exact", tilted, through(p, q));
     INFO(describe(r));
@@ -84,7 +84,7 @@ TEST_CASE("cylinder: lines parallel to the axis", "[cylinder]") {
         INFO(s);
         CHECK_FALSE(run(s, upright, {{1, 1, -3}, {0, 0, 2}}).any_hit()); // inside
         CHECK_FALSE(run(s, upright, {{9, 1, -3}, {0, 0, 2}}).any_hit()); // outside
-        Result on = run(s, upright, {{3, 4, -3}, {0, 0, 2}});              // on the surface
+        Result on = run(s, upright, {{3, 4, -3}, {0, 0, 2}});            // on the surface
         INFO(describe(on));
         REQUIRE(on.on_surface);
         CHECK(on.count == 0);

@@ -8,7 +8,9 @@ namespace {
 // Tilted in the plane, elliptic (|a| = 5, |b| = 10), apex 5 above the base centre.
 const Vec3 C{1, 1, 1}, H{1, 1, 6}, a{4, -3, 0}, b{6, 8, 0};
 const EllipticCone cone{C, H, a, b};
-Vec3 at(double x, double y, double z) { return H + x * a + y * b + z * (H - C); }
+Vec3 at(double x, double y, double z) {
+    return H + x * a + y * b + z * (H - C);
+}
 } // namespace
 
 TEST_CASE("cone: line through two surface points of the lower nappe", "[elliptic_cone]") {
@@ -51,8 +53,8 @@ TEST_CASE("cone: the seed's literal last step would intersect a cylinder (erratu
 }
 
 TEST_CASE("cone: lines through the apex give a double root there", "[elliptic_cone]") {
-    Vec3 inside = 0.25 * a - 0.5 * (H - C);  // x^2 + y^2 < z^2: enters the cone's inside
-    Vec3 outside = a + 0.5 * (H - C);         // touches the double cone only at the apex
+    Vec3 inside = 0.25 * a - 0.5 * (H - C); // x^2 + y^2 < z^2: enters the cone's inside
+    Vec3 outside = a + 0.5 * (H - C);       // touches the double cone only at the apex
     // Not the seed: its rounded M^-1 turns the zero discriminant into a small one of either
     // sign, so it misses the apex or reports two crossings (the audit counts how often).
     for (const char* s : {"stable", "exact"}) {

@@ -8,7 +8,9 @@ namespace {
 // Orthogonal axes of lengths 5 and 10 (a rotation with a scale), height 7.
 const Vec3 C{1, 2, 3}, a{3, 4, 0}, b{-8, 6, 0}, c{0, 0, 7};
 const EllipticCylinder ellipse{C, a, b, c};
-Vec3 at(double x, double y, double z, Vec3 cc = c) { return C + x * a + y * b + z * cc; }
+Vec3 at(double x, double y, double z, Vec3 cc = c) {
+    return C + x * a + y * b + z * cc;
+}
 } // namespace
 
 TEST_CASE("elliptic cylinder: line through two surface points", "[elliptic_cylinder]") {

@@ -18,14 +18,19 @@ namespace {
 struct Random {
     std::mt19937_64 rng{20261121};
     // Doubles with full 53-bit mantissas over a few binades: exact inputs, generic answers.
-    double real(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+    double real(double lo, double hi) {
+        return std::uniform_real_distribution<double>(lo, hi)(rng);
+    }
     Vec3 vec(double s) { return {real(-s, s), real(-s, s), real(-s, s)}; }
     Range range() { return Range(rng() % 3); }
     Shape shape() {
         switch (rng() % 3) {
-        case 0: return Cylinder{vec(4), vec(4), real(0.5, 3), rng() % 4 != 0};
-        case 1: return EllipticCylinder{vec(4), vec(3), vec(3), vec(3), rng() % 4 != 0};
-        default: return EllipticCone{vec(4), vec(4), vec(3), vec(3), rng() % 4 != 0};
+        case 0:
+            return Cylinder{vec(4), vec(4), real(0.5, 3), rng() % 4 != 0};
+        case 1:
+            return EllipticCylinder{vec(4), vec(3), vec(3), vec(3), rng() % 4 != 0};
+        default:
+            return EllipticCone{vec(4), vec(4), vec(3), vec(3), rng() % 4 != 0};
         }
     }
     Line line() { return {vec(6), vec(2), range()}; }
@@ -36,7 +41,8 @@ bool same(const Result& a, const Result& b) {
 }
 
 Shape scaled(const Shape& s, double k) {
-    if (auto* c = std::get_if<Cylinder>(&s)) return Cylinder{k * c->C, k * c->H, k * c->r, c->finite};
+    if (auto* c = std::get_if<Cylinder>(&s))
+        return Cylinder{k * c->C, k * c->H, k * c->r, c->finite};
     if (auto* e = std::get_if<EllipticCylinder>(&s))
         return EllipticCylinder{k * e->C, k * e->a, k * e->b, k * e->c, e->finite};
     const auto& n = std::get<EllipticCone>(s);
@@ -68,7 +74,7 @@ TEST_CASE("exact: a circular cylinder is an elliptic cylinder with axes of lengt
     int hits = 0;
     for (int i = 0; i < 2000; ++i) {
         Line l{C + r.vec(12), r.vec(2), r.range()};
-        if (i % 7 == 0) l.v = h; // parallel to the axis as well
+        if (i % 7 == 0) l.v = h;                 // parallel to the axis as well
         if (i % 11 == 0) l.L0 = C + a + 0.5 * h; // through a surface point
         Result x = exact::intersect(circular, l), y = exact::intersect(elliptic, l);
         INFO(describe(x) << "\n" << describe(y));
@@ -98,7 +104,8 @@ TEST_CASE("exact: reversing v negates t / doubling v halves t / scaling by 2^k s
 
         Result twice = exact::intersect(s, {l.L0, 2.0 * l.v});
         REQUIRE(twice.count == base.count);
-        for (int j = 0; j < base.count; ++j) CHECK(twice.hits[j].t == base.hits[j].t / 2);
+        for (int j = 0; j < base.count; ++j)
+            CHECK(twice.hits[j].t == base.hits[j].t / 2);
 
         for (int k : {-60, 37}) {
             double f = std::ldexp(1.0, k);
@@ -169,11 +176,14 @@ TEST_CASE("exact: rounding matches a 4096-bit evaluation on random values", "[ex
         if (i % 5 == 0) mpq_set_ui(Y, 0, 1); // rationals too
         double ref = reference(X, Y, D, Den);
         if (std::isnan(ref)) continue;
-        double got = exact::round_surd(str(X).c_str(), str(Y).c_str(), str(D).c_str(), str(Den).c_str());
+        double got =
+            exact::round_surd(str(X).c_str(), str(Y).c_str(), str(D).c_str(), str(Den).c_str());
         INFO(str(X) << " + " << str(Y) << " sqrt(" << str(D) << ") / " << str(Den));
         // Bit for bit, except that an exact zero is +0 by design (it has no sign to keep).
-        if (ref == 0) REQUIRE((got == 0 && !std::signbit(got)));
-        else REQUIRE(std::memcmp(&got, &ref, sizeof got) == 0);
+        if (ref == 0)
+            REQUIRE((got == 0 && !std::signbit(got)));
+        else
+            REQUIRE(std::memcmp(&got, &ref, sizeof got) == 0);
         ++compared;
     }
     CHECK(compared > 2500);
@@ -189,17 +199,18 @@ TEST_CASE("exact: rounding near ties / subnormals and overflow", "[exact][roundi
     const char* m2 = "81129638414606699710187514626049"; // (2^53 + 1)^2
     CHECK(exact::round_surd("0", "1", "81129638414606699710187514626050", "9007199254740992") ==
           1 + 0x1p-52);
-    CHECK(exact::round_surd("0", "1", "81129638414606699710187514626048", "9007199254740992") == 1.0);
+    CHECK(exact::round_surd("0", "1", "81129638414606699710187514626048", "9007199254740992") ==
+          1.0);
     CHECK(exact::round_surd("0", "1", m2, "9007199254740992") == 1.0); // exactly the tie
     // Half the smallest subnormal (a tie with 0: even is 0), and 3/2 of it (a tie: even is 2).
     mpz_t p;
     mpz_init(p);
     mpz_ui_pow_ui(p, 2, 1075);
     char* big = mpz_get_str(nullptr, 10, p);
-    CHECK(exact::round_surd("1", "0", "0", big) == 0.0);           // 2^-1075: tie, to even (0)
-    CHECK(exact::round_surd("3", "0", "0", big) == 0x1p-1073);     // 3 * 2^-1075 -> 2^-1073
-    CHECK(exact::round_surd("0", "1", "1", big) == 0.0);           // sqrt(1) / 2^1075
-    CHECK(exact::round_surd("0", "1", "2", big) == 0x1p-1074);     // sqrt(2) / 2^1075: up
+    CHECK(exact::round_surd("1", "0", "0", big) == 0.0);       // 2^-1075: tie, to even (0)
+    CHECK(exact::round_surd("3", "0", "0", big) == 0x1p-1073); // 3 * 2^-1075 -> 2^-1073
+    CHECK(exact::round_surd("0", "1", "1", big) == 0.0);       // sqrt(1) / 2^1075
+    CHECK(exact::round_surd("0", "1", "2", big) == 0x1p-1074); // sqrt(2) / 2^1075: up
     mpz_ui_pow_ui(p, 2, 1024);
     char* huge = mpz_get_str(nullptr, 10, p);
     CHECK(exact::round_surd(huge, "0", "0", "1") == INFINITY);
@@ -211,10 +222,12 @@ TEST_CASE("exact: rounding near ties / subnormals and overflow", "[exact][roundi
     mpz_clear(p);
 }
 
-TEST_CASE("exact: rounding needs few precision steps on the oracle's own cases", "[exact][rounding]") {
+TEST_CASE("exact: rounding needs few precision steps on the oracle's own cases",
+          "[exact][rounding]") {
     Random r;
     exact::rounding_stats() = {};
-    for (int i = 0; i < 2000; ++i) exact::intersect(r.shape(), r.line());
+    for (int i = 0; i < 2000; ++i)
+        exact::intersect(r.shape(), r.line());
     const auto& st = exact::rounding_stats();
     CHECK(st.values > 1000);
     CHECK(st.max_steps >= 1);

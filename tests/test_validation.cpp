@@ -33,8 +33,8 @@ TEST_CASE("bad input: NaN and infinite coordinates name the field", "[validation
     expect_error(Cylinder{{0, 0, 0}, {0, 0, 10}, inf}, good, ErrorCode::infinite, "r");
     expect_error(EllipticCylinder{{0, 0, 0}, {1, 0, 0}, {0, qnan, 0}, {0, 0, 1}}, good,
                  ErrorCode::not_a_number, "b");
-    expect_error(EllipticCone{{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 0}, {-inf, 0, 0}},
-                 ErrorCode::infinite, "v");
+    expect_error(EllipticCone{{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}},
+                 {{0, 0, 0}, {-inf, 0, 0}}, ErrorCode::infinite, "v");
 }
 
 TEST_CASE("bad input: zero direction / radius / axis", "[validation]") {
@@ -62,13 +62,16 @@ TEST_CASE("bad input: singular frames are detected exactly", "[validation]") {
     EllipticCylinder maybe{{0, 0, 0}, a, b, c};
     Result exact = run("exact", maybe, good);
     // Whatever the exact oracle decides, every solver decides the same: validation is shared.
-    for (const char* s : {"seed", "stable"}) CHECK(run(s, maybe, good).error.code == exact.error.code);
+    for (const char* s : {"seed", "stable"})
+        CHECK(run(s, maybe, good).error.code == exact.error.code);
     // A frame singular to the last bit: c = a + b with exact sums.
     EllipticCylinder flat{{0, 0, 0}, {0.5, 0.25, 1}, {0.125, 3, -2}, {0.625, 3.25, -1}};
-    for (const char* s : every_solver) CHECK(run(s, flat, good).error.code == ErrorCode::singular_frame);
+    for (const char* s : every_solver)
+        CHECK(run(s, flat, good).error.code == ErrorCode::singular_frame);
     // Nearly singular is not singular: det = 2^-100.
     EllipticCylinder thin{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0x1p-100}};
-    for (const char* s : every_solver) CHECK(run(s, thin, good).ok());
+    for (const char* s : every_solver)
+        CHECK(run(s, thin, good).ok());
 }
 
 TEST_CASE("bad input: messages say what is wrong", "[validation]") {

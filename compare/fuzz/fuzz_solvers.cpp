@@ -25,8 +25,8 @@ namespace {
 
 void require(bool ok, const char* what, const Case& c, const std::string& solver, const Result& r) {
     if (ok) return;
-    std::fprintf(stderr, "invariant broken: %s\nsolver %s\ncase %s\nresult %s\n", what, solver.c_str(),
-                 format_case(c).c_str(), format_result(c.id, solver, r).c_str());
+    std::fprintf(stderr, "invariant broken: %s\nsolver %s\ncase %s\nresult %s\n", what,
+                 solver.c_str(), format_case(c).c_str(), format_result(c.id, solver, r).c_str());
     std::abort();
 }
 
@@ -48,9 +48,11 @@ void check_shape(const Case& c, const std::string& name, const Result& r) {
     }
     require(r.count < 2 || r.hits[0].t <= r.hits[1].t, "hits sorted by t", c, name, r);
     if (r.on_surface) {
-        require(!std::isnan(r.s0) && !std::isnan(r.s1) && r.s0 <= r.s1, "ordered interval", c, name, r);
+        require(!std::isnan(r.s0) && !std::isnan(r.s1) && r.s0 <= r.s1, "ordered interval", c, name,
+                r);
         require(c.line.range == Range::line || r.s0 >= 0, "interval inside the range", c, name, r);
-        require(c.line.range != Range::segment || r.s1 <= 1, "interval inside the segment", c, name, r);
+        require(c.line.range != Range::segment || r.s1 <= 1, "interval inside the segment", c, name,
+                r);
     }
 }
 
@@ -58,16 +60,18 @@ void check(const Case& c) {
     Result oracle = exact::intersect(c.shape, c.line);
     check_shape(c, "exact", oracle);
     Result gmpq = exact::intersect_gmpq(c.shape, c.line);
-    require(format_result(c.id, "", gmpq) == format_result(c.id, "", oracle), "Mpzf and Gmpq agree", c,
-            "exact_gmpq", gmpq);
+    require(format_result(c.id, "", gmpq) == format_result(c.id, "", oracle), "Mpzf and Gmpq agree",
+            c, "exact_gmpq", gmpq);
     for (const Solver& s : all_solvers()) {
         std::string name(s.name);
         Result r = s(c.shape, c.line);
         check_shape(c, name, r);
         if (!oracle.ok()) {
-            require(!r.ok() && r.error.code == oracle.error.code, "same verdict on bad input", c, name, r);
+            require(!r.ok() && r.error.code == oracle.error.code, "same verdict on bad input", c,
+                    name, r);
         } else if (!r.ok()) {
-            require(r.error.code == ErrorCode::out_of_range, "refuses only what double cannot hold", c, name, r);
+            require(r.error.code == ErrorCode::out_of_range, "refuses only what double cannot hold",
+                    c, name, r);
         } else if (!oracle.any_hit()) {
             require(!r.on_surface, "no invented on-surface interval", c, name, r);
         }
@@ -91,7 +95,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (data[0] == '{') { // a case line for the parser
         Case c;
         std::string why;
-        if (parse_case(std::string_view(reinterpret_cast<const char*>(data), size), &c, &why)) check(c);
+        if (parse_case(std::string_view(reinterpret_cast<const char*>(data), size), &c, &why))
+            check(c);
         return 0;
     }
     const std::uint8_t *p = data + 1, *end = data + size;
@@ -99,12 +104,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     c.id = "\"fuzz\"";
     bool finite = data[0] & 4;
     Vec3 v[6];
-    for (Vec3& x : v) x = {take(p, end), take(p, end), take(p, end)};
+    for (Vec3& x : v)
+        x = {take(p, end), take(p, end), take(p, end)};
     double r = take(p, end);
     switch (data[0] % 3) {
-    case 0: c.shape = Cylinder{v[0], v[1], r, finite}; break;
-    case 1: c.shape = EllipticCylinder{v[0], v[1], v[2], v[3], finite}; break;
-    default: c.shape = EllipticCone{v[0], v[1], v[2], v[3], finite}; break;
+    case 0:
+        c.shape = Cylinder{v[0], v[1], r, finite};
+        break;
+    case 1:
+        c.shape = EllipticCylinder{v[0], v[1], v[2], v[3], finite};
+        break;
+    default:
+        c.shape = EllipticCone{v[0], v[1], v[2], v[3], finite};
+        break;
     }
     c.line = {v[4], v[5], Range((data[0] >> 3) % 3)};
     check(c);

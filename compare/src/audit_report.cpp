@@ -15,7 +15,9 @@ namespace {
 
 using json::Value;
 
-std::string num(std::uint64_t x) { return std::to_string(x); }
+std::string num(std::uint64_t x) {
+    return std::to_string(x);
+}
 std::string real(double x) {
     char b[32];
     std::snprintf(b, sizeof b, "%.17g", x);
@@ -41,22 +43,28 @@ std::string str(const std::string& x) {
 
 std::string row_json(const Row& r) {
     std::string s = "{\"cases\":" + num(r.cases) + ",\"graded_roots\":" + num(r.graded_roots) +
-                    ",\"graded_points\":" + num(r.graded_coords) + ",\"cases_mismatched\":" + num(r.cases_mismatched) +
-                    ",\"mismatches\":{";
-    for (int m = 0; m < mismatch_kinds; ++m) s += (m ? ",\"" : "\"") + std::string(mismatch_name(m)) + "\":" + num(r.mismatches[m]);
-    s += "},\"t_ulps\":{\"max\":" + num(r.t_max) + ",\"mean\":" + real(r.graded_roots ? r.t_sum / double(r.graded_roots) : 0) +
-         ",\"p50\":" + real(r.t_error.quantile(0.5)) + ",\"p99\":" + real(r.t_error.quantile(0.99)) +
+                    ",\"graded_points\":" + num(r.graded_coords) +
+                    ",\"cases_mismatched\":" + num(r.cases_mismatched) + ",\"mismatches\":{";
+    for (int m = 0; m < mismatch_kinds; ++m)
+        s += (m ? ",\"" : "\"") + std::string(mismatch_name(m)) + "\":" + num(r.mismatches[m]);
+    s += "},\"t_ulps\":{\"max\":" + num(r.t_max) +
+         ",\"mean\":" + real(r.graded_roots ? r.t_sum / double(r.graded_roots) : 0) +
+         ",\"p50\":" + real(r.t_error.quantile(0.5)) +
+         ",\"p99\":" + real(r.t_error.quantile(0.99)) +
          ",\"p999\":" + real(r.t_error.quantile(0.999)) +
          ",\"mean_bits\":" + real(r.graded_roots ? r.t_bits_sum / double(r.graded_roots) : 0) +
-         ",\"sum\":" + real(r.t_sum) + ",\"bits_sum\":" + real(r.t_bits_sum) + ",\"histogram\":" + array(r.t_error.count) + "}";
+         ",\"sum\":" + real(r.t_sum) + ",\"bits_sum\":" + real(r.t_bits_sum) +
+         ",\"histogram\":" + array(r.t_error.count) + "}";
     s += ",\"point_ulps\":{\"max\":" + num(r.p_max) + ",\"p99\":" + real(r.p_error.quantile(0.99)) +
          ",\"histogram\":" + array(r.p_error.count) + "}";
-    s += ",\"ns_per_solve\":{\"median\":" + real(r.ns.median()) + ",\"histogram\":" + array(r.ns.count) + "}";
+    s += ",\"ns_per_solve\":{\"median\":" + real(r.ns.median()) +
+         ",\"histogram\":" + array(r.ns.count) + "}";
     s += ",\"worst\":[";
     for (std::size_t i = 0; i < r.worst.size(); ++i) {
         const Worst& w = r.worst[i];
-        s += (i ? ",{" : "{") + std::string("\"mismatch\":") + (w.mismatch ? "true" : "false") + ",\"t_ulps\":" + num(w.ulps) +
-             ",\"case\":" + str(w.case_line) + ",\"solver\":" + str(w.solver_line) + ",\"oracle\":" + str(w.oracle_line) + "}";
+        s += (i ? ",{" : "{") + std::string("\"mismatch\":") + (w.mismatch ? "true" : "false") +
+             ",\"t_ulps\":" + num(w.ulps) + ",\"case\":" + str(w.case_line) +
+             ",\"solver\":" + str(w.solver_line) + ",\"oracle\":" + str(w.oracle_line) + "}";
     }
     return s + "]}";
 }
@@ -70,18 +78,27 @@ void read_array(const Value* v, Array& a) {
             if (i < a.size()) a[i] = std::stoull(pair.items[1].text);
         }
 }
-std::uint64_t u64(const Value* v) { return v && v->type == Value::Type::number ? std::stoull(v->text) : 0; }
-double dbl(const Value* v) { return v && v->type == Value::Type::number ? std::stod(v->text) : 0; }
-std::string text(const Value* v) { return v && v->type == Value::Type::string ? v->text : ""; }
+std::uint64_t u64(const Value* v) {
+    return v && v->type == Value::Type::number ? std::stoull(v->text) : 0;
+}
+double dbl(const Value* v) {
+    return v && v->type == Value::Type::number ? std::stod(v->text) : 0;
+}
+std::string text(const Value* v) {
+    return v && v->type == Value::Type::string ? v->text : "";
+}
 
 Row row_from(const Value& v) {
     Row r;
     r.cases = u64(v.find("cases")), r.graded_roots = u64(v.find("graded_roots"));
-    r.graded_coords = u64(v.find("graded_points")), r.cases_mismatched = u64(v.find("cases_mismatched"));
+    r.graded_coords = u64(v.find("graded_points")),
+    r.cases_mismatched = u64(v.find("cases_mismatched"));
     if (const Value* m = v.find("mismatches"))
-        for (int k = 0; k < mismatch_kinds; ++k) r.mismatches[k] = u64(m->find(mismatch_name(k)));
+        for (int k = 0; k < mismatch_kinds; ++k)
+            r.mismatches[k] = u64(m->find(mismatch_name(k)));
     if (const Value* t = v.find("t_ulps")) {
-        r.t_max = u64(t->find("max")), r.t_sum = dbl(t->find("sum")), r.t_bits_sum = dbl(t->find("bits_sum"));
+        r.t_max = u64(t->find("max")), r.t_sum = dbl(t->find("sum")),
+        r.t_bits_sum = dbl(t->find("bits_sum"));
         read_array(t->find("histogram"), r.t_error.count);
     }
     if (const Value* p = v.find("point_ulps")) {
@@ -95,7 +112,8 @@ Row row_from(const Value& v) {
             const Value* mm = x.find("mismatch");
             k.mismatch = mm && mm->boolean;
             k.ulps = u64(x.find("t_ulps"));
-            k.case_line = text(x.find("case")), k.solver_line = text(x.find("solver")), k.oracle_line = text(x.find("oracle"));
+            k.case_line = text(x.find("case")), k.solver_line = text(x.find("solver")),
+            k.oracle_line = text(x.find("oracle"));
             r.worst.push_back(k);
         }
     return r;
@@ -104,31 +122,42 @@ Row row_from(const Value& v) {
 std::string fmt(double x) {
     char b[32];
     if (x == 0) return "0";
-    if (x < 1e4 && x == std::floor(x)) std::snprintf(b, sizeof b, "%.0f", x);
-    else if (x < 1e4) std::snprintf(b, sizeof b, "%.3g", x);
-    else std::snprintf(b, sizeof b, "%.2e", x);
+    if (x < 1e4 && x == std::floor(x))
+        std::snprintf(b, sizeof b, "%.0f", x);
+    else if (x < 1e4)
+        std::snprintf(b, sizeof b, "%.3g", x);
+    else
+        std::snprintf(b, sizeof b, "%.2e", x);
     return b;
 }
-std::string fmt_ulps(std::uint64_t u) { return u == UINT64_MAX ? "inf" : fmt(double(u)); }
+std::string fmt_ulps(std::uint64_t u) {
+    return u == UINT64_MAX ? "inf" : fmt(double(u));
+}
 
 // The shell command that replays a case: the solver and the oracle side by side.
 std::string replay(const Worst& w, const std::string& solver) {
     std::string quoted;
-    for (char c : w.case_line) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    for (char c : w.case_line)
+        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return "echo '" + quoted + "' | linequad solve --solver " + solver + ",exact";
 }
 
 } // namespace
 
 void write_json(const Report& r, const std::string& path) {
-    std::string s = "{\"format\":\"linequad-audit-1\",\"command\":" + str(r.command) + ",\"machine\":" + str(r.machine) +
-                    ",\"compiler\":" + str(r.compiler) + ",\"flags\":" + str(r.flags) + ",\"commit\":" + str(r.commit) +
-                    ",\"date\":" + str(r.date) + ",\"seed\":" + num(r.seed) + ",\"cases_per_group\":" + num(r.cases_per_group) +
-                    ",\"shard\":" + std::to_string(r.shard) + ",\"shards\":" + std::to_string(r.shards) +
-                    ",\"complete\":" + (r.complete ? "true" : "false") + ",\"seconds\":" + real(r.seconds) + ",\"solvers\":[";
-    for (std::size_t i = 0; i < r.solvers.size(); ++i) s += (i ? "," : "") + str(r.solvers[i]);
+    std::string s =
+        "{\"format\":\"linequad-audit-1\",\"command\":" + str(r.command) +
+        ",\"machine\":" + str(r.machine) + ",\"compiler\":" + str(r.compiler) +
+        ",\"flags\":" + str(r.flags) + ",\"commit\":" + str(r.commit) + ",\"date\":" + str(r.date) +
+        ",\"seed\":" + num(r.seed) + ",\"cases_per_group\":" + num(r.cases_per_group) +
+        ",\"shard\":" + std::to_string(r.shard) + ",\"shards\":" + std::to_string(r.shards) +
+        ",\"complete\":" + (r.complete ? "true" : "false") + ",\"seconds\":" + real(r.seconds) +
+        ",\"solvers\":[";
+    for (std::size_t i = 0; i < r.solvers.size(); ++i)
+        s += (i ? "," : "") + str(r.solvers[i]);
     s += "],\"oracle_rounding_steps\":[";
-    for (int i = 0; i < 8; ++i) s += (i ? "," : "") + num(r.oracle_steps[i]);
+    for (int i = 0; i < 8; ++i)
+        s += (i ? "," : "") + num(r.oracle_steps[i]);
     s += "],\"rows\":{";
     bool first = true;
     for (const auto& [key, row] : r.rows) {
@@ -141,9 +170,9 @@ void write_json(const Report& r, const std::string& path) {
         s += (first ? "" : ",\n") + str(key) + ":[";
         bool f2 = true;
         for (const auto& [k, p] : points) {
-            s += (f2 ? "" : ",") + std::string("{\"k\":") + std::to_string(k) + ",\"cases\":" + num(p.cases) +
-                 ",\"mismatched\":" + num(p.mismatched) + ",\"t_max\":" + num(p.t_max) +
-                 ",\"histogram\":" + array(p.t_error.count) + "}";
+            s += (f2 ? "" : ",") + std::string("{\"k\":") + std::to_string(k) +
+                 ",\"cases\":" + num(p.cases) + ",\"mismatched\":" + num(p.mismatched) +
+                 ",\"t_max\":" + num(p.t_max) + ",\"histogram\":" + array(p.t_error.count) + "}";
             f2 = false;
         }
         s += "]";
@@ -157,7 +186,8 @@ void write_json(const Report& r, const std::string& path) {
         out << s;
         if (!out) throw std::runtime_error("cannot write " + tmp);
     }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot write " + path);
+    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+        throw std::runtime_error("cannot write " + path);
 }
 
 bool read_json(const std::string& path, Report* r, std::string* why) {
@@ -168,7 +198,8 @@ bool read_json(const std::string& path, Report* r, std::string* why) {
     Value v;
     std::string err;
     if (!json::parse(ss.str(), &v, &err)) return *why = path + ": " + err, false;
-    if (text(v.find("format")) != "linequad-audit-1") return *why = path + ": not a linequad audit report", false;
+    if (text(v.find("format")) != "linequad-audit-1")
+        return *why = path + ": not a linequad audit report", false;
     *r = Report{};
     r->command = text(v.find("command")), r->machine = text(v.find("machine"));
     r->compiler = text(v.find("compiler")), r->flags = text(v.find("flags"));
@@ -179,16 +210,20 @@ bool read_json(const std::string& path, Report* r, std::string* why) {
     r->complete = c && c->boolean;
     r->seconds = dbl(v.find("seconds"));
     if (const Value* s = v.find("solvers"))
-        for (const Value& x : s->items) r->solvers.push_back(x.text);
+        for (const Value& x : s->items)
+            r->solvers.push_back(x.text);
     if (const Value* s = v.find("oracle_rounding_steps"))
-        for (std::size_t i = 0; i < s->items.size() && i < 8; ++i) r->oracle_steps[i] = u64(&s->items[i]);
+        for (std::size_t i = 0; i < s->items.size() && i < 8; ++i)
+            r->oracle_steps[i] = u64(&s->items[i]);
     if (const Value* rows = v.find("rows"))
-        for (const auto& [key, row] : rows->members) r->rows[key] = row_from(row);
+        for (const auto& [key, row] : rows->members)
+            r->rows[key] = row_from(row);
     if (const Value* curves = v.find("curves"))
         for (const auto& [key, points] : curves->members)
             for (const Value& p : points.items) {
                 CurvePoint& q = r->curves[key][int(std::stol(p.find("k")->text))];
-                q.cases = u64(p.find("cases")), q.mismatched = u64(p.find("mismatched")), q.t_max = u64(p.find("t_max"));
+                q.cases = u64(p.find("cases")), q.mismatched = u64(p.find("mismatched")),
+                q.t_max = u64(p.find("t_max"));
                 read_array(p.find("histogram"), q.t_error.count);
             }
     return true;
@@ -198,53 +233,67 @@ void write_markdown(const Report& r, const std::string& dir) {
     std::ostringstream md;
     md << "# linequad accuracy audit\n\n";
     md << "| | |\n|---|---|\n";
-    md << "| command | `" << r.command << "` |\n| commit | " << r.commit << " |\n| date | " << r.date << " |\n";
+    md << "| command | `" << r.command << "` |\n| commit | " << r.commit << " |\n| date | "
+       << r.date << " |\n";
     md << "| machine | " << r.machine << " |\n| compiler | " << r.compiler << " |\n";
     md << "| fast/ flags | `" << r.flags << "` |\n| seed | " << r.seed << " |\n";
     md << "| cases per family, shape and range | " << r.cases_per_group << " |\n";
-    md << "| shards | " << r.shards << " |\n| complete | " << (r.complete ? "yes" : "**no: stopped early**") << " |\n";
+    md << "| shards | " << r.shards << " |\n| complete | "
+       << (r.complete ? "yes" : "**no: stopped early**") << " |\n";
     md << "| run time | " << fmt(r.seconds) << " s |\n\n";
-    md << "Errors are distances to the exact oracle's correctly rounded value, in units in the last "
+    md << "Errors are distances to the exact oracle's correctly rounded value, in units in the "
+          "last "
           "place (0: correctly rounded); bits = log2(1 + ulps) as Herbie counts them. Points: the "
-          "largest coordinate error in ulps of the point's largest coordinate. A mismatch is a "
-          "different classification (hit count, tangent, on-surface), a NaN/infinity, or a refusal; "
+          "largest coordinate error in ulps of the point's scale, max(|p|, |L0|, |t v|). A "
+          "mismatch is a "
+          "different classification (hit count, tangent, on-surface), a NaN/infinity, or a "
+          "refusal; "
           "errors are only measured on cases classified like the oracle. ns/solve: median over "
           "chunks of 256 cases, this run, this machine.\n\n";
 
     md << "## Headline: every family\n\n";
-    md << "| solver | cases | mismatched | t max ulps | t p99 | t p50 | mean bits | point max ulps | ns/solve (generic) |\n";
+    md << "| solver | cases | mismatched | t max ulps | t p99 | t p50 | mean bits | point max ulps "
+          "| ns/solve (generic) |\n";
     md << "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const std::string& s : r.solvers) {
         Row t = r.total(s);
         Row generic;
         for (const auto& [key, row] : r.rows)
-            if (key.rfind("generic/", 0) == 0 && key.size() > s.size() && key.compare(key.size() - s.size() - 1, s.size() + 1, "/" + s) == 0)
+            if (key.rfind("generic/", 0) == 0 && key.size() > s.size() &&
+                key.compare(key.size() - s.size() - 1, s.size() + 1, "/" + s) == 0)
                 generic.merge(row);
-        md << "| " << s << " | " << t.cases << " | " << t.cases_mismatched << " | " << fmt_ulps(t.t_max) << " | "
-           << fmt(t.t_error.quantile(0.99)) << " | " << fmt(t.t_error.quantile(0.5)) << " | "
-           << fmt(t.graded_roots ? t.t_bits_sum / double(t.graded_roots) : 0) << " | " << fmt_ulps(t.p_max) << " | "
-           << fmt(generic.ns.median()) << " |\n";
+        md << "| " << s << " | " << t.cases << " | " << t.cases_mismatched << " | "
+           << fmt_ulps(t.t_max) << " | " << fmt(t.t_error.quantile(0.99)) << " | "
+           << fmt(t.t_error.quantile(0.5)) << " | "
+           << fmt(t.graded_roots ? t.t_bits_sum / double(t.graded_roots) : 0) << " | "
+           << fmt_ulps(t.p_max) << " | " << fmt(generic.ns.median()) << " |\n";
     }
     md << "\n![run time against error](pareto.svg)\n\n";
 
     md << "## By family and shape\n\n";
-    md << "| family | shape | solver | cases | mismatched | by kind | t max | t p99 | t p99.9 | t mean | point max | ns/solve |\n";
+    md << "| family | shape | solver | cases | mismatched | by kind | t max | t p99 | t p99.9 | t "
+          "mean | point max | ns/solve |\n";
     md << "|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& [key, row] : r.rows) {
         std::string family = key.substr(0, key.find('/'));
         std::string rest = key.substr(key.find('/') + 1);
-        std::string shape = rest.substr(0, rest.find('/')), solver = rest.substr(rest.find('/') + 1);
+        std::string shape = rest.substr(0, rest.find('/')),
+                    solver = rest.substr(rest.find('/') + 1);
         std::string kinds;
         for (int m = 0; m < mismatch_kinds; ++m)
-            if (row.mismatches[m]) kinds += (kinds.empty() ? "" : ", ") + std::string(mismatch_name(m)) + " " + num(row.mismatches[m]);
-        md << "| " << family << " | " << shape << " | " << solver << " | " << row.cases << " | " << row.cases_mismatched
-           << " | " << kinds << " | " << fmt_ulps(row.t_max) << " | " << fmt(row.t_error.quantile(0.99)) << " | "
-           << fmt(row.t_error.quantile(0.999)) << " | " << fmt(row.graded_roots ? row.t_sum / double(row.graded_roots) : 0)
-           << " | " << fmt_ulps(row.p_max) << " | " << fmt(row.ns.median()) << " |\n";
+            if (row.mismatches[m])
+                kinds += (kinds.empty() ? "" : ", ") + std::string(mismatch_name(m)) + " " +
+                         num(row.mismatches[m]);
+        md << "| " << family << " | " << shape << " | " << solver << " | " << row.cases << " | "
+           << row.cases_mismatched << " | " << kinds << " | " << fmt_ulps(row.t_max) << " | "
+           << fmt(row.t_error.quantile(0.99)) << " | " << fmt(row.t_error.quantile(0.999)) << " | "
+           << fmt(row.graded_roots ? row.t_sum / double(row.graded_roots) : 0) << " | "
+           << fmt_ulps(row.p_max) << " | " << fmt(row.ns.median()) << " |\n";
     }
 
     md << "\n## Error against difficulty\n\n";
-    for (const char* f : {"near_tangent", "axis_parallel", "apex", "generator", "degenerate_frame", "scale", "extent_edge"})
+    for (const char* f : {"near_tangent", "axis_parallel", "apex", "generator", "degenerate_frame",
+                          "scale", "extent_edge"})
         for (const auto& [key, points] : r.curves)
             if (key.rfind(std::string(f) + "/", 0) == 0) {
                 md << "![" << f << "](difficulty_" << f << ".svg)\n\n";
@@ -257,27 +306,32 @@ void write_markdown(const Report& r, const std::string& dir) {
         std::string solver = key.substr(key.rfind('/') + 1);
         md << "### " << key << "\n\n";
         for (const Worst& w : row.worst) {
-            md << (w.mismatch ? "- **mismatch**" : "- t error " + fmt_ulps(w.ulps) + " ulps") << "\n\n";
-            md << "  ```\n  " << w.case_line << "\n  " << w.solver_line << "\n  " << w.oracle_line << "\n  ```\n\n";
+            md << (w.mismatch ? "- **mismatch**" : "- t error " + fmt_ulps(w.ulps) + " ulps")
+               << "\n\n";
+            md << "  ```\n  " << w.case_line << "\n  " << w.solver_line << "\n  " << w.oracle_line
+               << "\n  ```\n\n";
             md << "  `" << replay(w, solver) << "`\n\n";
         }
     }
     md << "## Oracle rounding\n\nValues rounded at 64, 128, 256, ... bits: ";
-    for (int i = 0; i < 8; ++i) md << (i ? ", " : "") << r.oracle_steps[i];
+    for (int i = 0; i < 8; ++i)
+        md << (i ? ", " : "") << r.oracle_steps[i];
     md << ".\n";
     std::ofstream(dir + "/report.md") << md.str();
 }
 
 void write_plots(const Report& r, const std::string& dir) {
     if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
-        std::fprintf(stderr, "linequad: gnuplot not found: no plots (apt-get install gnuplot-nox)\n");
+        std::fprintf(stderr,
+                     "linequad: gnuplot not found: no plots (apt-get install gnuplot-nox)\n");
         return;
     }
     std::ofstream gp(dir + "/plots.gp");
     auto both_terminals = [&](const std::string& name, const std::string& body) {
-        gp << "set terminal svg size 800,500 dynamic enhanced font 'sans,11'\nset output '" << dir << "/" << name << ".svg'\n"
-           << body << "set terminal pngcairo size 800,500 enhanced font 'sans,10'\nset output '" << dir << "/" << name
-           << ".png'\nreplot\nunset output\n";
+        gp << "set terminal svg size 800,500 dynamic noenhanced font 'sans,11'\nset output '" << dir
+           << "/" << name << ".svg'\n"
+           << body << "set terminal pngcairo size 800,500 noenhanced font 'sans,10'\nset output '"
+           << dir << "/" << name << ".png'\nreplot\nunset output\n";
     };
     // Pareto: median ns per solve on generic cases against max and p99 t error over all families.
     {
@@ -286,15 +340,22 @@ void write_plots(const Report& r, const std::string& dir) {
         for (const std::string& s : r.solvers) {
             Row t = r.total(s), generic;
             for (const auto& [key, row] : r.rows)
-                if (key.rfind("generic/", 0) == 0 && key.compare(key.size() - s.size() - 1, s.size() + 1, "/" + s) == 0)
+                if (key.rfind("generic/", 0) == 0 &&
+                    key.compare(key.size() - s.size() - 1, s.size() + 1, "/" + s) == 0)
                     generic.merge(row);
-            dat << s << " " << generic.ns.median() << " " << 1 + double(t.t_max) << " " << 1 + t.t_error.quantile(0.99) << "\n";
+            dat << s << " " << generic.ns.median() << " " << 1 + double(t.t_max) << " "
+                << 1 + t.t_error.quantile(0.99) << "\n";
         }
-        both_terminals("pareto",
-                       "set title 'run time against error (every family)'\nset xlabel 'ns per solve, median, generic cases'\n"
-                       "set ylabel '1 + t error in ulps'\nset logscale y\nset grid\nset key top right\n"
-                       "plot '" + dir + "/pareto.dat' using 2:3:1 with labels offset 0,1 notitle, "
-                       "'' using 2:3 with points pt 7 ps 1.5 title 'max', '' using 2:4 with points pt 5 ps 1.5 title 'p99'\n");
+        both_terminals("pareto", "set title 'run time against error (every family)'\nset xlabel "
+                                 "'ns per solve, median, generic cases'\n"
+                                 "set ylabel '1 + t error in ulps'\nset logscale y\nset grid\nset "
+                                 "key outside bottom center horizontal\n"
+                                 "set offsets graph 0.15, graph 0.15, graph 0.1, graph 0.1\n"
+                                 "plot '" +
+                                     dir +
+                                     "/pareto.dat' using 2:3:1 with labels offset 0,1 notitle, "
+                                     "'' using 2:3 with points pt 7 ps 1.5 title 'max', '' using "
+                                     "2:4 with points pt 5 ps 1.5 title 'p99'\n");
     }
     // Error against difficulty, one figure per family, one curve per solver.
     std::map<std::string, std::vector<std::string>> families;
@@ -306,25 +367,31 @@ void write_plots(const Report& r, const std::string& dir) {
         std::ofstream dat(file);
         dat << "# k cases mismatched_fraction 1+max_ulps\n";
         for (const auto& [k, p] : points)
-            dat << k << " " << p.cases << " " << (p.cases ? double(p.mismatched) / double(p.cases) : 0) << " "
+            dat << k << " " << p.cases << " "
+                << (p.cases ? double(p.mismatched) / double(p.cases) : 0) << " "
                 << 1 + double(p.t_max) << "\n";
         families[family].push_back(solver);
     }
     for (const auto& [family, solvers] : families) {
-        std::string plot = "set title '" + family + ": error and misclassification against k'\n"
-                           "set xlabel 'k (difficulty: 2^{-k})'\nset ylabel '1 + max t error (ulps)'\nset logscale y\n"
-                           "set y2label 'fraction of cases misclassified'\nset y2range [0:1]\nset y2tics\nset ytics nomirror\n"
+        std::string plot = "set title '" + family +
+                           ": error and misclassification against k'\n"
+                           "set xlabel 'k (difficulty 2^-k)'\nset ylabel '1 + max t error "
+                           "(ulps)'\nset logscale y\n"
+                           "set y2label 'fraction of cases misclassified'\nset y2range [0:1]\nset "
+                           "y2tics\nset ytics nomirror\n"
                            "set grid\nset key outside right\nplot ";
         for (std::size_t i = 0; i < solvers.size(); ++i) {
             std::string f = "'" + dir + "/difficulty_" + family + "_" + solvers[i] + ".dat'";
-            plot += (i ? ", " : "") + f + " using 1:4 with linespoints lw 2 title '" + solvers[i] + " max error', " + f +
-                    " using 1:3 axes x1y2 with lines dt 2 title '" + solvers[i] + " misclassified'";
+            plot += (i ? ", " : "") + f + " using 1:4 with linespoints lw 2 title '" + solvers[i] +
+                    " max error', " + f + " using 1:3 axes x1y2 with lines dt 2 title '" +
+                    solvers[i] + " misclassified'";
         }
         both_terminals("difficulty_" + family, plot + "\n");
     }
     gp.close();
     std::string cmd = "gnuplot '" + dir + "/plots.gp' 2>&1";
-    if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "linequad: gnuplot failed on %s/plots.gp\n", dir.c_str());
+    if (std::system(cmd.c_str()) != 0)
+        std::fprintf(stderr, "linequad: gnuplot failed on %s/plots.gp\n", dir.c_str());
 }
 
 } // namespace linequad::audit

@@ -20,16 +20,20 @@ namespace linequad::audit {
 namespace {
 
 std::atomic<bool> stop_requested{false};
-extern "C" void on_signal(int) { stop_requested = true; }
+extern "C" void on_signal(int) {
+    stop_requested = true;
+}
 
 std::string run_command(const char* cmd) {
     std::string out;
     if (FILE* p = popen(cmd, "r")) {
         char buf[256];
-        while (std::fgets(buf, sizeof buf, p)) out += buf;
+        while (std::fgets(buf, sizeof buf, p))
+            out += buf;
         pclose(p);
     }
-    while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+    while (!out.empty() && (out.back() == '\n' || out.back() == '\r'))
+        out.pop_back();
     return out;
 }
 
@@ -39,7 +43,8 @@ void fill_provenance(Report& r, const Options& o) {
     std::string line, model;
     int cores = 0;
     while (std::getline(cpu, line)) {
-        if (line.rfind("model name", 0) == 0 && model.empty()) model = line.substr(line.find(':') + 2);
+        if (line.rfind("model name", 0) == 0 && model.empty())
+            model = line.substr(line.find(':') + 2);
         if (line.rfind("processor", 0) == 0) ++cores;
     }
     r.machine = (model.empty() ? "unknown CPU" : model) + ", " + std::to_string(cores) + " cores";
@@ -48,7 +53,8 @@ void fill_provenance(Report& r, const Options& o) {
     r.flags = b.fast_flags;
     r.commit = run_command("git rev-parse --short HEAD 2>/dev/null");
     if (r.commit.empty()) r.commit = "unknown";
-    if (!run_command("git status --porcelain --untracked-files=no 2>/dev/null").empty()) r.commit += "+dirty";
+    if (!run_command("git status --porcelain --untracked-files=no 2>/dev/null").empty())
+        r.commit += "+dirty";
     char date[64];
     std::time_t now = std::time(nullptr);
     std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
@@ -98,12 +104,14 @@ struct Group {
 std::vector<Group> groups_of(const Options& o) {
     std::vector<Family> families = o.families;
     if (families.empty())
-        for (int f = 0; f < family_count; ++f) families.push_back(Family(f));
+        for (int f = 0; f < family_count; ++f)
+            families.push_back(Family(f));
     std::vector<Group> out;
     for (Family f : families)
         for (int shape = 0; shape < 3; ++shape)
             if (family_applies(f, shape))
-                for (Range r : {Range::line, Range::ray, Range::segment}) out.push_back({f, shape, r});
+                for (Range r : {Range::line, Range::ray, Range::segment})
+                    out.push_back({f, shape, r});
     return out;
 }
 
@@ -115,7 +123,8 @@ const char* shape_label(int shape) {
 std::vector<const Solver*> solvers_of(const Options& o) {
     std::vector<const Solver*> out;
     if (o.solvers.empty()) {
-        for (const Solver& s : fast_solvers()) out.push_back(find_solver(s.name));
+        for (const Solver& s : fast_solvers())
+            out.push_back(find_solver(s.name));
         return out;
     }
     for (const std::string& name : o.solvers)
@@ -126,7 +135,8 @@ std::vector<const Solver*> solvers_of(const Options& o) {
 void finish(Report& rep, const Options& o, std::chrono::steady_clock::time_point start) {
     rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto& st = exact::rounding_stats();
-    for (int i = 0; i < 8; ++i) rep.oracle_steps[i] = st.by_steps[i];
+    for (int i = 0; i < 8; ++i)
+        rep.oracle_steps[i] = st.by_steps[i];
     if (o.out_dir.empty()) return;
     std::filesystem::create_directories(o.out_dir);
     write_json(rep, o.out_dir + "/report.json");
@@ -160,7 +170,8 @@ Report grade_results(const Options& o) {
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
         ParsedResult pr;
         if (!parse_result(line, &pr, &why)) {
-            std::fprintf(stderr, "linequad: %s: line %ld: %s (skipped)\n", o.results_file.c_str(), n, why.c_str());
+            std::fprintf(stderr, "linequad: %s: line %ld: %s (skipped)\n", o.results_file.c_str(),
+                         n, why.c_str());
             continue;
         }
         auto it = cases.find(pr.id);
@@ -177,7 +188,8 @@ Report grade_results(const Options& o) {
         Result oracle = exact::intersect(c.shape, c.line);
         std::string family = c.family.empty() ? "cases" : c.family;
         Row& row = rep.rows[family + "/" + shape_name(c.shape) + "/" + solver];
-        grade(c, solver, pr.result, oracle, row, &rep.curves[family + "/" + solver][c.k], pr.has_points);
+        grade(c, solver, pr.result, oracle, row, &rep.curves[family + "/" + solver][c.k],
+              pr.has_points);
     }
     // A case without an answer is a refusal.
     for (const std::string& solver : rep.solvers)
@@ -207,7 +219,8 @@ Report run(const Options& o) {
     Report rep;
     fill_provenance(rep, o);
     std::vector<const Solver*> solvers = solvers_of(o);
-    for (const Solver* s : solvers) rep.solvers.emplace_back(s->name);
+    for (const Solver* s : solvers)
+        rep.solvers.emplace_back(s->name);
     std::vector<Group> groups = groups_of(o);
     exact::rounding_stats() = {};
     stop_requested = false;
@@ -220,7 +233,8 @@ Report run(const Options& o) {
     std::vector<Result> oracle, got;
     std::uint64_t g_base = 0;
     for (const Group& grp : groups) {
-        for (std::uint64_t begin = 0; begin < o.cases_per_group && !stop_requested; begin += chunk) {
+        for (std::uint64_t begin = 0; begin < o.cases_per_group && !stop_requested;
+             begin += chunk) {
             std::uint64_t end = std::min(o.cases_per_group, begin + chunk);
             cases.clear();
             for (std::uint64_t i = begin; i < end; ++i)
@@ -229,16 +243,22 @@ Report run(const Options& o) {
             if (cases.empty()) continue;
             oracle.resize(cases.size());
             got.resize(cases.size());
-            for (std::size_t i = 0; i < cases.size(); ++i) oracle[i] = exact::intersect(cases[i].shape, cases[i].line);
+            for (std::size_t i = 0; i < cases.size(); ++i)
+                oracle[i] = exact::intersect(cases[i].shape, cases[i].line);
             for (const Solver* s : solvers) {
-                Row& row = rep.rows[std::string(family_name(grp.family)) + "/" + shape_label(grp.shape) + "/" + std::string(s->name)];
+                Row& row = rep.rows[std::string(family_name(grp.family)) + "/" +
+                                    shape_label(grp.shape) + "/" + std::string(s->name)];
                 auto t0 = std::chrono::steady_clock::now();
-                for (std::size_t i = 0; i < cases.size(); ++i) got[i] = (*s)(cases[i].shape, cases[i].line);
-                auto t1 = std::chrono::steady_clock::now();
-                row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() / double(cases.size()));
-                auto& curve = rep.curves[std::string(family_name(grp.family)) + "/" + std::string(s->name)];
                 for (std::size_t i = 0; i < cases.size(); ++i)
-                    grade(cases[i], std::string(s->name), got[i], oracle[i], row, &curve[cases[i].k]);
+                    got[i] = (*s)(cases[i].shape, cases[i].line);
+                auto t1 = std::chrono::steady_clock::now();
+                row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
+                           double(cases.size()));
+                auto& curve =
+                    rep.curves[std::string(family_name(grp.family)) + "/" + std::string(s->name)];
+                for (std::size_t i = 0; i < cases.size(); ++i)
+                    grade(cases[i], std::string(s->name), got[i], oracle[i], row,
+                          &curve[cases[i].k]);
             }
             progress.advance(cases.size());
         }

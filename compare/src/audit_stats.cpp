@@ -35,7 +35,8 @@ double Histogram::upper_edge(int b) {
 
 std::uint64_t Histogram::total() const {
     std::uint64_t n = 0;
-    for (auto c : count) n += c;
+    for (auto c : count)
+        n += c;
     return n;
 }
 
@@ -51,7 +52,8 @@ double Histogram::quantile(double q) const {
 }
 
 void Histogram::merge(const Histogram& o) {
-    for (int b = 0; b < bins; ++b) count[b] += o.count[b];
+    for (int b = 0; b < bins; ++b)
+        count[b] += o.count[b];
 }
 
 void TimeHistogram::add(double ns) {
@@ -61,7 +63,8 @@ void TimeHistogram::add(double ns) {
 
 double TimeHistogram::median() const {
     std::uint64_t n = 0;
-    for (auto c : count) n += c;
+    for (auto c : count)
+        n += c;
     if (n == 0) return 0;
     std::uint64_t seen = 0;
     for (int b = 0; b < bins; ++b) {
@@ -72,13 +75,14 @@ double TimeHistogram::median() const {
 }
 
 void TimeHistogram::merge(const TimeHistogram& o) {
-    for (int b = 0; b < bins; ++b) count[b] += o.count[b];
+    for (int b = 0; b < bins; ++b)
+        count[b] += o.count[b];
 }
 
 const char* mismatch_name(int m) {
     static const char* const names[mismatch_kinds] = {
-        "hit_count", "tangent_missed", "tangent_invented", "on_surface_missed",
-        "on_surface_invented", "nonfinite", "refused"};
+        "hit_count",           "tangent_missed", "tangent_invented", "on_surface_missed",
+        "on_surface_invented", "nonfinite",      "refused"};
     return names[m];
 }
 
@@ -103,13 +107,15 @@ bool finite_result(const Result& r) {
         if (!std::isfinite(r.hits[i].t) || !is_finite(r.hits[i].p)) return false;
     return !r.on_surface || (!std::isnan(r.s0) && !std::isnan(r.s1));
 }
-// A point's error in ulps of its largest coordinate: coordinates near zero would otherwise
-// report enormous relative errors that say nothing about the hit.
-std::uint64_t point_ulps(Vec3 got, Vec3 want) {
-    double scale = max_abs(want);
+// A point's error in ulps of its natural scale, the largest of |p|, |L0| and |t v| (it is
+// computed as L0 + t v): a coordinate that cancels to nearly zero would otherwise report an
+// enormous relative error that says nothing about the hit.
+std::uint64_t point_ulps(Vec3 got, Vec3 want, const Line& l, double t) {
+    double scale = std::max({max_abs(want), max_abs(l.L0), std::fabs(t) * max_abs(l.v)});
     double err = max_abs(got - want);
     if (err == 0) return 0;
     if (!std::isfinite(err)) return std::numeric_limits<std::uint64_t>::max();
+    if (!std::isfinite(scale)) return std::numeric_limits<std::uint64_t>::max();
     double ulp = scale == 0 ? std::numeric_limits<double>::denorm_min()
                             : std::nextafter(scale, INFINITY) - scale;
     double u = std::ceil(err / ulp);
@@ -119,13 +125,15 @@ std::uint64_t point_ulps(Vec3 got, Vec3 want) {
 
 void Row::merge(const Row& o) {
     cases += o.cases, graded_roots += o.graded_roots, graded_coords += o.graded_coords;
-    for (int m = 0; m < mismatch_kinds; ++m) mismatches[m] += o.mismatches[m];
+    for (int m = 0; m < mismatch_kinds; ++m)
+        mismatches[m] += o.mismatches[m];
     cases_mismatched += o.cases_mismatched;
     t_error.merge(o.t_error), p_error.merge(o.p_error);
     t_max = std::max(t_max, o.t_max), p_max = std::max(p_max, o.p_max);
     t_sum += o.t_sum, t_bits_sum += o.t_bits_sum;
     ns.merge(o.ns);
-    for (const Worst& w : o.worst) keep(worst, w);
+    for (const Worst& w : o.worst)
+        keep(worst, w);
 }
 
 void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
@@ -142,7 +150,8 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
     } else {
         auto tangents = [](const Result& r) {
             int n = 0;
-            for (int i = 0; i < r.count; ++i) n += r.hits[i].kind == HitKind::tangent;
+            for (int i = 0; i < r.count; ++i)
+                n += r.hits[i].kind == HitKind::tangent;
             return n;
         };
         int to = tangents(oracle), tg = tangents(got);
@@ -168,7 +177,8 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
             for (int i = 0; i < oracle.count; ++i) {
                 add_t(got.hits[i].t, oracle.hits[i].t);
                 if (!points) continue;
-                std::uint64_t u = point_ulps(got.hits[i].p, oracle.hits[i].p);
+                std::uint64_t u =
+                    point_ulps(got.hits[i].p, oracle.hits[i].p, c.line, oracle.hits[i].t);
                 row.p_error.add(u);
                 row.p_max = std::max(row.p_max, u);
                 ++row.graded_coords;
@@ -195,7 +205,8 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
 }
 
 void Report::merge(const Report& o) {
-    for (const auto& [key, row] : o.rows) rows[key].merge(row);
+    for (const auto& [key, row] : o.rows)
+        rows[key].merge(row);
     for (const auto& [key, points] : o.curves)
         for (const auto& [k, p] : points) {
             CurvePoint& q = curves[key][k];
@@ -203,7 +214,8 @@ void Report::merge(const Report& o) {
             q.t_max = std::max(q.t_max, p.t_max);
             q.t_error.merge(p.t_error);
         }
-    for (int i = 0; i < 8; ++i) oracle_steps[i] += o.oracle_steps[i];
+    for (int i = 0; i < 8; ++i)
+        oracle_steps[i] += o.oracle_steps[i];
     complete = complete && o.complete;
     seconds += o.seconds;
     for (const std::string& s : o.solvers)
@@ -214,7 +226,8 @@ Row Report::total(const std::string& solver) const {
     Row t;
     std::string suffix = "/" + solver;
     for (const auto& [key, row] : rows)
-        if (key.size() > suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
+        if (key.size() > suffix.size() &&
+            key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
             t.merge(row);
     return t;
 }

@@ -57,8 +57,9 @@ struct Reader {
         const Value* v = need(field);
         if (!v) return false;
         double c[3];
-        if (v->type != Value::Type::array || v->items.size() != 3 || !to_double(v->items[0], &c[0]) ||
-            !to_double(v->items[1], &c[1]) || !to_double(v->items[2], &c[2]))
+        if (v->type != Value::Type::array || v->items.size() != 3 ||
+            !to_double(v->items[0], &c[0]) || !to_double(v->items[1], &c[1]) ||
+            !to_double(v->items[2], &c[2]))
             return fail(field, "expected an array of 3 numbers");
         *out = {c[0], c[1], c[2]};
         return true;
@@ -71,7 +72,8 @@ const char* const shape_fields[3][5] = {
     {"C", "H", "a", "b", nullptr},
 };
 const char* const shape_names[3] = {"cylinder", "elliptic_cylinder", "elliptic_cone"};
-const char* const common_fields[] = {"id", "shape", "L0", "v", "range", "finite", "family", "k", "note"};
+const char* const common_fields[] = {"id",     "shape",  "L0", "v",   "range",
+                                     "finite", "family", "k",  "note"};
 
 bool known_field(const std::string& key, int shape) {
     for (const char* f : common_fields)
@@ -124,10 +126,14 @@ bool parse_case(std::string_view line, Case* c, std::string* why) {
     if (!r.vec("L0", &c->line.L0) || !r.vec("v", &c->line.v)) return false;
     if (const Value* range = obj.find("range")) {
         if (range->type != Value::Type::string) return r.fail("range", "expected a string");
-        if (range->text == "line") c->line.range = Range::line;
-        else if (range->text == "ray") c->line.range = Range::ray;
-        else if (range->text == "segment") c->line.range = Range::segment;
-        else return r.fail("range", "expected line, ray or segment");
+        if (range->text == "line")
+            c->line.range = Range::line;
+        else if (range->text == "ray")
+            c->line.range = Range::ray;
+        else if (range->text == "segment")
+            c->line.range = Range::segment;
+        else
+            return r.fail("range", "expected line, ray or segment");
     }
     bool finite = true;
     if (const Value* f = obj.find("finite")) {
@@ -218,7 +224,9 @@ std::string format_result(const std::string& id, std::string_view solver, const 
     if (!r.on_surface) {
         out += "null";
     } else {
-        auto end = [](double t) { return std::isinf(t) ? std::string("null") : "\"" + hex(t) + "\""; };
+        auto end = [](double t) {
+            return std::isinf(t) ? std::string("null") : "\"" + hex(t) + "\"";
+        };
         out += "[" + end(r.s0) + "," + end(r.s1) + "]";
     }
     out += "}";
@@ -244,9 +252,12 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
     if (!json::parse(line, &obj, &err)) return *why = "not valid JSON: " + err, false;
     if (obj.type != Value::Type::object) return *why = "not a JSON object", false;
     Reader r{obj, why};
-    if (const Value* id = obj.find("id")) json::write(pr->id, *id);
-    else return r.fail("id", "missing");
-    if (const Value* s = obj.find("solver"); s && s->type == Value::Type::string) pr->solver = s->text;
+    if (const Value* id = obj.find("id"))
+        json::write(pr->id, *id);
+    else
+        return r.fail("id", "missing");
+    if (const Value* s = obj.find("solver"); s && s->type == Value::Type::string)
+        pr->solver = s->text;
     if (const Value* e = obj.find("error")) {
         pr->error_message = e->type == Value::Type::string ? e->text : "error";
         const Value* code = obj.find("code");
@@ -264,9 +275,11 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
     for (const Value& h : hits->items) {
         Reader hr{h, why};
         Hit& out = pr->result.hits[pr->result.count++];
-        if (h.type != Value::Type::object || !hr.number("t", &out.t)) return r.fail("hits", "each hit needs t");
+        if (h.type != Value::Type::object || !hr.number("t", &out.t))
+            return r.fail("hits", "each hit needs t");
         const Value* kind = h.find("kind");
-        if (!kind || kind->type != Value::Type::string || (kind->text != "cross" && kind->text != "tangent"))
+        if (!kind || kind->type != Value::Type::string ||
+            (kind->text != "cross" && kind->text != "tangent"))
             return r.fail("hits", "kind must be cross or tangent");
         out.kind = kind->text == "tangent" ? HitKind::tangent : HitKind::cross;
         if (h.find("p")) {
@@ -279,8 +292,10 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
         if (on->items.size() != 2) return r.fail("on_surface", "expected [t0, t1]");
         double e[2];
         for (int i = 0; i < 2; ++i) {
-            if (on->items[i].type == Value::Type::null) e[i] = i == 0 ? -INFINITY : INFINITY;
-            else if (!to_double(on->items[i], &e[i])) return r.fail("on_surface", "expected numbers or null");
+            if (on->items[i].type == Value::Type::null)
+                e[i] = i == 0 ? -INFINITY : INFINITY;
+            else if (!to_double(on->items[i], &e[i]))
+                return r.fail("on_surface", "expected numbers or null");
         }
         pr->result.on_surface = true;
         pr->result.s0 = e[0], pr->result.s1 = e[1];

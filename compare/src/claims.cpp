@@ -21,12 +21,15 @@ std::vector<std::string> broken_claims(const Report& r) {
             // ulps. (Its maximum follows the case's condition number, which random cases can
             // make large: a 1-ulp change of the input moves some roots by 10^2 ulps.)
             if (family == "generic") {
-                claim(row.cases_mismatched == 0, std::to_string(row.cases_mismatched) + " generic cases misclassified");
+                claim(row.cases_mismatched == 0,
+                      std::to_string(row.cases_mismatched) + " generic cases misclassified");
                 double p99 = row.t_error.quantile(0.99);
-                claim(p99 <= 32, "t error p99 " + std::to_string(p99) + " ulps > 32 on generic cases");
+                claim(p99 <= 32,
+                      "t error p99 " + std::to_string(p99) + " ulps > 32 on generic cases");
             }
             // It refuses (out_of_range) only inputs whose magnitudes double cannot hold.
-            claim(row.mismatches[refused] == 0 || family == "scale", "refused a case within double's range");
+            claim(row.mismatches[refused] == 0 || family == "scale",
+                  "refused a case within double's range");
         }
     }
     return broken;

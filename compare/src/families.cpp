@@ -11,8 +11,9 @@ namespace linequad {
 
 namespace {
 
-const char* const names[family_count] = {"generic", "near_tangent", "axis_parallel", "apex",
-                                         "generator", "degenerate_frame", "scale", "extent_edge"};
+const char* const names[family_count] = {"generic", "near_tangent", "axis_parallel",
+                                         "apex",    "generator",    "degenerate_frame",
+                                         "scale",   "extent_edge"};
 
 std::uint64_t splitmix(std::uint64_t x) {
     x += 0x9e3779b97f4a7c15ull;
@@ -27,8 +28,12 @@ struct Rng {
     int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(g); }
     bool coin() { return g() & 1; }
     Vec3 vec(double s) { return {real(-s, s), real(-s, s), real(-s, s)}; }
-    Vec3 ivec(int s) { return {double(integer(-s, s)), double(integer(-s, s)), double(integer(-s, s))}; }
-    double dyadic(int bits) { return std::ldexp(double(integer(0, (1 << bits) - 1)), -bits); } // [0, 1)
+    Vec3 ivec(int s) {
+        return {double(integer(-s, s)), double(integer(-s, s)), double(integer(-s, s))};
+    }
+    double dyadic(int bits) {
+        return std::ldexp(double(integer(0, (1 << bits) - 1)), -bits);
+    } // [0, 1)
 };
 
 // A frame: origin, a, b, c. Every shape is described by one: the cylinder's a, b are
@@ -85,7 +90,8 @@ Frame frame_for(Rng& r, int shape, bool integer) {
     if (shape == 0) {
         if (integer) return integer_circular_frame(r);
         Vec3 c = r.vec(4);
-        while (norm(c) < 0.5) c = r.vec(4);
+        while (norm(c) < 0.5)
+            c = r.vec(4);
         return circular_from(r.vec(4), c, r.real(0.25, 3));
     }
     return integer ? integer_frame(r) : random_frame(r);
@@ -93,9 +99,12 @@ Frame frame_for(Rng& r, int shape, bool integer) {
 
 Shape shape_from(const Frame& f, int shape, bool finite = true) {
     switch (shape) {
-    case 0: return Cylinder{f.O, f.O + f.c, norm(f.a), finite};
-    case 1: return EllipticCylinder{f.O, f.a, f.b, f.c, finite};
-    default: return EllipticCone{f.O - f.c, f.O, f.a, f.b, finite}; // apex at O, base at O - c
+    case 0:
+        return Cylinder{f.O, f.O + f.c, norm(f.a), finite};
+    case 1:
+        return EllipticCylinder{f.O, f.a, f.b, f.c, finite};
+    default:
+        return EllipticCone{f.O - f.c, f.O, f.a, f.b, finite}; // apex at O, base at O - c
     }
 }
 
@@ -103,21 +112,30 @@ Shape shape_from(const Frame& f, int shape, bool finite = true) {
 // use norm(a) rounded, and the surface is then the oracle's business.
 
 // A world point from local coordinates: O + x a + y b + z c (apex frame for the cone).
-Vec3 world(const Frame& f, double x, double y, double z) { return f.O + x * f.a + y * f.b + z * f.c; }
-Vec3 world_vec(const Frame& f, double x, double y, double z) { return x * f.a + y * f.b + z * f.c; }
+Vec3 world(const Frame& f, double x, double y, double z) {
+    return f.O + x * f.a + y * f.b + z * f.c;
+}
+Vec3 world_vec(const Frame& f, double x, double y, double z) {
+    return x * f.a + y * f.b + z * f.c;
+}
 
 // The local extent: cylinders z in [0, 1], the cone z in [-1, 0].
-double z_inside(Rng& r, int shape) { return shape == 2 ? -r.real(0.1, 0.9) : r.real(0.1, 0.9); }
+double z_inside(Rng& r, int shape) {
+    return shape == 2 ? -r.real(0.1, 0.9) : r.real(0.1, 0.9);
+}
 double z_dyadic(Rng& r, int shape) {
     double z = 0.125 + 0.75 * r.dyadic(6);
     return shape == 2 ? -z : z;
 }
 // Radius of the surface at local height z: 1 for cylinders, |z| for the cone.
-double radius_at(int shape, double z) { return shape == 2 ? std::fabs(z) : 1.0; }
+double radius_at(int shape, double z) {
+    return shape == 2 ? std::fabs(z) : 1.0;
+}
 
 Line generic_line(Rng& r, const Frame& f, int shape) {
     double z = z_inside(r, shape);
-    Vec3 target = world(f, r.real(-1, 1) * radius_at(shape, z), r.real(-1, 1) * radius_at(shape, z), z);
+    Vec3 target =
+        world(f, r.real(-1, 1) * radius_at(shape, z), r.real(-1, 1) * radius_at(shape, z), z);
     Vec3 from = target + r.vec(8);
     if (r.integer(0, 4) == 0) return {from, r.vec(2)}; // a fifth aim anywhere
     return {from, target - from};
@@ -137,8 +155,10 @@ Case near_tangent(Rng& r, int shape, int k) {
     double side = k == 0 ? 1 : 1 + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k);
     Vec3 P = world(f, side * rho * cs, side * rho * sn, z);
     Vec3 d = world_vec(f, -sn, cs, 0);
-    if (shape == 2) d = d + mu * world_vec(f, cs, sn, z < 0 ? -1 : 1); // generator through P
-    else d = d + mu * f.c;
+    if (shape == 2)
+        d = d + mu * world_vec(f, cs, sn, z < 0 ? -1 : 1); // generator through P
+    else
+        d = d + mu * f.c;
     Case c;
     c.shape = shape_from(f, shape);
     double back = exact ? 2 : r.real(0.5, 3);
@@ -186,8 +206,10 @@ Case generator(Rng& r, int k) {
     if (r.coin()) x = -x;
     if (r.coin()) y = -y;
     Vec3 d = world_vec(f, x, y, -0.625);
-    if (k > 0) d = d + std::ldexp(1.0, -k) * world_vec(f, r.real(-1, 1), r.real(-1, 1), r.real(-1, 1));
-    Vec3 from = world(f, r.real(-0.5, 0.5), r.real(-0.5, 0.5), -r.real(0.2, 0.8)) - r.real(0, 2) * d;
+    if (k > 0)
+        d = d + std::ldexp(1.0, -k) * world_vec(f, r.real(-1, 1), r.real(-1, 1), r.real(-1, 1));
+    Vec3 from =
+        world(f, r.real(-0.5, 0.5), r.real(-0.5, 0.5), -r.real(0.2, 0.8)) - r.real(0, 2) * d;
     Case c;
     c.shape = shape_from(f, 2, r.integer(0, 3) != 0);
     c.line = {from, d};
@@ -201,10 +223,18 @@ Case degenerate_frame(Rng& r, int shape, int k) {
     int kind = r.integer(0, 3);
     if (shape == 0) kind = kind % 2 + 2; // only thin and flat for the circular cylinder
     switch (kind) {
-    case 0: f.c = f.a + f.b + (e / norm(f.a)) * cross(f.a, f.b); break; // nearly singular
-    case 1: f.c = f.a + e * norm(f.a) * (f.c - (dot(f.c, f.a) / dot(f.a, f.a)) * f.a); break;
-    case 2: f.a = e * f.a, f.b = e * f.b; break; // very thin
-    default: f.c = e * f.c, f.O = e * f.O; break; // very flat, near the origin so H - C survives
+    case 0:
+        f.c = f.a + f.b + (e / norm(f.a)) * cross(f.a, f.b);
+        break; // nearly singular
+    case 1:
+        f.c = f.a + e * norm(f.a) * (f.c - (dot(f.c, f.a) / dot(f.a, f.a)) * f.a);
+        break;
+    case 2:
+        f.a = e * f.a, f.b = e * f.b;
+        break; // very thin
+    default:
+        f.c = e * f.c, f.O = e * f.O;
+        break; // very flat, near the origin so H - C survives
     }
     if (shape == 0) f = circular_from(f.O, f.c, norm(f.a));
     Case c;
@@ -256,7 +286,9 @@ Case extent_edge(Rng& r, int shape, int k) {
 
 } // namespace
 
-const char* family_name(Family f) { return names[int(f)]; }
+const char* family_name(Family f) {
+    return names[int(f)];
+}
 
 bool parse_family(std::string_view name, Family* f) {
     for (int i = 0; i < family_count; ++i)
@@ -269,7 +301,9 @@ bool family_applies(Family f, int shape) {
 }
 
 Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint64_t index) {
-    std::uint64_t key = splitmix(seed) ^ splitmix(std::uint64_t(fam) * 1000003 + std::uint64_t(shape) * 101 + std::uint64_t(range));
+    std::uint64_t key =
+        splitmix(seed) ^
+        splitmix(std::uint64_t(fam) * 1000003 + std::uint64_t(shape) * 101 + std::uint64_t(range));
     Rng r{std::mt19937_64(splitmix(key ^ splitmix(index)))};
     Case c;
     switch (fam) {
@@ -280,13 +314,27 @@ Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint
         c.line = generic_line(r, f, shape);
         break;
     }
-    case Family::near_tangent: c = near_tangent(r, shape, int(index % 61)); break;
-    case Family::axis_parallel: c = axis_parallel(r, shape, int(index % 61)); break;
-    case Family::apex: c = apex(r, int(index % 61)); break;
-    case Family::generator: c = generator(r, int(index % 61)); break;
-    case Family::degenerate_frame: c = degenerate_frame(r, shape, 1 + int(index % 60)); break;
-    case Family::scale: c = scale(r, shape, int(index % 64) * 8); break;
-    case Family::extent_edge: c = extent_edge(r, shape, index % 3 == 0 ? 0 : 40 + int(index % 14)); break;
+    case Family::near_tangent:
+        c = near_tangent(r, shape, int(index % 61));
+        break;
+    case Family::axis_parallel:
+        c = axis_parallel(r, shape, int(index % 61));
+        break;
+    case Family::apex:
+        c = apex(r, int(index % 61));
+        break;
+    case Family::generator:
+        c = generator(r, int(index % 61));
+        break;
+    case Family::degenerate_frame:
+        c = degenerate_frame(r, shape, 1 + int(index % 60));
+        break;
+    case Family::scale:
+        c = scale(r, shape, int(index % 64) * 8);
+        break;
+    case Family::extent_edge:
+        c = extent_edge(r, shape, index % 3 == 0 ? 0 : 40 + int(index % 14));
+        break;
     }
     c.line.range = range;
     c.family = family_name(fam);

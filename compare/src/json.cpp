@@ -39,7 +39,8 @@ class Parser {
         return false;
     }
     void skip_space() {
-        while (pos_ < s_.size() && (s_[pos_] == ' ' || s_[pos_] == '\t' || s_[pos_] == '\r' || s_[pos_] == '\n'))
+        while (pos_ < s_.size() &&
+               (s_[pos_] == ' ' || s_[pos_] == '\t' || s_[pos_] == '\r' || s_[pos_] == '\n'))
             ++pos_;
     }
     bool literal(std::string_view word) {
@@ -52,13 +53,24 @@ class Parser {
         if (pos_ >= s_.size()) return error("unexpected end of line");
         char c = s_[pos_];
         switch (c) {
-        case '{': return object(v, depth);
-        case '[': return array(v, depth);
-        case '"': v->type = Value::Type::string; return string(&v->text);
-        case 't': v->type = Value::Type::boolean, v->boolean = true; return literal("true");
-        case 'f': v->type = Value::Type::boolean, v->boolean = false; return literal("false");
-        case 'n': v->type = Value::Type::null; return literal("null");
-        default: return number(v);
+        case '{':
+            return object(v, depth);
+        case '[':
+            return array(v, depth);
+        case '"':
+            v->type = Value::Type::string;
+            return string(&v->text);
+        case 't':
+            v->type = Value::Type::boolean, v->boolean = true;
+            return literal("true");
+        case 'f':
+            v->type = Value::Type::boolean, v->boolean = false;
+            return literal("false");
+        case 'n':
+            v->type = Value::Type::null;
+            return literal("null");
+        default:
+            return number(v);
         }
     }
     bool number(Value* v) {
@@ -66,7 +78,8 @@ class Parser {
         if (pos_ < s_.size() && s_[pos_] == '-') ++pos_;
         auto digits = [&] {
             std::size_t d = pos_;
-            while (pos_ < s_.size() && s_[pos_] >= '0' && s_[pos_] <= '9') ++pos_;
+            while (pos_ < s_.size() && s_[pos_] >= '0' && s_[pos_] <= '9')
+                ++pos_;
             return pos_ > d;
         };
         if (!digits()) return error("expected a value");
@@ -97,25 +110,44 @@ class Parser {
             if (pos_ >= s_.size()) break;
             char e = s_[pos_++];
             switch (e) {
-            case '"': case '\\': case '/': out->push_back(e); break;
-            case 'b': out->push_back('\b'); break;
-            case 'f': out->push_back('\f'); break;
-            case 'n': out->push_back('\n'); break;
-            case 'r': out->push_back('\r'); break;
-            case 't': out->push_back('\t'); break;
+            case '"':
+            case '\\':
+            case '/':
+                out->push_back(e);
+                break;
+            case 'b':
+                out->push_back('\b');
+                break;
+            case 'f':
+                out->push_back('\f');
+                break;
+            case 'n':
+                out->push_back('\n');
+                break;
+            case 'r':
+                out->push_back('\r');
+                break;
+            case 't':
+                out->push_back('\t');
+                break;
             case 'u': {
                 if (pos_ + 4 > s_.size()) return error("short \\u escape");
                 unsigned code = 0;
                 for (int i = 0; i < 4; ++i) {
                     char h = s_[pos_++];
                     code <<= 4;
-                    if (h >= '0' && h <= '9') code |= h - '0';
-                    else if (h >= 'a' && h <= 'f') code |= h - 'a' + 10;
-                    else if (h >= 'A' && h <= 'F') code |= h - 'A' + 10;
-                    else return error("bad \\u escape");
+                    if (h >= '0' && h <= '9')
+                        code |= h - '0';
+                    else if (h >= 'a' && h <= 'f')
+                        code |= h - 'a' + 10;
+                    else if (h >= 'A' && h <= 'F')
+                        code |= h - 'A' + 10;
+                    else
+                        return error("bad \\u escape");
                 }
                 // UTF-8 for the basic plane; ids and names need nothing more.
-                if (code < 0x80) out->push_back(char(code));
+                if (code < 0x80)
+                    out->push_back(char(code));
                 else if (code < 0x800) {
                     out->push_back(char(0xC0 | (code >> 6)));
                     out->push_back(char(0x80 | (code & 0x3F)));
@@ -126,7 +158,8 @@ class Parser {
                 }
                 break;
             }
-            default: return error("bad escape in a string");
+            default:
+                return error("bad escape in a string");
             }
         }
         return error("unterminated string");
@@ -141,7 +174,10 @@ class Parser {
             skip_space();
             if (!value(&v->items.back(), depth + 1)) return false;
             skip_space();
-            if (pos_ < s_.size() && s_[pos_] == ',') { ++pos_; continue; }
+            if (pos_ < s_.size() && s_[pos_] == ',') {
+                ++pos_;
+                continue;
+            }
             if (pos_ < s_.size() && s_[pos_] == ']') return ++pos_, true;
             return error("expected ',' or ']'");
         }
@@ -164,7 +200,10 @@ class Parser {
             v->members.emplace_back(std::move(key), Value{});
             if (!value(&v->members.back().second, depth + 1)) return false;
             skip_space();
-            if (pos_ < s_.size() && s_[pos_] == ',') { ++pos_; continue; }
+            if (pos_ < s_.size() && s_[pos_] == ',') {
+                ++pos_;
+                continue;
+            }
             if (pos_ < s_.size() && s_[pos_] == '}') return ++pos_, true;
             return error("expected ',' or '}'");
         }
@@ -186,11 +225,21 @@ void write_string(std::string& out, std::string_view s) {
     out.push_back('"');
     for (char c : s) {
         switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\r': out += "\\r"; break;
-        case '\t': out += "\\t"; break;
+        case '"':
+            out += "\\\"";
+            break;
+        case '\\':
+            out += "\\\\";
+            break;
+        case '\n':
+            out += "\\n";
+            break;
+        case '\r':
+            out += "\\r";
+            break;
+        case '\t':
+            out += "\\t";
+            break;
         default:
             if (static_cast<unsigned char>(c) < 0x20) {
                 char buf[8];
@@ -206,10 +255,18 @@ void write_string(std::string& out, std::string_view s) {
 
 void write(std::string& out, const Value& v) {
     switch (v.type) {
-    case Value::Type::null: out += "null"; break;
-    case Value::Type::boolean: out += v.boolean ? "true" : "false"; break;
-    case Value::Type::number: out += v.text; break;
-    case Value::Type::string: write_string(out, v.text); break;
+    case Value::Type::null:
+        out += "null";
+        break;
+    case Value::Type::boolean:
+        out += v.boolean ? "true" : "false";
+        break;
+    case Value::Type::number:
+        out += v.text;
+        break;
+    case Value::Type::string:
+        write_string(out, v.text);
+        break;
     case Value::Type::array:
         out.push_back('[');
         for (std::size_t i = 0; i < v.items.size(); ++i) {

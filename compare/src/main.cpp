@@ -42,13 +42,15 @@ int fail(const std::string& msg) {
 std::vector<const Solver*> parse_solvers(const std::string& list, std::string* bad) {
     std::vector<const Solver*> out;
     if (list == "all") {
-        for (const Solver& s : all_solvers()) out.push_back(&s);
+        for (const Solver& s : all_solvers())
+            out.push_back(&s);
         return out;
     }
     std::size_t start = 0;
     while (start <= list.size()) {
         std::size_t comma = list.find(',', start);
-        std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        std::string name =
+            list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
         const Solver* s = find_solver(name);
         if (!s) {
             *bad = name;
@@ -66,16 +68,24 @@ int cmd_solve(int argc, char** argv) {
     Query query;
     for (int i = 0; i < argc; ++i) {
         std::string a = argv[i];
-        if (a == "--solver" && i + 1 < argc) solver_list = argv[++i];
+        if (a == "--solver" && i + 1 < argc)
+            solver_list = argv[++i];
         else if (a == "--need" && i + 1 < argc) {
             std::string n = argv[++i];
-            if (n == "any") query.need = Need::any;
-            else if (n == "nearest") query.need = Need::nearest;
-            else if (n == "all") query.need = Need::all;
-            else return fail("--need takes any, nearest or all, not '" + n + "'");
-        } else if (a == "--no-points") query.points = false;
-        else if (a.size() > 1 && a[0] == '-') return fail("unknown option '" + a + "'\n" + usage);
-        else file = a;
+            if (n == "any")
+                query.need = Need::any;
+            else if (n == "nearest")
+                query.need = Need::nearest;
+            else if (n == "all")
+                query.need = Need::all;
+            else
+                return fail("--need takes any, nearest or all, not '" + n + "'");
+        } else if (a == "--no-points")
+            query.points = false;
+        else if (a.size() > 1 && a[0] == '-')
+            return fail("unknown option '" + a + "'\n" + usage);
+        else
+            file = a;
     }
     std::string bad;
     std::vector<const Solver*> solvers = parse_solvers(solver_list, &bad);
@@ -133,13 +143,20 @@ std::string parse_campaign(int argc, char** argv, audit::Options& o, bool* check
             return std::string();
         };
         std::string err;
-        if (a == "--cases") err = number("--cases", &o.cases_per_group);
-        else if (a == "--seed") err = number("--seed", &o.seed);
-        else if (a == "--out") o.out_dir = value();
-        else if (a == "--no-plots") o.plots = false;
-        else if (a == "--check" && check) *check = true;
-        else if (a == "--results") o.results_file = value();
-        else if (a == "--cases-file") o.cases_file = value();
+        if (a == "--cases")
+            err = number("--cases", &o.cases_per_group);
+        else if (a == "--seed")
+            err = number("--seed", &o.seed);
+        else if (a == "--out")
+            o.out_dir = value();
+        else if (a == "--no-plots")
+            o.plots = false;
+        else if (a == "--check" && check)
+            *check = true;
+        else if (a == "--results")
+            o.results_file = value();
+        else if (a == "--cases-file")
+            o.cases_file = value();
         else if (a == "--families" || a == "--solvers") {
             std::string list = value();
             std::size_t start = 0;
@@ -148,7 +165,8 @@ std::string parse_campaign(int argc, char** argv, audit::Options& o, bool* check
                 std::string name = list.substr(start, comma - start);
                 start = comma + 1;
                 if (a == "--solvers") {
-                    if (!find_solver(name)) return "no solver named '" + name + "' (see: linequad solvers)";
+                    if (!find_solver(name))
+                        return "no solver named '" + name + "' (see: linequad solvers)";
                     o.solvers.push_back(name);
                 } else {
                     Family f;
@@ -167,20 +185,23 @@ std::string parse_campaign(int argc, char** argv, audit::Options& o, bool* check
         }
         if (!err.empty()) return err;
     }
-    if (o.results_file.empty() != o.cases_file.empty()) return "--results and --cases-file go together";
+    if (o.results_file.empty() != o.cases_file.empty())
+        return "--results and --cases-file go together";
     return "";
 }
 
 std::string joined(int argc, char** argv) {
     std::string s = "linequad";
-    for (int i = 0; i < argc; ++i) s += std::string(" ") + argv[i];
+    for (int i = 0; i < argc; ++i)
+        s += std::string(" ") + argv[i];
     return s;
 }
 
 int cmd_audit(int argc, char** argv) {
     audit::Options o;
     bool check = false;
-    if (std::string err = parse_campaign(argc - 1, argv + 1, o, &check); !err.empty()) return fail(err);
+    if (std::string err = parse_campaign(argc - 1, argv + 1, o, &check); !err.empty())
+        return fail(err);
     o.command = joined(argc, argv);
     audit::Report r;
     try {
@@ -193,11 +214,13 @@ int cmd_audit(int argc, char** argv) {
         audit::Row t = r.total(s);
         std::printf("%-10s cases %8llu  mismatched %6llu  t max %12s ulps  p99 %8.3g\n", s.c_str(),
                     (unsigned long long)t.cases, (unsigned long long)t.cases_mismatched,
-                    t.t_max == UINT64_MAX ? "inf" : std::to_string(t.t_max).c_str(), t.t_error.quantile(0.99));
+                    t.t_max == UINT64_MAX ? "inf" : std::to_string(t.t_max).c_str(),
+                    t.t_error.quantile(0.99));
     }
     if (check) {
         std::vector<std::string> broken = audit::broken_claims(r);
-        for (const std::string& b : broken) std::fprintf(stderr, "audit --check: %s\n", b.c_str());
+        for (const std::string& b : broken)
+            std::fprintf(stderr, "audit --check: %s\n", b.c_str());
         if (!broken.empty()) return 1;
         std::printf("audit --check: every claim holds\n");
     }
@@ -206,7 +229,8 @@ int cmd_audit(int argc, char** argv) {
 
 int cmd_cases(int argc, char** argv) {
     audit::Options o;
-    if (std::string err = parse_campaign(argc - 1, argv + 1, o, nullptr); !err.empty()) return fail(err);
+    if (std::string err = parse_campaign(argc - 1, argv + 1, o, nullptr); !err.empty())
+        return fail(err);
     audit::for_each_case(o, [](const Case& c) {
         std::fputs(format_case(c).c_str(), stdout);
         std::fputc('\n', stdout);
@@ -219,10 +243,13 @@ int cmd_merge(int argc, char** argv) {
     std::vector<std::string> inputs;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
-        if (a == "--out" && i + 1 < argc) out = argv[++i];
-        else inputs.push_back(a);
+        if (a == "--out" && i + 1 < argc)
+            out = argv[++i];
+        else
+            inputs.push_back(a);
     }
-    if (out.empty() || inputs.empty()) return fail("usage: linequad merge --out DIR REPORT.json...");
+    if (out.empty() || inputs.empty())
+        return fail("usage: linequad merge --out DIR REPORT.json...");
     audit::Report merged;
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         audit::Report r;
@@ -233,8 +260,10 @@ int cmd_merge(int argc, char** argv) {
             merged.shard = 0;
             continue;
         }
-        if (r.seed != merged.seed || r.cases_per_group != merged.cases_per_group || r.shards != merged.shards)
-            return fail(inputs[i] + " is from another campaign (seed, cases or shard count differ)");
+        if (r.seed != merged.seed || r.cases_per_group != merged.cases_per_group ||
+            r.shards != merged.shards)
+            return fail(inputs[i] +
+                        " is from another campaign (seed, cases or shard count differ)");
         merged.merge(r);
     }
     merged.command = joined(argc, argv);
@@ -248,7 +277,8 @@ int cmd_merge(int argc, char** argv) {
 
 int cmd_version() {
     BuildInfo b = build_info();
-    std::printf("linequad %s\ncompiler: %s\nfast/ flags: %s\n", b.version, b.compiler, b.fast_flags);
+    std::printf("linequad %s\ncompiler: %s\nfast/ flags: %s\n", b.version, b.compiler,
+                b.fast_flags);
     std::printf("FP contraction in fast/: %s\n",
                 std::strstr(b.fast_flags, "-ffp-contract=off") ? "off" : "compiler default");
     return 0;

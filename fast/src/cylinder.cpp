@@ -84,7 +84,8 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     Roots roots;
     if (A == 0) { // parallel to the axis
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
-        if (undecidable(roots, fragile, A, C0)) return Result::failure(ErrorCode::out_of_range, "v,H-C");
+        if (undecidable(roots, fragile, A, C0))
+            return Result::failure(ErrorCode::out_of_range, "v,H-C");
         return finish_roots(roots, ps.t_scale(), z_of, e, l, q, dot2(w.rounded(), h), dot(v, h));
     }
     // The origin moved to the line's closest approach to the axis' midpoint: never farther

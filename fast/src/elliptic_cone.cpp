@@ -19,7 +19,8 @@
 // stable: the dual frame in double-double; the origin moved to the line's closest approach to
 // the apex; each form x^2 + y^2 - z^2 evaluated as (rho - |z|)(rho + |z|) with
 // rho = sqrt(x^2 + y^2); B as a compensated dot product; and the discriminant in geometric form:
-// with u = v' x w = M^T (v x w) / det (double-double triple products), Lagrange's identity in the metric diag(1, 1, -1) gives
+// with u = v' x w = M^T (v x w) / det (double-double triple products), Lagrange's identity in the
+// metric diag(1, 1, -1) gives
 //     D = B^2 - A C0 = ux^2 + uy^2 - uz^2.
 // Roots are the stable pair q / A, C0 / q, then the root nearer the original origin by Vieta.
 #include "linequad/elliptic_cone.hpp"
@@ -53,7 +54,7 @@ Result seed::intersect(const EllipticCone& s, const Line& l, Query q) {
 Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
     if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
     double extent = std::max(std::max(max_abs(l.L0), max_abs(s.C)),
-                              std::max(max_abs(s.H), std::max(max_abs(s.a), max_abs(s.b))));
+                             std::max(max_abs(s.H), std::max(max_abs(s.a), max_abs(s.b))));
     Prescale ps = prescale_for(extent, l.v);
     Vec3 a = ps.pos(s.a), b = ps.pos(s.b), H = ps.pos(s.H), v = ps.dir(l.v);
     Vec3TwoTerm c = difference_exact(H, ps.pos(s.C)); // exact: c = H - C is not a double
@@ -74,7 +75,7 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
     double Cc = circle_minus_square(wc.x, wc.y, wc.z);
     // u = v' x w' = M^T (v x w) / det, each component a double-double triple product.
     Vec3TwoTerm vw = cross_dd(v, wcw);
-    Vec3 u = Vec3{dot2(a, vw), dot2(b, vw), dot2(c.hi, vw) + dot(c.lo, vw.hi)} ;
+    Vec3 u = Vec3{dot2(a, vw), dot2(b, vw), dot2(c.hi, vw) + dot(c.lo, vw.hi)};
     u = (1 / f.det) * u;
     double D = circle_minus_square(u.x, u.y, u.z);
     Roots roots = stable_roots(A, B, Cc, D);

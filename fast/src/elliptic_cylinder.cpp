@@ -46,7 +46,8 @@ Result seed::intersect(const EllipticCylinder& s, const Line& l, Query q) {
 
 Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
-    double extent = std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.a), max_abs(s.b), max_abs(s.c)});
+    double extent =
+        std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.a), max_abs(s.b), max_abs(s.c)});
     Prescale ps = prescale_for(extent, l.v);
     Vec3 a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c), v = ps.dir(l.v);
     if (std::min({max_abs(a), max_abs(b), max_abs(c)}) < min_relative_size)
@@ -63,7 +64,8 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     Roots roots;
     if (A == 0) { // along the axis
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
-        if (undecidable(roots, fragile, A, C0)) return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
+        if (undecidable(roots, fragile, A, C0))
+            return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
         return finish_roots(roots, ps.t_scale(), z_of, e, l, q, wl.z, vl.z);
     }
     // Origin moved to the closest approach to the axis' midpoint (see cylinder.cpp).
@@ -79,7 +81,8 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     double gap = sA - u;
     double D = gap < 0 ? -1 : gap * (sA + u);
     roots = stable_roots(A, B, Cc, D);
-    if (undecidable(roots, fragile, A, D)) return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
+    if (undecidable(roots, fragile, A, D))
+        return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
     if (roots.kind == Roots::two) {
         const double s_[2] = {roots.t[0], roots.t[1]};
         unshift(tc, s_, C0 / A, roots.t);

@@ -19,8 +19,10 @@ struct Roots {
 inline Roots textbook_roots(double a, double b, double c) {
     Roots r;
     if (a == 0) {
-        if (b != 0) r.kind = Roots::one, r.t[0] = -c / b;
-        else if (c == 0) r.kind = Roots::on_surface;
+        if (b != 0)
+            r.kind = Roots::one, r.t[0] = -c / b;
+        else if (c == 0)
+            r.kind = Roots::on_surface;
         return r;
     }
     double disc = b * b - 4 * a * c;
@@ -53,8 +55,10 @@ inline void unshift(double tc, const double s[2], double product, double t[2]) {
 inline Roots stable_roots(double A, double B, double C, double D) {
     Roots r;
     if (A == 0) {
-        if (B != 0) r.kind = Roots::one, r.t[0] = -C / (2 * B);
-        else if (C == 0) r.kind = Roots::on_surface;
+        if (B != 0)
+            r.kind = Roots::one, r.t[0] = -C / (2 * B);
+        else if (C == 0)
+            r.kind = Roots::on_surface;
         return r;
     }
     if (D < 0) return r;
@@ -79,9 +83,11 @@ inline bool undecidable(const Roots& r, bool fragile, double A, double D) {
 
 // The seed solvers do not prescale: the same guard, with the raw inputs' own magnitudes. A
 // scene whose nonzero components span more than 2^480 cannot decide a zero in double.
-inline bool seed_undecidable(const Roots& r, double a, double disc, std::initializer_list<Vec3> inputs) {
+inline bool seed_undecidable(const Roots& r, double a, double disc,
+                             std::initializer_list<Vec3> inputs) {
     double largest = 0;
-    for (Vec3 u : inputs) largest = std::max(largest, max_abs(u));
+    for (Vec3 u : inputs)
+        largest = std::max(largest, max_abs(u));
     bool fragile = false;
     for (Vec3 u : inputs)
         for (int i = 0; i < 3; ++i)
@@ -100,7 +106,8 @@ Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e, cons
     int n = 0;
     HitKind kind = r.kind == Roots::tangent ? HitKind::tangent : HitKind::cross;
     int count = r.kind == Roots::none ? 0 : r.kind == Roots::two ? 2 : 1;
-    for (int i = 0; i < count; ++i) c[n++] = {r.t[i] * t_scale, kind, z_of(r.t[i])};
+    for (int i = 0; i < count; ++i)
+        c[n++] = {r.t[i] * t_scale, kind, z_of(r.t[i])};
     return finish(c, n, e, l, q);
 }
 

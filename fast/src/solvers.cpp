@@ -6,9 +6,12 @@ namespace linequad {
 
 Result Solver::operator()(const Shape& s, const Line& l, Query q) const {
     switch (s.index()) {
-    case 0: return cylinder(std::get<Cylinder>(s), l, q);
-    case 1: return elliptic_cylinder(std::get<EllipticCylinder>(s), l, q);
-    default: return elliptic_cone(std::get<EllipticCone>(s), l, q);
+    case 0:
+        return cylinder(std::get<Cylinder>(s), l, q);
+    case 1:
+        return elliptic_cylinder(std::get<EllipticCylinder>(s), l, q);
+    default:
+        return elliptic_cone(std::get<EllipticCone>(s), l, q);
     }
 }
 
@@ -22,6 +25,8 @@ const std::vector<Solver>& fast_solvers() {
     return solvers;
 }
 
-BuildInfo build_info() { return {LINEQUAD_VERSION, LINEQUAD_COMPILER, LINEQUAD_FAST_FLAGS}; }
+BuildInfo build_info() {
+    return {LINEQUAD_VERSION, LINEQUAD_COMPILER, LINEQUAD_FAST_FLAGS};
+}
 
 } // namespace linequad

@@ -12,32 +12,47 @@ namespace linequad {
 
 const char* shape_name(const Shape& s) {
     switch (s.index()) {
-    case 0: return "cylinder";
-    case 1: return "elliptic_cylinder";
-    default: return "elliptic_cone";
+    case 0:
+        return "cylinder";
+    case 1:
+        return "elliptic_cylinder";
+    default:
+        return "elliptic_cone";
     }
 }
 
 const char* range_name(Range r) {
     switch (r) {
-    case Range::line: return "line";
-    case Range::ray: return "ray";
-    case Range::segment: return "segment";
+    case Range::line:
+        return "line";
+    case Range::ray:
+        return "ray";
+    case Range::segment:
+        return "segment";
     }
     return "?";
 }
 
 const char* code_name(ErrorCode c) {
     switch (c) {
-    case ErrorCode::none: return "none";
-    case ErrorCode::not_a_number: return "not_a_number";
-    case ErrorCode::infinite: return "infinite";
-    case ErrorCode::zero_direction: return "zero_direction";
-    case ErrorCode::bad_radius: return "bad_radius";
-    case ErrorCode::degenerate_axis: return "degenerate_axis";
-    case ErrorCode::singular_frame: return "singular_frame";
-    case ErrorCode::out_of_range: return "out_of_range";
-    case ErrorCode::unknown_solver: return "unknown_solver";
+    case ErrorCode::none:
+        return "none";
+    case ErrorCode::not_a_number:
+        return "not_a_number";
+    case ErrorCode::infinite:
+        return "infinite";
+    case ErrorCode::zero_direction:
+        return "zero_direction";
+    case ErrorCode::bad_radius:
+        return "bad_radius";
+    case ErrorCode::degenerate_axis:
+        return "degenerate_axis";
+    case ErrorCode::singular_frame:
+        return "singular_frame";
+    case ErrorCode::out_of_range:
+        return "out_of_range";
+    case ErrorCode::unknown_solver:
+        return "unknown_solver";
     }
     return "?";
 }
@@ -45,16 +60,24 @@ const char* code_name(ErrorCode c) {
 std::string message(const Error& e) {
     std::string f = e.field;
     switch (e.code) {
-    case ErrorCode::none: return "";
-    case ErrorCode::not_a_number: return f + " has a NaN coordinate";
-    case ErrorCode::infinite: return f + " has an infinite coordinate";
-    case ErrorCode::zero_direction: return "the direction " + f + " is the zero vector";
-    case ErrorCode::bad_radius: return "the radius " + f + " is not positive";
-    case ErrorCode::degenerate_axis: return f + ": the axis has zero length (H = C)";
-    case ErrorCode::singular_frame: return "the frame " + f + " is singular (linearly dependent)";
+    case ErrorCode::none:
+        return "";
+    case ErrorCode::not_a_number:
+        return f + " has a NaN coordinate";
+    case ErrorCode::infinite:
+        return f + " has an infinite coordinate";
+    case ErrorCode::zero_direction:
+        return "the direction " + f + " is the zero vector";
+    case ErrorCode::bad_radius:
+        return "the radius " + f + " is not positive";
+    case ErrorCode::degenerate_axis:
+        return f + ": the axis has zero length (H = C)";
+    case ErrorCode::singular_frame:
+        return "the frame " + f + " is singular (linearly dependent)";
     case ErrorCode::out_of_range:
         return f + ": magnitudes too far apart for double evaluation (overflow or underflow)";
-    case ErrorCode::unknown_solver: return "no solver named " + f + " for this shape";
+    case ErrorCode::unknown_solver:
+        return "no solver named " + f + " for this shape";
     }
     return "?";
 }
@@ -122,7 +145,8 @@ int det3_sign_exact(Vec3 a, Vec3 b, Vec3 c) {
 namespace {
 
 Error check_point(Vec3 p, const char* field) {
-    if (std::isnan(p.x) || std::isnan(p.y) || std::isnan(p.z)) return {ErrorCode::not_a_number, field};
+    if (std::isnan(p.x) || std::isnan(p.y) || std::isnan(p.z))
+        return {ErrorCode::not_a_number, field};
     if (!is_finite(p)) return {ErrorCode::infinite, field};
     return {};
 }
@@ -145,7 +169,6 @@ Error check_all(const Line& l, std::initializer_list<Named> points) {
         if (e.code == ErrorCode::none) e = check_point(n.p, n.field);
     return e;
 }
-
 
 } // namespace
 

@@ -28,9 +28,12 @@ struct Extent {
 
 inline bool in_range(double t, Range r) {
     switch (r) {
-    case Range::line: return true;
-    case Range::ray: return t >= 0;
-    case Range::segment: return t >= 0 && t <= 1;
+    case Range::line:
+        return true;
+    case Range::ray:
+        return t >= 0;
+    case Range::segment:
+        return t >= 0 && t <= 1;
     }
     return false;
 }
@@ -65,7 +68,9 @@ Prescale prescale_for(double max_position, Vec3 v);
 // an underflow, and the solvers refuse (out_of_range) rather than guess.
 bool fragile_scene(double extent, std::initializer_list<Vec3> positions, Vec3 v);
 constexpr double tiny_decisive = 0x1p-900;
-inline bool underflow_zone(double x) { return x != 0 && std::fabs(x) < tiny_decisive; }
+inline bool underflow_zone(double x) {
+    return x != 0 && std::fabs(x) < tiny_decisive;
+}
 
 // After prescaling, sizes below this (relative to the scene) would underflow when multiplied
 // four times; the stable solvers refuse them with out_of_range rather than guess.

@@ -31,7 +31,9 @@ void dyadic_from_mpq(mpq_srcptr q, Dyadic& d) {
     d.e = -long(k);
 }
 
-void to_dyadic(const CGAL::Gmpq& x, Dyadic& d) { dyadic_from_mpq(x.mpq(), d); }
+void to_dyadic(const CGAL::Gmpq& x, Dyadic& d) {
+    dyadic_from_mpq(x.mpq(), d);
+}
 
 void to_dyadic(const CGAL::Mpzf& x, Dyadic& d) {
     thread_local struct Q {
@@ -107,9 +109,11 @@ bool in_extent(const ExactRoot<NT>& r, const NT& D, const LineQuadratic<NT>& q) 
     NT S(r.S);
     int sden = sgn(r.Den);
     // Z(t) - lo = (Den (Z0 - lo) + dZ N + S dZ sqrt(D)) / Den
-    if (q.lo_bounded && sign_surd(NT(r.Den * (q.Z0 - q.lo) + q.dZ * r.N), NT(S * q.dZ), D) * sden < 0)
+    if (q.lo_bounded &&
+        sign_surd(NT(r.Den * (q.Z0 - q.lo) + q.dZ * r.N), NT(S * q.dZ), D) * sden < 0)
         return false;
-    if (q.hi_bounded && sign_surd(NT(r.Den * (q.hi - q.Z0) - q.dZ * r.N), NT(-S * q.dZ), D) * sden < 0)
+    if (q.hi_bounded &&
+        sign_surd(NT(r.Den * (q.hi - q.Z0) - q.dZ * r.N), NT(-S * q.dZ), D) * sden < 0)
         return false;
     return true;
 }
@@ -211,7 +215,8 @@ Result solve(const ShapeT& shape, const Line& l, Query query) {
         h.kind = roots[kept[j]].kind;
         h.t = rd.result(j * per_root);
         if (query.points)
-            h.p = {rd.result(j * per_root + 1), rd.result(j * per_root + 2), rd.result(j * per_root + 3)};
+            h.p = {rd.result(j * per_root + 1), rd.result(j * per_root + 2),
+                   rd.result(j * per_root + 3)};
     }
     return r;
 }
@@ -221,9 +226,15 @@ using GmpqKernel = CGAL::Simple_cartesian<CGAL::Gmpq>;
 
 } // namespace
 
-Result intersect(const Cylinder& s, const Line& l, Query q) { return solve<MpzfKernel>(s, l, q); }
-Result intersect(const EllipticCylinder& s, const Line& l, Query q) { return solve<MpzfKernel>(s, l, q); }
-Result intersect(const EllipticCone& s, const Line& l, Query q) { return solve<MpzfKernel>(s, l, q); }
+Result intersect(const Cylinder& s, const Line& l, Query q) {
+    return solve<MpzfKernel>(s, l, q);
+}
+Result intersect(const EllipticCylinder& s, const Line& l, Query q) {
+    return solve<MpzfKernel>(s, l, q);
+}
+Result intersect(const EllipticCone& s, const Line& l, Query q) {
+    return solve<MpzfKernel>(s, l, q);
+}
 Result intersect(const Shape& s, const Line& l, Query q) {
     return std::visit([&](const auto& shape) { return solve<MpzfKernel>(shape, l, q); }, s);
 }

@@ -17,12 +17,14 @@ RoundingStats& rounding_stats() {
 }
 
 SurdRounder::SurdRounder() {
-    for (Mag* m : {&sqrtD_, &t1_, &t2_, &t3_, &t4_}) mpfr_inits2(first_precision, m->lo, m->hi, (mpfr_ptr)0);
+    for (Mag* m : {&sqrtD_, &t1_, &t2_, &t3_, &t4_})
+        mpfr_inits2(first_precision, m->lo, m->hi, (mpfr_ptr)0);
     prec_ = first_precision;
 }
 
 SurdRounder::~SurdRounder() {
-    for (Mag* m : {&sqrtD_, &t1_, &t2_, &t3_, &t4_}) mpfr_clears(m->lo, m->hi, (mpfr_ptr)0);
+    for (Mag* m : {&sqrtD_, &t1_, &t2_, &t3_, &t4_})
+        mpfr_clears(m->lo, m->hi, (mpfr_ptr)0);
 }
 
 SurdRounder::Value& SurdRounder::next() {

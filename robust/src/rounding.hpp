@@ -13,7 +13,7 @@
 namespace linequad::exact {
 
 struct Dyadic {
-    mpz_t m;     // the value is m * 2^e
+    mpz_t m; // the value is m * 2^e
     long e = 0;
     Dyadic() { mpz_init(m); }
     ~Dyadic() { mpz_clear(m); }

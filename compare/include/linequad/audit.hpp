@@ -41,13 +41,13 @@ struct TimeHistogram {
 };
 
 enum Mismatch {
-    hit_count,          // a different number of hits (or an interval instead of hits)
-    tangent_missed,     // the oracle has a tangent hit, the solver does not
-    tangent_invented,   // the solver says tangent, the oracle does not
-    on_surface_missed,  // the oracle says the line lies on the surface, the solver does not
+    hit_count,         // a different number of hits (or an interval instead of hits)
+    tangent_missed,    // the oracle has a tangent hit, the solver does not
+    tangent_invented,  // the solver says tangent, the oracle does not
+    on_surface_missed, // the oracle says the line lies on the surface, the solver does not
     on_surface_invented,
-    nonfinite,          // NaN or infinity returned where the oracle has finite values
-    refused,            // the solver returned an error the oracle does not (or the reverse)
+    nonfinite, // NaN or infinity returned where the oracle has finite values
+    refused,   // the solver returned an error the oracle does not (or the reverse)
     mismatch_kinds
 };
 const char* mismatch_name(int m);
@@ -106,9 +106,9 @@ struct Options {
     std::vector<Family> families;     // empty: all
     std::vector<std::string> solvers; // empty: every fast solver
     int shard = 0, shards = 1;
-    std::string out_dir;              // reports/<run>
+    std::string out_dir;                  // reports/<run>
     std::string results_file, cases_file; // grade someone else's answers
-    std::string command;              // how it was invoked, for the report
+    std::string command;                  // how it was invoked, for the report
     bool plots = true;
 };
 

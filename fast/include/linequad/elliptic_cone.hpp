@@ -6,7 +6,8 @@
 
 namespace linequad {
 namespace seed {
-// As seed 002 writes it, with its own equation (erratum 1): M = T R S inverted, the textbook roots; errata fixed, nothing improved.
+// As seed 002 writes it, with its own equation (erratum 1): M = T R S inverted, the textbook roots;
+// errata fixed, nothing improved.
 Result intersect(const EllipticCone& s, const Line& l, Query q = {});
 } // namespace seed
 namespace stable {

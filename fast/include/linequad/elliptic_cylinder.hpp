@@ -1,4 +1,5 @@
-// Line against a finite or infinite elliptic cylinder C + x a + y b + z c, x^2 + y^2 = 1 (seed 000).
+// Line against a finite or infinite elliptic cylinder C + x a + y b + z c, x^2 + y^2 = 1 (seed
+// 000).
 #pragma once
 
 #include "linequad/result.hpp"
@@ -6,7 +7,8 @@
 
 namespace linequad {
 namespace seed {
-// As seed 000 writes it: M = T R S inverted as a 4x4 matrix, the textbook roots; errata fixed, nothing improved.
+// As seed 000 writes it: M = T R S inverted as a 4x4 matrix, the textbook roots; errata fixed,
+// nothing improved.
 Result intersect(const EllipticCylinder& s, const Line& l, Query q = {});
 } // namespace seed
 namespace stable {

@@ -22,14 +22,14 @@ struct Hit {
 // Why an input was refused. Never a hit, never undefined behaviour.
 enum class ErrorCode : std::uint8_t {
     none,
-    not_a_number,     // a NaN coordinate
-    infinite,         // an infinite coordinate
-    zero_direction,   // v = 0
-    bad_radius,       // r <= 0
-    degenerate_axis,  // H = C
-    singular_frame,   // a, b, c linearly dependent
-    out_of_range,     // inputs whose products overflow or underflow double
-    unknown_solver,   // no solver of that name for that shape
+    not_a_number,    // a NaN coordinate
+    infinite,        // an infinite coordinate
+    zero_direction,  // v = 0
+    bad_radius,      // r <= 0
+    degenerate_axis, // H = C
+    singular_frame,  // a, b, c linearly dependent
+    out_of_range,    // inputs whose products overflow or underflow double
+    unknown_solver,  // no solver of that name for that shape
 };
 
 struct Error {

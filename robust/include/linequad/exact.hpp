@@ -30,9 +30,9 @@ const Solver& solver();
 
 // How much precision the rounding needed, counted on this thread since the last reset.
 struct RoundingStats {
-    std::uint64_t values = 0;                // values rounded
-    std::uint64_t by_steps[8] = {};          // values resolved at 64, 128, ... bits (last: more)
-    int max_steps = 0;                       // most precision levels any value needed (1 = 64 bits)
+    std::uint64_t values = 0;       // values rounded
+    std::uint64_t by_steps[8] = {}; // values resolved at 64, 128, ... bits (last: more)
+    int max_steps = 0;              // most precision levels any value needed (1 = 64 bits)
 };
 RoundingStats& rounding_stats();
 

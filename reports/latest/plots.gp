@@ -1,0 +1,133 @@
+set terminal svg size 800,500 dynamic noenhanced font 'sans,11'
+set output 'reports/latest/pareto.svg'
+set title 'run time against error (every family)'
+set xlabel 'ns per solve, median, generic cases'
+set ylabel '1 + t error in ulps'
+set logscale y
+set grid
+set key outside bottom center horizontal
+set offsets graph 0.15, graph 0.15, graph 0.1, graph 0.1
+plot 'reports/latest/pareto.dat' using 2:3:1 with labels offset 0,1 notitle, '' using 2:3 with points pt 7 ps 1.5 title 'max', '' using 2:4 with points pt 5 ps 1.5 title 'p99'
+set terminal pngcairo size 800,500 noenhanced font 'sans,10'
+set output 'reports/latest/pareto.png'
+replot
+unset output
+set terminal svg size 800,500 dynamic noenhanced font 'sans,11'
+set output 'reports/latest/difficulty_apex.svg'
+set title 'apex: error and misclassification against k'
+set xlabel 'k (difficulty 2^-k)'
+set ylabel '1 + max t error (ulps)'
+set logscale y
+set y2label 'fraction of cases misclassified'
+set y2range [0:1]
+set y2tics
+set ytics nomirror
+set grid
+set key outside right
+plot 'reports/latest/difficulty_apex_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_apex_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_apex_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_apex_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+set terminal pngcairo size 800,500 noenhanced font 'sans,10'
+set output 'reports/latest/difficulty_apex.png'
+replot
+unset output
+set terminal svg size 800,500 dynamic noenhanced font 'sans,11'
+set output 'reports/latest/difficulty_axis_parallel.svg'
+set title 'axis_parallel: error and misclassification against k'
+set xlabel 'k (difficulty 2^-k)'
+set ylabel '1 + max t error (ulps)'
+set logscale y
+set y2label 'fraction of cases misclassified'
+set y2range [0:1]
+set y2tics
+set ytics nomirror
+set grid
+set key outside right
+plot 'reports/latest/difficulty_axis_parallel_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_axis_parallel_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_axis_parallel_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_axis_parallel_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+set terminal pngcairo size 800,500 noenhanced font 'sans,10'
+set output 'reports/latest/difficulty_axis_parallel.png'
+replot
+unset output
+set terminal svg size 800,500 dynamic noenhanced font 'sans,11'
+set output 'reports/latest/difficulty_degenerate_frame.svg'
+set title 'degenerate_frame: error and misclassification against k'
+set xlabel 'k (difficulty 2^-k)'
+set ylabel '1 + max t error (ulps)'
+set logscale y
+set y2label 'fraction of cases misclassified'
+set y2range [0:1]
+set y2tics
+set ytics nomirror
+set grid
+set key outside right
+plot 'reports/latest/difficulty_degenerate_frame_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_degenerate_frame_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_degenerate_frame_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_degenerate_frame_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+set terminal pngcairo size 800,500 noenhanced font 'sans,10'
+set output 'reports/latest/difficulty_degenerate_frame.png'
+replot
+unset output
+set terminal svg size 800,500 dynamic noenhanced font 'sans,11'
+set output 'reports/latest/difficulty_extent_edge.svg'
+set title 'extent_edge: error and misclassification against k'
+set xlabel 'k (difficulty 2^-k)'
+set ylabel '1 + max t error (ulps)'
+set logscale y
+set y2label 'fraction of cases misclassified'
+set y2range [0:1]
+set y2tics
+set ytics nomirror
+set grid
+set key outside right
+plot 'reports/latest/difficulty_extent_edge_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_extent_edge_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_extent_edge_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_extent_edge_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+set terminal pngcairo size 800,500 noenhanced font 'sans,10'
+set output 'reports/latest/difficulty_extent_edge.png'
+replot
+unset output
+set terminal svg size 800,500 dynamic noenhanced font 'sans,11'
+set output 'reports/latest/difficulty_generator.svg'
+set title 'generator: error and misclassification against k'
+set xlabel 'k (difficulty 2^-k)'
+set ylabel '1 + max t error (ulps)'
+set logscale y
+set y2label 'fraction of cases misclassified'
+set y2range [0:1]
+set y2tics
+set ytics nomirror
+set grid
+set key outside right
+plot 'reports/latest/difficulty_generator_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_generator_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_generator_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_generator_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+set terminal pngcairo size 800,500 noenhanced font 'sans,10'
+set output 'reports/latest/difficulty_generator.png'
+replot
+unset output
+set terminal svg size 800,500 dynamic noenhanced font 'sans,11'
+set output 'reports/latest/difficulty_near_tangent.svg'
+set title 'near_tangent: error and misclassification against k'
+set xlabel 'k (difficulty 2^-k)'
+set ylabel '1 + max t error (ulps)'
+set logscale y
+set y2label 'fraction of cases misclassified'
+set y2range [0:1]
+set y2tics
+set ytics nomirror
+set grid
+set key outside right
+plot 'reports/latest/difficulty_near_tangent_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_near_tangent_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_near_tangent_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_near_tangent_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+set terminal pngcairo size 800,500 noenhanced font 'sans,10'
+set output 'reports/latest/difficulty_near_tangent.png'
+replot
+unset output
+set terminal svg size 800,500 dynamic noenhanced font 'sans,11'
+set output 'reports/latest/difficulty_scale.svg'
+set title 'scale: error and misclassification against k'
+set xlabel 'k (difficulty 2^-k)'
+set ylabel '1 + max t error (ulps)'
+set logscale y
+set y2label 'fraction of cases misclassified'
+set y2range [0:1]
+set y2tics
+set ytics nomirror
+set grid
+set key outside right
+plot 'reports/latest/difficulty_scale_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_scale_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_scale_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_scale_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+set terminal pngcairo size 800,500 noenhanced font 'sans,10'
+set output 'reports/latest/difficulty_scale.png'
+replot
+unset output
