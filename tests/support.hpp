@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <initializer_list>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -63,5 +65,29 @@ inline void check_p(const std::string& solver, Vec3 got, Vec3 expected) {
         check_t(solver, got[i], expected[i]);
     }
 }
+
+// The line through two points on a surface crosses it at t = 0 and t = 1, exactly there.
+inline void check_through_two_points(const Shape& shape, Vec3 p, Vec3 q,
+                                     std::initializer_list<const char*> solvers) {
+    for (const char* s : solvers) {
+        Result r = run(s, shape, through(p, q));
+        INFO(s << " " << describe(r));
+        REQUIRE(r.count == 2);
+        check_t(s, r.hits[0].t, 0);
+        check_t(s, r.hits[1].t, 1);
+        check_p(s, r.hits[0].p, p);
+        check_p(s, r.hits[1].p, q);
+    }
+}
+
+// Uniform doubles and vectors from a fixed seed (full 53-bit mantissas: exact inputs).
+struct RandomReals {
+    std::mt19937_64 rng;
+    explicit RandomReals(std::uint64_t seed) : rng(seed) {}
+    double real(double lo, double hi) {
+        return std::uniform_real_distribution<double>(lo, hi)(rng);
+    }
+    Vec3 vec(double s) { return {real(-s, s), real(-s, s), real(-s, s)}; }
+};
 
 } // namespace linequad::test

@@ -10,12 +10,8 @@ using namespace linequad::test;
 
 namespace {
 
-struct Generic {
-    std::mt19937_64 rng{99};
-    double real(double lo, double hi) {
-        return std::uniform_real_distribution<double>(lo, hi)(rng);
-    }
-    Vec3 vec(double s) { return {real(-s, s), real(-s, s), real(-s, s)}; }
+struct Generic : RandomReals {
+    Generic() : RandomReals(99) {}
     // Frames far from singular: |det| >= |a||b||c| / 4.
     bool well_shaped(Vec3 a, Vec3 b, Vec3 c) {
         return std::fabs(dot(a, cross(b, c))) >= 0.25 * norm(a) * norm(b) * norm(c);

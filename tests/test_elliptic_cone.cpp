@@ -15,15 +15,7 @@ Vec3 at(double x, double y, double z) {
 
 TEST_CASE("cone: line through two surface points of the lower nappe", "[elliptic_cone]") {
     Vec3 p = at(0.375, 0.5, -0.625), q = at(0, -0.25, -0.25); // x^2 + y^2 = z^2
-    for (const char* s : every_solver) {
-        Result r = run(s, cone, through(p, q));
-        INFO(s << " " << describe(r));
-        REQUIRE(r.count == 2);
-        check_t(s, r.hits[0].t, 0);
-        check_t(s, r.hits[1].t, 1);
-        check_p(s, r.hits[0].p, p);
-        check_p(s, r.hits[1].p, q);
-    }
+    check_through_two_points(cone, p, q, {"seed", "stable", "exact"});
 }
 
 TEST_CASE("cone: the upper nappe is not part of the shape (erratum 5)", "[elliptic_cone]") {

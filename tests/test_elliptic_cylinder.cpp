@@ -15,15 +15,7 @@ Vec3 at(double x, double y, double z, Vec3 cc = c) {
 
 TEST_CASE("elliptic cylinder: line through two surface points", "[elliptic_cylinder]") {
     Vec3 p = at(1, 0, 0.5), q = at(0, -1, 0.25);
-    for (const char* s : every_solver) {
-        Result r = run(s, ellipse, through(p, q));
-        INFO(s << " " << describe(r));
-        REQUIRE(r.count == 2);
-        check_t(s, r.hits[0].t, 0);
-        check_t(s, r.hits[1].t, 1);
-        check_p(s, r.hits[0].p, p);
-        check_p(s, r.hits[1].p, q);
-    }
+    check_through_two_points(ellipse, p, q, {"seed", "stable", "exact"});
 }
 
 TEST_CASE("elliptic cylinder: a point off the axes / (3/5 / 4/5)", "[elliptic_cylinder]") {

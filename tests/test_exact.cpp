@@ -15,13 +15,8 @@ using namespace linequad::test;
 
 namespace {
 
-struct Random {
-    std::mt19937_64 rng{20261121};
-    // Doubles with full 53-bit mantissas over a few binades: exact inputs, generic answers.
-    double real(double lo, double hi) {
-        return std::uniform_real_distribution<double>(lo, hi)(rng);
-    }
-    Vec3 vec(double s) { return {real(-s, s), real(-s, s), real(-s, s)}; }
+struct Random : RandomReals {
+    Random() : RandomReals(20261121) {}
     Range range() { return Range(rng() % 3); }
     Shape shape() {
         switch (rng() % 3) {

@@ -82,12 +82,7 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
     bool fragile = fragile_scene(extent, {s.C, s.H, s.a, s.b, l.L0}, l.v);
     if (undecidable(roots, fragile, A, D) || (A == 0 && fragile))
         return Result::failure(ErrorCode::out_of_range, "v,a,b,H-C");
-    if (roots.kind == Roots::two) {
-        const double s_[2] = {roots.t[0], roots.t[1]};
-        unshift(tc, s_, circle_minus_square(wl.x, wl.y, wl.z) / A, roots.t);
-    } else if (roots.kind == Roots::one || roots.kind == Roots::tangent) {
-        roots.t[0] += tc;
-    }
+    shift_back(roots, tc, circle_minus_square(wl.x, wl.y, wl.z) / A);
     // On the surface: z(t) = wl.z + t v'z in the prescaled parameter.
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q, wl.z, vl.z);
 }

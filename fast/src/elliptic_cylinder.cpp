@@ -83,12 +83,7 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     roots = stable_roots(A, B, Cc, D);
     if (undecidable(roots, fragile, A, D))
         return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
-    if (roots.kind == Roots::two) {
-        const double s_[2] = {roots.t[0], roots.t[1]};
-        unshift(tc, s_, C0 / A, roots.t);
-    } else if (roots.kind == Roots::tangent) {
-        roots.t[0] += tc;
-    }
+    shift_back(roots, tc, C0 / A);
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }
 

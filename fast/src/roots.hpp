@@ -42,11 +42,14 @@ inline Roots textbook_roots(double a, double b, double c) {
 // is tc + s with no cancellation; the other comes from Vieta, t_near = product / t_far, where
 // product = C0 / A is formed at the original origin. This keeps both roots accurate to a few
 // ulps even when a root lies near the original origin (tc ~ -s).
-inline void unshift(double tc, const double s[2], double product, double t[2]) {
-    t[0] = tc + s[0], t[1] = tc + s[1];
+inline void shift_back(Roots& r, double tc, double product) {
+    if (r.kind == Roots::one || r.kind == Roots::tangent) r.t[0] += tc;
+    if (r.kind != Roots::two) return;
+    double s0 = r.t[0], s1 = r.t[1];
+    r.t[0] = tc + s0, r.t[1] = tc + s1;
     if (tc == 0) return;
-    int far = std::fabs(t[0]) >= std::fabs(t[1]) ? 0 : 1;
-    if (t[far] != 0) t[1 - far] = product / t[far];
+    int far = std::fabs(r.t[0]) >= std::fabs(r.t[1]) ? 0 : 1;
+    if (r.t[far] != 0) r.t[1 - far] = product / r.t[far];
 }
 
 // A t^2 + 2 B t + C = 0 (half-b form) solved without cancellation: the discriminant D = B^2 - AC
