@@ -25,7 +25,7 @@ inline std::string describe(const Result& r) {
 }
 
 // The solvers that must return exact answers where the arithmetic of a case is exact.
-inline const char* const every_solver[] = {"seed", "stable", "exact"};
+inline const char* const every_solver[] = {"seed", "stable", "certified", "exact"};
 
 // Two points on a surface: the line through them meets it exactly at t = 0 and t = 1.
 inline Line through(Vec3 p, Vec3 q, Range range = Range::line) {

@@ -59,6 +59,12 @@ std::string row_json(const Row& r) {
          ",\"histogram\":" + array(r.p_error.count) + "}";
     s += ",\"ns_per_solve\":{\"median\":" + real(r.ns.median()) +
          ",\"histogram\":" + array(r.ns.count) + "}";
+    s += ",\"certified\":{\"uncertain\":" + num(r.uncertain) +
+         ",\"certain_wrong\":" + num(r.certain_wrong) +
+         ",\"bounded_roots\":" + num(r.bounded_roots) +
+         ",\"bound_violations\":" + num(r.bound_violations) +
+         ",\"tightness_p50\":" + real(r.tightness.quantile(0.5)) +
+         ",\"tightness\":" + array(r.tightness.count) + "}";
     s += ",\"worst\":[";
     for (std::size_t i = 0; i < r.worst.size(); ++i) {
         const Worst& w = r.worst[i];
@@ -106,6 +112,12 @@ Row row_from(const Value& v) {
         read_array(p->find("histogram"), r.p_error.count);
     }
     if (const Value* n = v.find("ns_per_solve")) read_array(n->find("histogram"), r.ns.count);
+    if (const Value* c = v.find("certified")) {
+        r.uncertain = u64(c->find("uncertain")), r.certain_wrong = u64(c->find("certain_wrong"));
+        r.bounded_roots = u64(c->find("bounded_roots")),
+        r.bound_violations = u64(c->find("bound_violations"));
+        read_array(c->find("tightness"), r.tightness.count);
+    }
     if (const Value* w = v.find("worst"))
         for (const Value& x : w->items) {
             Worst k;
@@ -248,13 +260,19 @@ void write_markdown(const Report& r, const std::string& dir) {
           "mismatch is a "
           "different classification (hit count, tangent, on-surface), a NaN/infinity, or a "
           "refusal; "
-          "errors are only measured on cases classified like the oracle. ns/solve: median over "
+          "errors are only measured on cases classified like the oracle. A certified solver may "
+          "call a "
+          "case uncertain (counted apart, not as a mismatch); each of its roots carries a bound, "
+          "violated when |t - t_oracle| exceeds it by more than half an ulp (the oracle's "
+          "rounding); "
+          "bound/err is how loose the bound is. ns/solve: median over "
           "chunks of 256 cases, this run, this machine.\n\n";
 
     md << "## Headline: every family\n\n";
-    md << "| solver | cases | mismatched | t max ulps | t p99 | t p50 | mean bits | point max ulps "
-          "| ns/solve (generic) |\n";
-    md << "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    md << "| solver | cases | mismatched | uncertain | bound violations | t max ulps | t p99 | t "
+          "p50 "
+          "| mean bits | point max ulps | ns/solve (generic) |\n";
+    md << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const std::string& s : r.solvers) {
         Row t = r.total(s);
         Row generic;
@@ -263,7 +281,9 @@ void write_markdown(const Report& r, const std::string& dir) {
                 key.compare(key.size() - s.size() - 1, s.size() + 1, "/" + s) == 0)
                 generic.merge(row);
         md << "| " << s << " | " << t.cases << " | " << t.cases_mismatched << " | "
-           << fmt_ulps(t.t_max) << " | " << fmt(t.t_error.quantile(0.99)) << " | "
+           << (t.bounded_roots || t.uncertain ? num(t.uncertain) : "-") << " | "
+           << (t.bounded_roots ? num(t.bound_violations) + " of " + num(t.bounded_roots) : "-")
+           << " | " << fmt_ulps(t.t_max) << " | " << fmt(t.t_error.quantile(0.99)) << " | "
            << fmt(t.t_error.quantile(0.5)) << " | "
            << fmt(t.graded_roots ? t.t_bits_sum / double(t.graded_roots) : 0) << " | "
            << fmt_ulps(t.p_max) << " | " << fmt(generic.ns.median()) << " |\n";
@@ -271,9 +291,9 @@ void write_markdown(const Report& r, const std::string& dir) {
     md << "\n![run time against error](pareto.svg)\n\n";
 
     md << "## By family and shape\n\n";
-    md << "| family | shape | solver | cases | mismatched | by kind | t max | t p99 | t p99.9 | t "
-          "mean | point max | ns/solve |\n";
-    md << "|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|\n";
+    md << "| family | shape | solver | cases | mismatched | by kind | uncertain | bound viol. | "
+          "bound/err p50 | t max | t p99 | t p99.9 | t mean | point max | ns/solve |\n";
+    md << "|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& [key, row] : r.rows) {
         std::string family = key.substr(0, key.find('/'));
         std::string rest = key.substr(key.find('/') + 1);
@@ -285,8 +305,12 @@ void write_markdown(const Report& r, const std::string& dir) {
                 kinds += (kinds.empty() ? "" : ", ") + std::string(mismatch_name(m)) + " " +
                          num(row.mismatches[m]);
         md << "| " << family << " | " << shape << " | " << solver << " | " << row.cases << " | "
-           << row.cases_mismatched << " | " << kinds << " | " << fmt_ulps(row.t_max) << " | "
-           << fmt(row.t_error.quantile(0.99)) << " | " << fmt(row.t_error.quantile(0.999)) << " | "
+           << row.cases_mismatched << " | " << kinds << " | "
+           << (row.bounded_roots || row.uncertain ? num(row.uncertain) : "-") << " | "
+           << (row.bounded_roots ? num(row.bound_violations) : "-") << " | "
+           << (row.bounded_roots ? fmt(row.tightness.quantile(0.5)) : "-") << " | "
+           << fmt_ulps(row.t_max) << " | " << fmt(row.t_error.quantile(0.99)) << " | "
+           << fmt(row.t_error.quantile(0.999)) << " | "
            << fmt(row.graded_roots ? row.t_sum / double(row.graded_roots) : 0) << " | "
            << fmt_ulps(row.p_max) << " | " << fmt(row.ns.median()) << " |\n";
     }

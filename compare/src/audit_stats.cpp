@@ -132,6 +132,9 @@ void Row::merge(const Row& o) {
     t_max = std::max(t_max, o.t_max), p_max = std::max(p_max, o.p_max);
     t_sum += o.t_sum, t_bits_sum += o.t_bits_sum;
     ns.merge(o.ns);
+    uncertain += o.uncertain, certain_wrong += o.certain_wrong;
+    bounded_roots += o.bounded_roots, bound_violations += o.bound_violations;
+    tightness.merge(o.tightness);
     for (const Worst& w : o.worst)
         keep(worst, w);
 }
@@ -160,6 +163,21 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
         if (oracle.count != got.count) flags[hit_count] = true;
         bool classified = !flags[hit_count] && !flags[tangent_missed] && !flags[tangent_invented];
         if (classified) {
+            // A certified bound must cover the exact root; the oracle's t is within half an ulp
+            // of it, so a bound holds when |t - t_oracle| <= bound + ulp(t_oracle) / 2.
+            auto check_bound = [&](const Hit& h, double o) {
+                if (std::isnan(h.bound)) return;
+                ++row.bounded_roots;
+                double half_ulp =
+                    std::isfinite(o) ? 0.5 * (std::nextafter(std::fabs(o), INFINITY) - std::fabs(o))
+                                     : 0;
+                double err = std::fabs(h.t - o);
+                if (!(err <= h.bound + half_ulp)) ++row.bound_violations;
+                double ratio = h.bound / std::fmax(err, half_ulp);
+                row.tightness.add(std::isfinite(ratio) && ratio < 1.8e19
+                                      ? std::uint64_t(std::ceil(ratio))
+                                      : UINT64_MAX);
+            };
             auto add_t = [&](double g, double o) {
                 std::uint64_t u = ulps_between(g, o);
                 row.t_error.add(u);
@@ -176,6 +194,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
             }
             for (int i = 0; i < oracle.count; ++i) {
                 add_t(got.hits[i].t, oracle.hits[i].t);
+                check_bound(got.hits[i], oracle.hits[i].t);
                 if (!points) continue;
                 std::uint64_t u =
                     point_ulps(got.hits[i].p, oracle.hits[i].p, c.line, oracle.hits[i].t);
@@ -187,7 +206,16 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
     }
     bool mismatch = false;
     for (int m = 0; m < mismatch_kinds; ++m)
-        if (flags[m]) ++row.mismatches[m], mismatch = true;
+        mismatch = mismatch || flags[m];
+    // A certified solver that says it is unsure is not wrong; one that is sure must be right.
+    if (got.ok() && got.certainty == Certainty::uncertain) {
+        ++row.uncertain;
+        mismatch = false;
+    } else {
+        for (int m = 0; m < mismatch_kinds; ++m)
+            row.mismatches[m] += flags[m];
+        if (mismatch && got.certainty == Certainty::certain) ++row.certain_wrong;
+    }
     row.cases_mismatched += mismatch;
     if (curve) {
         ++curve->cases;

@@ -218,6 +218,10 @@ std::string format_result(const std::string& id, std::string_view solver, const 
         out += "{\"t\":\"" + hex(h.t) + "\",\"kind\":\"";
         out += h.kind == HitKind::tangent ? "tangent\"" : "cross\"";
         if (points) put_vec(out, "p", h.p);
+        if (!std::isnan(h.bound)) {
+            put_num(out, "bound", h.bound);
+            out += h.certain ? ",\"certain\":true" : ",\"certain\":false";
+        }
         out += "}";
     }
     out += "],\"on_surface\":";
@@ -229,6 +233,8 @@ std::string format_result(const std::string& id, std::string_view solver, const 
         };
         out += "[" + end(r.s0) + "," + end(r.s1) + "]";
     }
+    if (r.certainty != Certainty::unknown)
+        out += r.certainty == Certainty::certain ? ",\"certain\":true" : ",\"certain\":false";
     out += "}";
     return out;
 }
@@ -286,6 +292,10 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
             if (!hr.vec("p", &out.p)) return r.fail("hits", "p must be 3 numbers");
             pr->has_points = true;
         }
+        if (h.find("bound") && !hr.number("bound", &out.bound))
+            return r.fail("hits", "bound must be a number");
+        if (const Value* c = h.find("certain"))
+            out.certain = c->type == Value::Type::boolean && c->boolean;
     }
     const Value* on = obj.find("on_surface");
     if (on && on->type == Value::Type::array) {
@@ -301,6 +311,10 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
         pr->result.s0 = e[0], pr->result.s1 = e[1];
     } else if (on && on->type != Value::Type::null) {
         return r.fail("on_surface", "expected null or [t0, t1]");
+    }
+    if (const Value* c = obj.find("certain")) {
+        if (c->type != Value::Type::boolean) return r.fail("certain", "expected true or false");
+        pr->result.certainty = c->boolean ? Certainty::certain : Certainty::uncertain;
     }
     return true;
 }

@@ -16,6 +16,13 @@ std::vector<std::string> broken_claims(const Report& r) {
         // Every solver: no NaN or infinity where the oracle has finite values, and the same
         // verdict on bad input (validation is shared and exact).
         claim(row.mismatches[nonfinite] == 0, "returned NaN or infinity");
+        if (solver == "certified") {
+            // Never wrong when it says it is sure, and every bound holds, on every family.
+            claim(row.certain_wrong == 0,
+                  std::to_string(row.certain_wrong) + " certain classifications wrong");
+            claim(row.bound_violations == 0,
+                  std::to_string(row.bound_violations) + " error bounds violated");
+        }
         if (solver == "stable") {
             // On generic cases stable classifies like the oracle and its t error has p99 <= 32
             // ulps. (Its maximum follows the case's condition number, which random cases can

@@ -26,6 +26,10 @@
 //    from Vieta (t1 t2 = C0 / A) with C0 = (|w x h| - r|h|)(|w x h| + r|h|);
 //  - A = 0 exactly when the line is parallel to the axis: on the surface when C0 = 0, else no hit;
 //  - the scene prescaled by powers of two (exact) so no product overflows or underflows.
+//
+// certified: the same quantities in Bounded arithmetic (value and rigorous error bound, see
+// bounded.hpp), with h = H - C exact (hi, bound |lo|) and the moved origin bounded; a sign is
+// used only when the bound excludes zero, so a certain classification is never wrong.
 #include "linequad/cylinder.hpp"
 
 #include "linequad/eft.hpp"
@@ -52,6 +56,9 @@ Result seed::intersect(const Cylinder& s, const Line& l, Query q) {
     Roots roots = textbook_roots(a, b, c);
     if (seed_undecidable(roots, a, b * b - 4 * a * c, {s.C, s.H, l.L0, l.v, {s.r, 0, 0}}))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
+    // A line on the surface is a claim of infinitely many hits: only with proof (see roots.hpp).
+    if (roots.kind == Roots::on_surface)
+        return without_certification(certified::intersect(s, l, q));
     return finish_roots(roots, 1, z_of, e, l, q, wh, vh);
 }
 
@@ -86,6 +93,8 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
         if (undecidable(roots, fragile, A, C0))
             return Result::failure(ErrorCode::out_of_range, "v,H-C");
+        if (roots.kind == Roots::on_surface)
+            return without_certification(certified::intersect(s, l, q));
         return finish_roots(roots, ps.t_scale(), z_of, e, l, q, dot2(w.rounded(), h), dot(v, h));
     }
     // The origin moved to the line's closest approach to the axis' midpoint: never farther
@@ -106,6 +115,44 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     if (undecidable(roots, fragile, A, D)) return Result::failure(ErrorCode::out_of_range, "v,H-C");
     shift_back(roots, tc, C0 / A);
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
+}
+
+Result certified::intersect(const Cylinder& s, const Line& l, Query q) {
+    if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
+    double extent = std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.H), s.r});
+    // Prescaling is exact unless a component is tiny enough to lose bits: refuse those.
+    if (fragile_scene(extent, {s.C, s.H, l.L0, {s.r, 0, 0}}, l.v))
+        return Result::failure(ErrorCode::out_of_range, "v,H-C");
+    Prescale ps = prescale_for(extent, l.v);
+    Vec3 C = ps.pos(s.C), v = ps.dir(l.v);
+    BoundedVec3 h = difference_bounded(ps.pos(s.H), C), V = exact(v);
+    Vec3TwoTerm w = difference_exact(ps.pos(l.L0), C);
+    // Any tc is an exact move of the origin; the closest approach to the axis' middle keeps
+    // the bounded quantities small.
+    // A line exactly parallel to the axis is not moved, so that its exact zeros stay exact.
+    Bounded R = Bounded::exact(ps.len(s.r)), hh = dot(h, h);
+    BoundedVec3 vxh = cross(V, h);
+    Bounded A = dot(vxh, vxh);
+    Vec3 hm{h.x.v, h.y.v, h.z.v};
+    double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * hm) / dot(v, v);
+    BoundedVec3 wc = moved_origin_bounded(w, tc, v), wxh = cross(wc, h);
+    Bounded det = dot(V, wxh);
+    BoundedQuadratic quad{A, dot(vxh, wxh), dot(wxh, wxh) - R * R * hh,
+                          hh * (R * R * A - det * det)};
+    CertifiedRoots cr = certified_roots(quad);
+    Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
+    Bounded z0 = dot(wc, h) / hh, dz = dot(V, h) / hh; // z = (P - C) . h / h.h
+    if (cr.on_surface) {
+        Result r = finish_on_surface(z0.v - tc * dz.v, dz.v, ps.t_scale(), e, l);
+        r.certainty = Certainty::certain;
+        return r;
+    }
+    CertifiedCandidate c[2];
+    for (int i = 0; i < cr.count; ++i) {
+        c[i] = {caller_t(tc, cr.root[i].s, ps.t_scale()), z0 + cr.root[i].s * dz, cr.root[i].kind,
+                cr.root[i].certain};
+    }
+    return finish_certified(c, cr.count, cr.certain, e, l, q);
 }
 
 } // namespace linequad

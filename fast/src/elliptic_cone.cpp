@@ -23,6 +23,9 @@
 // metric diag(1, 1, -1) gives
 //     D = B^2 - A C0 = ux^2 + uy^2 - uz^2.
 // Roots are the stable pair q / A, C0 / q, then the root nearer the original origin by Vieta.
+//
+// certified: the same quantities in Bounded arithmetic, c = H - C exact (hi and bound); signs
+// used only when certain (see cylinder.cpp).
 #include "linequad/elliptic_cone.hpp"
 
 #include "frame.hpp"
@@ -48,6 +51,9 @@ Result seed::intersect(const EllipticCone& s, const Line& l, Query q) {
     Roots roots = textbook_roots(a, b, c);
     if (seed_undecidable(roots, a, b * b - 4 * a * c, {s.C, s.H, s.a, s.b, l.L0, l.v}))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
+    // A line on the surface is a claim of infinitely many hits: only with proof (see roots.hpp).
+    if (roots.kind == Roots::on_surface)
+        return without_certification(certified::intersect(s, l, q));
     return finish_roots(roots, 1, z_of, e, l, q, w.z, v.z);
 }
 
@@ -82,9 +88,52 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
     bool fragile = fragile_scene(extent, {s.C, s.H, s.a, s.b, l.L0}, l.v);
     if (undecidable(roots, fragile, A, D) || (A == 0 && fragile))
         return Result::failure(ErrorCode::out_of_range, "v,a,b,H-C");
+    if (roots.kind == Roots::on_surface)
+        return without_certification(certified::intersect(s, l, q));
     shift_back(roots, tc, circle_minus_square(wl.x, wl.y, wl.z) / A);
     // On the surface: z(t) = wl.z + t v'z in the prescaled parameter.
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q, wl.z, vl.z);
+}
+
+Result certified::intersect(const EllipticCone& s, const Line& l, Query q) {
+    if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
+    double extent =
+        std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.H), max_abs(s.a), max_abs(s.b)});
+    if (fragile_scene(extent, {s.C, s.H, s.a, s.b, l.L0}, l.v))
+        return Result::failure(ErrorCode::out_of_range, "v,a,b,H-C");
+    Prescale ps = prescale_for(extent, l.v);
+    Vec3 H = ps.pos(s.H), v = ps.dir(l.v);
+    BoundedVec3 a3 = exact(ps.pos(s.a)), b3 = exact(ps.pos(s.b)), V = exact(v);
+    BoundedVec3 c3 = difference_bounded(H, ps.pos(s.C)); // c = H - C exactly, as hi and bound
+    BoundedVec3 nx = cross(b3, c3), ny = cross(c3, a3), nz = cross(a3, b3);
+    Bounded det = dot(a3, nx);
+    auto local = [&](const BoundedVec3& u) -> BoundedVec3 {
+        return {dot(nx, u) / det, dot(ny, u) / det, dot(nz, u) / det};
+    };
+    Vec3TwoTerm w = difference_exact(ps.pos(l.L0), H);
+    BoundedVec3 vl = local(V);
+    Bounded A = vl.x * vl.x + vl.y * vl.y - vl.z * vl.z;
+    // Closest approach to the apex; not moved along a generator, where exact zeros decide.
+    double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded()) / dot(v, v);
+    BoundedVec3 wc = moved_origin_bounded(w, tc, v), wl = local(wc);
+    BoundedVec3 vw = cross(V, wc);
+    BoundedVec3 u{dot(a3, vw) / det, dot(b3, vw) / det, dot(c3, vw) / det};
+    BoundedQuadratic quad{A, vl.x * wl.x + vl.y * wl.y - vl.z * wl.z,
+                          wl.x * wl.x + wl.y * wl.y - wl.z * wl.z,
+                          u.x * u.x + u.y * u.y - u.z * u.z};
+    CertifiedRoots cr = certified_roots(quad);
+    Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
+    if (cr.on_surface) {
+        Result r = finish_on_surface(wl.z.v - tc * vl.z.v, vl.z.v, ps.t_scale(), e, l);
+        r.certainty = Certainty::certain;
+        return r;
+    }
+    CertifiedCandidate cand[2];
+    for (int i = 0; i < cr.count; ++i) {
+        cand[i] = {caller_t(tc, cr.root[i].s, ps.t_scale()), wl.z + cr.root[i].s * vl.z,
+                   cr.root[i].kind, cr.root[i].certain};
+    }
+    return finish_certified(cand, cr.count, cr.certain, e, l, q);
 }
 
 } // namespace linequad

@@ -16,6 +16,9 @@
 // double-double triple product; the origin moved to the closest approach to the axis' midpoint,
 // and the roots paired as for the circular cylinder (src/cylinder.cpp). A = 0 exactly when v'
 // is along the axis.
+//
+// certified: the same quantities in Bounded arithmetic, the dual frame as adjugate rows over a
+// bounded determinant; signs used only when certain (see cylinder.cpp).
 #include "linequad/elliptic_cylinder.hpp"
 
 #include "frame.hpp"
@@ -41,6 +44,9 @@ Result seed::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     Roots roots = textbook_roots(a, b, c);
     if (seed_undecidable(roots, a, b * b - 4 * a * c, {s.C, s.a, s.b, s.c, l.L0, l.v}))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
+    // A line on the surface is a claim of infinitely many hits: only with proof (see roots.hpp).
+    if (roots.kind == Roots::on_surface)
+        return without_certification(certified::intersect(s, l, q));
     return finish_roots(roots, 1, z_of, e, l, q, w.z, v.z);
 }
 
@@ -66,6 +72,8 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
         if (undecidable(roots, fragile, A, C0))
             return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
+        if (roots.kind == Roots::on_surface)
+            return without_certification(certified::intersect(s, l, q));
         return finish_roots(roots, ps.t_scale(), z_of, e, l, q, wl.z, vl.z);
     }
     // Origin moved to the closest approach to the axis' midpoint (see cylinder.cpp).
@@ -85,6 +93,43 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
     shift_back(roots, tc, C0 / A);
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
+}
+
+Result certified::intersect(const EllipticCylinder& s, const Line& l, Query q) {
+    if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
+    double extent =
+        std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.a), max_abs(s.b), max_abs(s.c)});
+    if (fragile_scene(extent, {s.C, s.a, s.b, s.c, l.L0}, l.v))
+        return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
+    Prescale ps = prescale_for(extent, l.v);
+    Vec3 c = ps.pos(s.c), v = ps.dir(l.v);
+    BoundedVec3 a3 = exact(ps.pos(s.a)), b3 = exact(ps.pos(s.b)), c3 = exact(c), V = exact(v);
+    BoundedVec3 nx = cross(b3, c3), ny = cross(c3, a3), nz = cross(a3, b3);
+    Bounded det = dot(a3, nx);
+    auto local = [&](const BoundedVec3& u) -> BoundedVec3 {
+        return {dot(nx, u) / det, dot(ny, u) / det, dot(nz, u) / det};
+    };
+    Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
+    BoundedVec3 vl = local(V);
+    Bounded A = vl.x * vl.x + vl.y * vl.y;
+    double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * c) / dot(v, v);
+    BoundedVec3 wc = moved_origin_bounded(w, tc, v), wl = local(wc);
+    Bounded u = dot(c3, cross(V, wc)) / det;
+    BoundedQuadratic quad{A, vl.x * wl.x + vl.y * wl.y,
+                          wl.x * wl.x + wl.y * wl.y - Bounded::exact(1), A - u * u};
+    CertifiedRoots cr = certified_roots(quad);
+    Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
+    if (cr.on_surface) {
+        Result r = finish_on_surface(wl.z.v - tc * vl.z.v, vl.z.v, ps.t_scale(), e, l);
+        r.certainty = Certainty::certain;
+        return r;
+    }
+    CertifiedCandidate cand[2];
+    for (int i = 0; i < cr.count; ++i) {
+        cand[i] = {caller_t(tc, cr.root[i].s, ps.t_scale()), wl.z + cr.root[i].s * vl.z,
+                   cr.root[i].kind, cr.root[i].certain};
+    }
+    return finish_certified(cand, cr.count, cr.certain, e, l, q);
 }
 
 } // namespace linequad

@@ -1,6 +1,8 @@
 // Root algebra shared by the fast solvers. Shape-specific geometry stays in each shape's file.
 #pragma once
 
+#include "linequad/bounded.hpp"
+#include "linequad/eft.hpp"
 #include "support.hpp"
 
 #include <algorithm>
@@ -113,5 +115,138 @@ Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e, cons
         c[n++] = {r.t[i] * t_scale, kind, z_of(r.t[i])};
     return finish(c, n, e, l, q);
 }
+
+// A result from the certified rung, presented as an uncertified one (no bounds, no claims):
+// how stable settles the rare cases where its rounded zeros would otherwise claim that a line
+// lies on the surface (infinitely many hits) without proof.
+inline Result without_certification(Result r) {
+    r.certainty = Certainty::unknown;
+    for (Hit& h : r.hits)
+        h.bound = std::numeric_limits<double>::quiet_NaN(), h.certain = false;
+    return r;
+}
+
+// ---- The certified rung: the same quadratic with rigorous bounds on every quantity. ----
+
+// A s^2 + 2 B s + C = 0 in the moved parameter s, with D = B^2 - A C supplied in the shape's
+// geometric form; every term carries its bound.
+struct BoundedQuadratic {
+    Bounded A, B, C, D;
+};
+
+struct CertifiedRoot {
+    Bounded s;
+    HitKind kind;
+    bool certain; // existence and kind proven
+};
+
+struct CertifiedRoots {
+    int count = 0;
+    CertifiedRoot root[2];
+    bool on_surface = false;
+    bool certain = true; // the classification (count, kinds, interval) is proven
+};
+
+inline bool exactly_zero(Bounded x) {
+    return x.v == 0 && x.e == 0;
+}
+
+// Each decision is taken only on a certain sign. Where one is not certain the result is marked
+// uncertain, and the roots it reports (if any) carry bounds that cover every possibility.
+inline CertifiedRoots certified_roots(const BoundedQuadratic& q) {
+    CertifiedRoots r;
+    if (exactly_zero(q.A)) { // linear or identically zero: A = 0 is exact here
+        if (exactly_zero(q.B)) {
+            r.on_surface = exactly_zero(q.C);
+            r.certain = r.on_surface || q.C.certain_sign() != 0;
+            return r;
+        }
+        r.certain = q.B.certain_sign() != 0;
+        if (r.certain) r.root[r.count++] = {-q.C / (Bounded::exact(2) * q.B), HitKind::cross, true};
+        return r;
+    }
+    if (q.A.certain_sign() == 0) { // nearly parallel: a root may be arbitrarily far
+        r.certain = false;
+        return r;
+    }
+    switch (q.D.certain_sign()) {
+    case -1:
+        return r;
+    case 1: {
+        Bounded sq = sqrt(q.D);
+        Bounded qq = -(q.B + (q.B.v < 0 ? -sq : sq));
+        r.root[r.count++] = {qq / q.A, HitKind::cross, true};
+        r.root[r.count++] = {q.C / qq, HitKind::cross, true};
+        if (r.root[1].s.v < r.root[0].s.v) std::swap(r.root[0], r.root[1]);
+        return r;
+    }
+    default: {
+        Bounded mid = -q.B / q.A;
+        if (exactly_zero(q.D)) {
+            r.root[r.count++] = {mid, HitKind::tangent, true};
+            return r;
+        }
+        // D's sign is unknown: no root, a double root, or two close ones. Report the double root
+        // with a bound that covers the two roots there may be: |s - mid| <= sqrt(max D) / |A|.
+        r.certain = false;
+        double spread = std::sqrt(std::fmax(q.D.v + q.D.e, 0.0)) / (std::fabs(q.A.v) - q.A.e);
+        mid.e = mid.e * (1 + 0x1p-49) + spread * (1 + 0x1p-49);
+        r.root[r.count++] = {mid, HitKind::tangent, false};
+        return r;
+    }
+    }
+}
+
+// The exact moved origin w + tc v (w = hi + lo exactly), with the bound of its two roundings.
+inline Bounded moved_origin_bounded(double hi, double lo, double tc, double v) {
+    double x = std::fma(tc, v, hi), y = x + lo;
+    return {y, (std::fabs(x) + std::fabs(y)) * 0x1p-53 * (1 + 0x1p-49) + 0x1p-1060};
+}
+
+struct BoundedVec3 {
+    Bounded x, y, z;
+};
+inline BoundedVec3 exact(Vec3 a) {
+    return {Bounded::exact(a.x), Bounded::exact(a.y), Bounded::exact(a.z)};
+}
+// An exact difference p - q, as hi with the bound |lo|.
+inline BoundedVec3 difference_bounded(Vec3 p, Vec3 q) {
+    Vec3TwoTerm d = difference_exact(p, q);
+    return {{d.hi.x, std::fabs(d.lo.x)}, {d.hi.y, std::fabs(d.lo.y)}, {d.hi.z, std::fabs(d.lo.z)}};
+}
+inline Bounded dot(const BoundedVec3& a, const BoundedVec3& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline BoundedVec3 cross(const BoundedVec3& a, const BoundedVec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline BoundedVec3 moved_origin_bounded(const Vec3TwoTerm& w, double tc, Vec3 v) {
+    if (tc == 0) // not moved: w = hi + lo exactly, so hi is within |lo|
+        return {
+            {w.hi.x, std::fabs(w.lo.x)}, {w.hi.y, std::fabs(w.lo.y)}, {w.hi.z, std::fabs(w.lo.z)}};
+    return {moved_origin_bounded(w.hi.x, w.lo.x, tc, v.x),
+            moved_origin_bounded(w.hi.y, w.lo.y, tc, v.y),
+            moved_origin_bounded(w.hi.z, w.lo.z, tc, v.z)};
+}
+
+// t = tc + s in the caller's units: exact scaling by a power of two, unless the result falls
+// below the normal range, where it rounds: then the bound grows by a subnormal ulp.
+inline Bounded caller_t(double tc, const Bounded& s, double t_scale) {
+    Bounded t = Bounded::exact(tc) + s;
+    double v = t.v * t_scale, e = t.e * t_scale;
+    if (std::fabs(v) < 0x1p-1020 && (t.v != 0 || t.e != 0)) e += 0x1p-1074;
+    return {v, e};
+}
+
+// Candidates (t in the caller's units, its axial coordinate) to a Result: a hit is kept when its
+// computed value is inside the extent and the range, and is certain when the root is and every
+// one of those signs is; the result is certain when every decision, kept or not, is.
+struct CertifiedCandidate {
+    Bounded t, z;
+    HitKind kind;
+    bool certain;
+};
+Result finish_certified(CertifiedCandidate* c, int n, bool classification_certain, Extent e,
+                        const Line& l, Query q);
 
 } // namespace linequad::detail

@@ -21,6 +21,8 @@ const std::vector<Solver>& fast_solvers() {
          seed::intersect, seed::intersect, seed::intersect},
         {"stable", "geometric discriminant, closest-approach origin, stable root pair",
          stable::intersect, stable::intersect, stable::intersect},
+        {"certified", "stable's geometry with rigorous error bounds; certain or marked uncertain",
+         certified::intersect, certified::intersect, certified::intersect},
     };
     return solvers;
 }

@@ -1,5 +1,7 @@
 #include "support.hpp"
 
+#include "roots.hpp"
+
 #include "linequad/expansion.hpp"
 
 #include <algorithm>
@@ -196,18 +198,62 @@ Result finish(Candidate* c, int n, Extent e, const Line& l, Query q) {
     return r;
 }
 
+Result finish_certified(CertifiedCandidate* c, int n, bool classification_certain, Extent e,
+                        const Line& l, Query q) {
+    for (int i = 0; i < n; ++i)
+        if (!std::isfinite(c[i].t.v)) return Result::failure(ErrorCode::out_of_range, "t");
+    if (n == 2 && c[1].t.v < c[0].t.v) std::swap(c[0], c[1]);
+    Result r;
+    bool all_certain = classification_certain;
+    for (int i = 0; i < n; ++i) {
+        // Each test is a sign: certain when the bound excludes zero (or the value is exactly 0).
+        Bounded above_lo = std::isfinite(e.lo) ? c[i].z - Bounded::exact(e.lo) : Bounded{};
+        Bounded below_hi = std::isfinite(e.hi) ? Bounded::exact(e.hi) - c[i].z : Bounded{};
+        bool certain = c[i].certain;
+        bool inside = true;
+        auto test = [&](Bounded x, bool bounded) {
+            if (!bounded) return;
+            inside = inside && x.v >= 0;
+            certain = certain && (x.certain_sign() != 0 || exactly_zero(x));
+        };
+        test(above_lo, std::isfinite(e.lo));
+        test(below_hi, std::isfinite(e.hi));
+        test(c[i].t, l.range != Range::line);
+        test(Bounded::exact(1) - c[i].t, l.range == Range::segment);
+        all_certain = all_certain && certain;
+        if (!inside) continue;
+        if (r.count > 0 && q.need != Need::all) continue;
+        Hit& h = r.hits[r.count++];
+        h.t = c[i].t.v;
+        h.bound = c[i].t.e;
+        h.kind = c[i].kind;
+        h.certain = certain;
+        if (q.points) {
+            h.p = {std::fma(h.t, l.v.x, l.L0.x), std::fma(h.t, l.v.y, l.L0.y),
+                   std::fma(h.t, l.v.z, l.L0.z)};
+            if (!is_finite(h.p)) return Result::failure(ErrorCode::out_of_range, "p");
+        }
+    }
+    r.certainty = all_certain ? Certainty::certain : Certainty::uncertain;
+    return r;
+}
+
 Result finish_on_surface(double z0, double dz, double t_scale, Extent e, const Line& l) {
     // dz != 0 on every surface line: it runs along the axis (cylinders) or a generator (cone).
-    double a = (e.lo - z0) / dz * t_scale, b = (e.hi - z0) / dz * t_scale;
-    if (std::isnan(a)) a = -inf; // (-inf) - (-inf) cannot occur; guards 0 * inf
+    // The interval is cut to the range in the prescaled parameter, where neither end has
+    // underflowed, and only then scaled back (an end may then round to +-0 or overflow).
+    double a = (e.lo - z0) / dz, b = (e.hi - z0) / dz;
+    if (std::isnan(a)) a = -inf; // guards (-inf) / 0-like cases for unbounded extents
     if (std::isnan(b)) b = inf;
-    double s0 = std::fmin(a, b), s1 = std::fmax(a, b);
-    if (l.range != Range::line) s0 = std::fmax(s0, 0.0);
-    if (l.range == Range::segment) s1 = std::fmin(s1, 1.0);
+    double s0 = std::min(a, b), s1 = std::max(a, b);
+    if (l.range != Range::line) s0 = std::max(s0, 0.0);
+    if (l.range == Range::segment) s1 = std::min(s1, 1 / t_scale);
     Result r;
-    if (s0 > s1) return r;
+    if (!(s0 <= s1)) return r;
     r.on_surface = true;
-    r.s0 = s0, r.s1 = s1;
+    r.s0 = s0 * t_scale, r.s1 = s1 * t_scale;
+    if (l.range != Range::line) r.s0 = std::max(r.s0, 0.0) + 0.0; // +0, never -0, at a range start
+    if (l.range == Range::segment) r.s1 = std::min(r.s1, 1.0);
     return r;
 }
 

@@ -66,6 +66,11 @@ struct Row {
     std::uint64_t t_max = 0, p_max = 0;
     double t_sum = 0, t_bits_sum = 0; // for the mean in ulps and in bits (Herbie)
     TimeHistogram ns;
+    // Certified results: classifications the solver called uncertain (not counted as
+    // mismatches), certain ones that were wrong, roots whose bound did not hold, and how loose
+    // the bounds are (bound / actual error, rounded up).
+    std::uint64_t uncertain = 0, certain_wrong = 0, bounded_roots = 0, bound_violations = 0;
+    Histogram tightness;
     std::vector<Worst> worst; // at most keep_worst, worst first
     static constexpr std::size_t keep_worst = 3;
     void merge(const Row& o);

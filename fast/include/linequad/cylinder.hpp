@@ -13,4 +13,9 @@ namespace stable {
 // Same geometry without cancellation: see the derivation at the top of src/cylinder.cpp.
 Result intersect(const Cylinder& s, const Line& l, Query q = {});
 } // namespace stable
+namespace certified {
+// Stable's geometry with a rigorous bound on every quantity: each hit carries a bound on its t
+// error and is certain or marked uncertain; the classification is never wrong when certain.
+Result intersect(const Cylinder& s, const Line& l, Query q = {});
+} // namespace certified
 } // namespace linequad

@@ -4,6 +4,7 @@
 #include "linequad/vec3.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <string>
 
 namespace linequad {
@@ -17,6 +18,17 @@ struct Hit {
     double t = 0;
     HitKind kind = HitKind::cross;
     Vec3 p; // L0 + t v; left at zero when the query asked for no points
+    // From the certified solver: |t - exact t| <= bound, and whether this hit's existence,
+    // kind, extent and range are proven. NaN bound: the solver gives none.
+    double bound = std::numeric_limits<double>::quiet_NaN();
+    bool certain = false;
+};
+
+// Whether a result's classification (how many hits, their kinds, the interval) is proven.
+enum class Certainty : std::uint8_t {
+    unknown,   // the solver does not say (seed, stable, exact: the oracle is exact by construction)
+    certain,   // proven: every decision's sign was certain
+    uncertain, // some decision could not be certified: the hits are best guesses
 };
 
 // Why an input was refused. Never a hit, never undefined behaviour.
@@ -60,6 +72,7 @@ struct Result {
     // count is 0: the points of the interval are all hits.
     bool on_surface = false;
     double s0 = 0, s1 = 0;
+    Certainty certainty = Certainty::unknown;
 
     bool ok() const { return error.code == ErrorCode::none; }
     bool any_hit() const { return count > 0 || on_surface; }

@@ -21,7 +21,7 @@ struct Solver {
     Result operator()(const Shape& s, const Line& l, Query q = {}) const;
 };
 
-// seed and stable, in that order.
+// seed, stable and certified, in that order.
 const std::vector<Solver>& fast_solvers();
 
 struct BuildInfo {

@@ -1,0 +1,89 @@
+// Invariants checked on every input, for every solver:
+//  - the verdict on bad input equals the oracle's (validation is shared and exact); a fast
+//    solver may refuse more (out_of_range) but never accept what the oracle refuses;
+//  - a result has at most two hits, sorted by t, each t and point finite (the oracle may give
+//    +-inf, the correct rounding of a root beyond double's range; never NaN), each t inside the
+//    range; an on-surface interval is ordered and inside the range;
+//  - the oracle's Mpzf and Gmpq kernels agree bit for bit;
+//  - when the oracle says no hit and no interval, no solver reports an on-surface interval;
+//  - a certified result that says it is certain has the oracle's classification.
+#include "linequad/invariants.hpp"
+
+#include "linequad/exact.hpp"
+#include "linequad/registry.hpp"
+
+#include <cmath>
+
+namespace linequad {
+
+namespace {
+
+struct Checker {
+    const Case& c;
+    std::string broken;
+    bool require(bool ok, const char* what, const std::string& solver, const Result& r) {
+        if (ok || !broken.empty()) return ok;
+        broken = std::string(what) + "\nsolver " + solver + "\ncase " + format_case(c) +
+                 "\nresult " + format_result(c.id, solver, r);
+        return false;
+    }
+    static bool in_range(double t, Range r) {
+        return r == Range::line || (t >= 0 && (r == Range::ray || t <= 1));
+    }
+    void shape(const std::string& name, const Result& r) {
+        if (!r.ok()) return;
+        require(r.count >= 0 && r.count <= 2, "at most two hits", name, r);
+        require(!(r.on_surface && r.count), "hits or an interval, not both", name, r);
+        bool oracle = name == "exact";
+        for (int i = 0; i < r.count; ++i) {
+            const Hit& h = r.hits[i];
+            require(oracle ? !std::isnan(h.t) : std::isfinite(h.t), "finite t", name, r);
+            require(in_range(h.t, c.line.range), "t inside the range", name, r);
+            bool nan_p = std::isnan(h.p.x) || std::isnan(h.p.y) || std::isnan(h.p.z);
+            require(oracle ? !nan_p : is_finite(h.p), "finite point", name, r);
+        }
+        require(r.count < 2 || r.hits[0].t <= r.hits[1].t, "hits sorted by t", name, r);
+        if (r.on_surface) {
+            require(!std::isnan(r.s0) && !std::isnan(r.s1) && r.s0 <= r.s1, "ordered interval",
+                    name, r);
+            require(c.line.range == Range::line || r.s0 >= 0, "interval inside the range", name, r);
+            require(c.line.range != Range::segment || r.s1 <= 1, "interval inside the segment",
+                    name, r);
+        }
+    }
+};
+
+} // namespace
+
+std::string broken_invariant(const Case& c) {
+    Checker k{c, {}};
+    Result oracle = exact::intersect(c.shape, c.line);
+    k.shape("exact", oracle);
+    Result gmpq = exact::intersect_gmpq(c.shape, c.line);
+    k.require(format_result(c.id, "", gmpq) == format_result(c.id, "", oracle),
+              "Mpzf and Gmpq agree", "exact_gmpq", gmpq);
+    for (const Solver& s : all_solvers()) {
+        std::string name(s.name);
+        Result r = s(c.shape, c.line);
+        k.shape(name, r);
+        if (!oracle.ok()) {
+            k.require(!r.ok() && r.error.code == oracle.error.code, "same verdict on bad input",
+                      name, r);
+        } else if (!r.ok()) {
+            k.require(r.error.code == ErrorCode::out_of_range,
+                      "refuses only what double cannot hold", name, r);
+        } else {
+            if (!oracle.any_hit())
+                k.require(!r.on_surface, "no invented on-surface interval", name, r);
+            if (r.certainty == Certainty::certain) {
+                bool same = r.count == oracle.count && r.on_surface == oracle.on_surface;
+                for (int i = 0; same && i < r.count; ++i)
+                    same = r.hits[i].kind == oracle.hits[i].kind;
+                k.require(same, "a certain classification is the oracle's", name, r);
+            }
+        }
+    }
+    return k.broken;
+}
+
+} // namespace linequad
