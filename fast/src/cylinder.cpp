@@ -77,7 +77,7 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "r,H-C");
 
     Vec3TwoTerm w = difference_exact(L0, C);
-    bool fragile = fragile_scene(extent, {s.C, s.H, l.L0, {s.r, 0, 0}}, l.v);
+    auto fragile = [&] { return fragile_scene(extent, {s.C, s.H, l.L0, {s.r, 0, 0}}, l.v); };
     Vec3 vh = cross_dd(v, hx).rounded();
     double A = dot(vh, vh), rh = r * hn;
     Extent e = s.finite ? Extent{0, hh} : Extent{-inf, inf};

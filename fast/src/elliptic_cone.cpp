@@ -85,8 +85,8 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
     u = (1 / f.det) * u;
     double D = circle_minus_square(u.x, u.y, u.z);
     Roots roots = stable_roots(A, B, Cc, D);
-    bool fragile = fragile_scene(extent, {s.C, s.H, s.a, s.b, l.L0}, l.v);
-    if (undecidable(roots, fragile, A, D) || (A == 0 && fragile))
+    auto fragile = [&] { return fragile_scene(extent, {s.C, s.H, s.a, s.b, l.L0}, l.v); };
+    if (undecidable(roots, fragile, A, D) || (A == 0 && fragile()))
         return Result::failure(ErrorCode::out_of_range, "v,a,b,H-C");
     if (roots.kind == Roots::on_surface)
         return without_certification(certified::intersect(s, l, q));

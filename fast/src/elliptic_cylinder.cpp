@@ -61,7 +61,7 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     DualFrame f(a, b, {c, {}});
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
     Vec3 vl = f.local(v), wl = f.local(w.rounded());
-    bool fragile = fragile_scene(extent, {s.C, s.a, s.b, s.c, l.L0}, l.v);
+    auto fragile = [&] { return fragile_scene(extent, {s.C, s.a, s.b, s.c, l.L0}, l.v); };
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
     auto z_of = [&](double t) { return f.local_z(moved_origin(w, t, v)); };
 

@@ -80,10 +80,12 @@ inline Roots stable_roots(double A, double B, double C, double D) {
 
 // True when a decision rests on a zero or a near-underflow that underflow may have produced
 // (see has_tiny_component): the solver must refuse.
-inline bool undecidable(const Roots& r, bool fragile, double A, double D) {
+// fragile() is only asked when a decision rests on a zero (rare), so it may cost a little.
+template <class Fragile>
+bool undecidable(const Roots& r, Fragile fragile, double A, double D) {
     if (underflow_zone(A) || underflow_zone(D)) return true;
-    if (!fragile) return false;
-    return A == 0 || D == 0 || r.kind == Roots::on_surface || r.kind == Roots::tangent;
+    bool rests_on_zero = A == 0 || D == 0 || r.kind == Roots::on_surface || r.kind == Roots::tangent;
+    return rests_on_zero && fragile();
 }
 
 // The seed solvers do not prescale: the same guard, with the raw inputs' own magnitudes. A
@@ -98,7 +100,7 @@ inline bool seed_undecidable(const Roots& r, double a, double disc,
         for (int i = 0; i < 3; ++i)
             if (u[i] != 0 && std::fabs(u[i]) < min_relative_size * largest) fragile = true;
     bool extreme = largest > 0x1p+240 || largest < 0x1p-240;
-    return undecidable(r, fragile || extreme, a, disc) || (extreme && underflow_zone(disc));
+    return undecidable(r, [&] { return fragile || extreme; }, a, disc) || (extreme && underflow_zone(disc));
 }
 
 // Turns roots into candidates (t scaled back by t_scale, z from the functor) and finishes.
