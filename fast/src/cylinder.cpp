@@ -52,7 +52,7 @@ Result seed::intersect(const Cylinder& s, const Line& l, Query q) {
     if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c) || !std::isfinite(hn))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
     Extent e = s.finite ? Extent{0, hn} : Extent{-inf, inf};
-    auto z_of = [&](double t) { return wh + t * vh; };
+    auto z_of = [&](const Roots& r, int i) { return wh + r.t[i] * vh; };
     Roots roots = textbook_roots(a, b, c);
     if (seed_undecidable(roots, a, b * b - 4 * a * c, {s.C, s.H, l.L0, l.v, {s.r, 0, 0}}))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
@@ -81,21 +81,21 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     Vec3 vh = cross_dd(v, hx).rounded();
     double A = dot(vh, vh), rh = r * hn;
     Extent e = s.finite ? Extent{0, hh} : Extent{-inf, inf};
-    auto z_of = [&](double t) { return dot2(moved_origin(w, t, v), h); };
-    // C0 at the caller's origin, for Vieta's product of the roots.
-    double C0 = [&] {
+    // C0 at the caller's origin: for lines parallel to the axis, and for Vieta's product.
+    auto C0_at_origin = [&] {
         double wn = norm(cross_dd(w.rounded(), hx).rounded());
         return (wn - rh) * (wn + rh);
-    }();
+    };
 
     Roots roots;
     if (A == 0) { // parallel to the axis
+        double C0 = C0_at_origin();
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
         if (undecidable(roots, fragile, A, C0))
             return Result::failure(ErrorCode::out_of_range, "v,H-C");
         if (roots.kind == Roots::on_surface)
             return without_certification(certified::intersect(s, l, q));
-        return finish_roots(roots, ps.t_scale(), z_of, e, l, q, dot2(w.rounded(), h), dot(v, h));
+        return Result{};
     }
     // The origin moved to the line's closest approach to the axis' midpoint: never farther
     // than the caller's origin, so every later product is as small as the geometry allows.
@@ -113,7 +113,14 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     double D = gap < 0 ? -1 : hh * gap * (rA + det);
     roots = stable_roots(A, B, Cc, D);
     if (undecidable(roots, fragile, A, D)) return Result::failure(ErrorCode::out_of_range, "v,H-C");
-    shift_back(roots, tc, C0 / A);
+    shift_back(roots, tc, [&] { return C0_at_origin() / A; });
+    // z = (P - C) . h at each root: from the moved origin, or from the caller's for a root
+    // that is near it (Vieta's); one fma either way.
+    double zc = dot2(wc, h), dz = dot2(v, h);
+    auto z_of = [&](const Roots& r, int i) {
+        return r.from_vieta[i] ? std::fma(r.t[i], dz, dot2(w.rounded(), h))
+                               : std::fma(r.s[i], dz, zc);
+    };
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }
 

@@ -47,7 +47,7 @@ Result seed::intersect(const EllipticCone& s, const Line& l, Query q) {
     if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
     Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
-    auto z_of = [&](double t) { return w.z + t * v.z; };
+    auto z_of = [&](const Roots& r, int i) { return w.z + r.t[i] * v.z; };
     Roots roots = textbook_roots(a, b, c);
     if (seed_undecidable(roots, a, b * b - 4 * a * c, {s.C, s.H, s.a, s.b, l.L0, l.v}))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
@@ -59,8 +59,8 @@ Result seed::intersect(const EllipticCone& s, const Line& l, Query q) {
 
 Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
     if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
-    double extent = std::max(std::max(max_abs(l.L0), max_abs(s.C)),
-                             std::max(max_abs(s.H), std::max(max_abs(s.a), max_abs(s.b))));
+    double extent =
+        std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.H), max_abs(s.a), max_abs(s.b)});
     Prescale ps = prescale_for(extent, l.v);
     Vec3 a = ps.pos(s.a), b = ps.pos(s.b), H = ps.pos(s.H), v = ps.dir(l.v);
     Vec3TwoTerm c = difference_exact(H, ps.pos(s.C)); // exact: c = H - C is not a double
@@ -68,9 +68,8 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "a,b,H-C");
     DualFrame f(a, b, c);
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), H);
-    Vec3 vl = f.local(v), wl = f.local(w.hi + w.lo);
+    Vec3 vl = f.local(v);
     Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
-    auto z_of = [&](double t) { return f.local_z(moved_origin(w, t, v)); };
 
     // Origin moved to the line's closest approach to the apex: never farther than the caller's.
     double tc = -dot2(v, w.rounded()) / dot(v, v);
@@ -90,9 +89,14 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "v,a,b,H-C");
     if (roots.kind == Roots::on_surface)
         return without_certification(certified::intersect(s, l, q));
-    shift_back(roots, tc, circle_minus_square(wl.x, wl.y, wl.z) / A);
-    // On the surface: z(t) = wl.z + t v'z in the prescaled parameter.
-    return finish_roots(roots, ps.t_scale(), z_of, e, l, q, wl.z, vl.z);
+    shift_back(roots, tc, [&] { // C0 at the caller's origin, for Vieta's product
+        Vec3 wl = f.local(w.rounded());
+        return circle_minus_square(wl.x, wl.y, wl.z) / A;
+    });
+    // The local z of each hit point itself, in compensated arithmetic: near the extent's ends,
+    // where it decides, a sum of moved-origin terms would cancel.
+    auto z_of = [&](const Roots& r, int i) { return f.local_z(moved_origin(w, r.t[i], v)); };
+    return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }
 
 Result certified::intersect(const EllipticCone& s, const Line& l, Query q) {

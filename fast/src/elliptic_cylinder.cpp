@@ -40,7 +40,7 @@ Result seed::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
-    auto z_of = [&](double t) { return w.z + t * v.z; };
+    auto z_of = [&](const Roots& r, int i) { return w.z + r.t[i] * v.z; };
     Roots roots = textbook_roots(a, b, c);
     if (seed_undecidable(roots, a, b * b - 4 * a * c, {s.C, s.a, s.b, s.c, l.L0, l.v}))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
@@ -60,21 +60,25 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "a,b,c");
     DualFrame f(a, b, {c, {}});
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
-    Vec3 vl = f.local(v), wl = f.local(w.rounded());
+    Vec3 vl = f.local(v);
     auto fragile = [&] { return fragile_scene(extent, {s.C, s.a, s.b, s.c, l.L0}, l.v); };
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
-    auto z_of = [&](double t) { return f.local_z(moved_origin(w, t, v)); };
+    // C0 at the caller's origin: for lines along the axis, and for Vieta's product.
+    auto C0_at_origin = [&] {
+        Vec3 wl = f.local(w.rounded());
+        return circle_minus_square(wl.x, wl.y, 1);
+    };
 
     double A = vl.x * vl.x + vl.y * vl.y;
-    double C0 = circle_minus_square(wl.x, wl.y, 1);
     Roots roots;
     if (A == 0) { // along the axis
+        double C0 = C0_at_origin();
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
         if (undecidable(roots, fragile, A, C0))
             return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
         if (roots.kind == Roots::on_surface)
             return without_certification(certified::intersect(s, l, q));
-        return finish_roots(roots, ps.t_scale(), z_of, e, l, q, wl.z, vl.z);
+        return Result{};
     }
     // Origin moved to the closest approach to the axis' midpoint (see cylinder.cpp).
     double tc = -dot2(v, w.rounded() - 0.5 * c) / dot(v, v);
@@ -91,7 +95,10 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     roots = stable_roots(A, B, Cc, D);
     if (undecidable(roots, fragile, A, D))
         return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
-    shift_back(roots, tc, C0 / A);
+    shift_back(roots, tc, [&] { return C0_at_origin() / A; });
+    // The local z of each hit point itself, in compensated arithmetic: near the extent's ends,
+    // where it decides, a sum of moved-origin terms would cancel.
+    auto z_of = [&](const Roots& r, int i) { return f.local_z(moved_origin(w, r.t[i], v)); };
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }
 

@@ -14,6 +14,10 @@ namespace linequad::detail {
 struct Roots {
     enum Kind { none, one, two, tangent, on_surface } kind = none;
     double t[2] = {0, 0};
+    // After shift_back: each root's parameter from the moved origin (s = t - tc, not rounded
+    // through t), and whether t came from Vieta (a root near the caller's origin).
+    double s[2] = {0, 0};
+    bool from_vieta[2] = {false, false};
 };
 
 // The seed documents' last step, a t^2 + b t + c = 0 solved as written ((-b +- sqrt(b^2-4ac))/2a),
@@ -41,17 +45,21 @@ inline Roots textbook_roots(double a, double b, double c) {
 }
 
 // Roots t = tc + s of a quadratic whose origin was moved by tc. The root of larger magnitude
-// is tc + s with no cancellation; the other comes from Vieta, t_near = product / t_far, where
-// product = C0 / A is formed at the original origin. This keeps both roots accurate to a few
-// ulps even when a root lies near the original origin (tc ~ -s).
-inline void shift_back(Roots& r, double tc, double product) {
+// is tc + s with no cancellation. The other, when tc + s cancelled (|t| < |tc| / 2), comes from
+// Vieta, t_near = product / t_far, where product() = C0 / A is formed at the caller's origin;
+// otherwise its error is at most an ulp of tc <= 2 ulps of t and it stands. Either way both
+// roots are accurate to a few ulps, and product() is only computed when it is needed.
+template <class Product>
+void shift_back(Roots& r, double tc, Product product) {
+    r.s[0] = r.t[0], r.s[1] = r.t[1];
     if (r.kind == Roots::one || r.kind == Roots::tangent) r.t[0] += tc;
     if (r.kind != Roots::two) return;
-    double s0 = r.t[0], s1 = r.t[1];
-    r.t[0] = tc + s0, r.t[1] = tc + s1;
-    if (tc == 0) return;
-    int far = std::fabs(r.t[0]) >= std::fabs(r.t[1]) ? 0 : 1;
-    if (r.t[far] != 0) r.t[1 - far] = product / r.t[far];
+    r.t[0] = tc + r.s[0], r.t[1] = tc + r.s[1];
+    int far = std::fabs(r.t[0]) >= std::fabs(r.t[1]) ? 0 : 1, near = 1 - far;
+    if (r.t[far] != 0 && std::fabs(r.t[near]) < 0.5 * std::fabs(tc)) {
+        r.t[near] = product() / r.t[far];
+        r.from_vieta[near] = true;
+    }
 }
 
 // A t^2 + 2 B t + C = 0 (half-b form) solved without cancellation: the discriminant D = B^2 - AC
@@ -84,7 +92,8 @@ inline Roots stable_roots(double A, double B, double C, double D) {
 template <class Fragile>
 bool undecidable(const Roots& r, Fragile fragile, double A, double D) {
     if (underflow_zone(A) || underflow_zone(D)) return true;
-    bool rests_on_zero = A == 0 || D == 0 || r.kind == Roots::on_surface || r.kind == Roots::tangent;
+    bool rests_on_zero =
+        A == 0 || D == 0 || r.kind == Roots::on_surface || r.kind == Roots::tangent;
     return rests_on_zero && fragile();
 }
 
@@ -100,10 +109,13 @@ inline bool seed_undecidable(const Roots& r, double a, double disc,
         for (int i = 0; i < 3; ++i)
             if (u[i] != 0 && std::fabs(u[i]) < min_relative_size * largest) fragile = true;
     bool extreme = largest > 0x1p+240 || largest < 0x1p-240;
-    return undecidable(r, [&] { return fragile || extreme; }, a, disc) || (extreme && underflow_zone(disc));
+    return undecidable(
+               r, [&] { return fragile || extreme; }, a, disc) ||
+           (extreme && underflow_zone(disc));
 }
 
-// Turns roots into candidates (t scaled back by t_scale, z from the functor) and finishes.
+// Turns roots into candidates (t scaled back by t_scale, z_of(roots, i) the axial coordinate
+// of root i) and finishes.
 template <class AxialOf>
 Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e, const Line& l, Query q,
                     double on_surface_z0 = 0, double on_surface_dz = 0) {
@@ -114,7 +126,7 @@ Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e, cons
     HitKind kind = r.kind == Roots::tangent ? HitKind::tangent : HitKind::cross;
     int count = r.kind == Roots::none ? 0 : r.kind == Roots::two ? 2 : 1;
     for (int i = 0; i < count; ++i)
-        c[n++] = {r.t[i] * t_scale, kind, z_of(r.t[i])};
+        c[n++] = {r.t[i] * t_scale, kind, z_of(r, i)};
     return finish(c, n, e, l, q);
 }
 
