@@ -36,12 +36,6 @@ inline double difference_of_products(double a, double b, double c, double d) {
     return dop + err;
 }
 
-// a x b with each component a Kahan difference of products.
-inline Vec3 cross_accurate(Vec3 a, Vec3 b) {
-    return {difference_of_products(a.y, b.z, a.z, b.y), difference_of_products(a.z, b.x, a.x, b.z),
-            difference_of_products(a.x, b.y, a.y, b.x)};
-}
-
 // sum_i x_i*y_i for n terms, Dot2 of Ogita, Rump and Oishi.
 template <int N>
 double dot2(const double (&x)[N], const double (&y)[N]) {

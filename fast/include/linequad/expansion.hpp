@@ -11,6 +11,8 @@
 
 namespace linequad {
 
+// Each add keeps at most one more term than it had, so Capacity must be at least the number of
+// doubles added: 4 per product of three (the determinants below add at most 48).
 template <std::size_t Capacity>
 class Expansion {
   public:
@@ -40,9 +42,6 @@ class Expansion {
         if (size_ == 0) return 0;
         return terms_[size_ - 1] > 0 ? 1 : -1;
     }
-    std::size_t size() const { return size_; }
-    // Fits: each add keeps at most one more term than it had.
-    static constexpr std::size_t capacity() { return Capacity; }
 
   private:
     double terms_[Capacity] = {};
