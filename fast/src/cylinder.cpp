@@ -13,7 +13,7 @@
 //
 // seed: seed 001 as written, with the unit axis h^ = h / |h| and a = v.v - (v.h^)^2 etc.
 //
-// stable: the cross-product form above, each cross product a Kahan difference of products, and
+// stable: the cross-product form above, and
 //  - the discriminant in geometric form. With det = v . (w x h) (the triple product, which is
 //    |v x h| times the distance from the axis to the line, times |h|),
 //        D = B^2 - A C0 = (h.h) (r^2 A - det^2) = (h.h) (r sqrt(A) - |det|)(r sqrt(A) + |det|),
@@ -22,9 +22,10 @@
 //    both tiny differences);
 //  - the origin moved to the line's point of closest approach to the middle of the axis before
 //    B and C0 are formed (never farther than the caller's origin; det does not change);
-//  - the stable root pair q / A, C0 / q, then t = t_c + s, the root nearer the caller's origin
-//    from Vieta (t1 t2 = C0 / A) with C0 = (|w x h| - r|h|)(|w x h| + r|h|);
-//  - A = 0 exactly when the line is parallel to the axis: on the surface when C0 = 0, else no hit;
+//  - the stable root pair q / A, C0 / q, then t = t_c + s; a root that cancels there (near the
+//    caller's origin) from Vieta instead (t1 t2 = C0 / A, C0 = (|w x h| - r|h|)(|w x h| + r|h|));
+//  - A = 0 exactly when the line is parallel to the axis: no hit, or on the surface when
+//    C0 = 0, which only the certified computation may claim (rounded zeros are no proof);
 //  - the scene prescaled by powers of two (exact) so no product overflows or underflows.
 //
 // certified: the same quantities in Bounded arithmetic (value and rigorous error bound, see
@@ -59,7 +60,7 @@ Result seed::intersect(const Cylinder& s, const Line& l, Query q) {
     // A line on the surface is a claim of infinitely many hits: only with proof (see roots.hpp).
     if (roots.kind == Roots::on_surface)
         return without_certification(certified::intersect(s, l, q));
-    return finish_roots(roots, 1, z_of, e, l, q, wh, vh);
+    return finish_roots(roots, 1, z_of, e, l, q);
 }
 
 Result stable::intersect(const Cylinder& s, const Line& l, Query q) {

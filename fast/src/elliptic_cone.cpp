@@ -22,7 +22,8 @@
 // with u = v' x w = M^T (v x w) / det (double-double triple products), Lagrange's identity in the
 // metric diag(1, 1, -1) gives
 //     D = B^2 - A C0 = ux^2 + uy^2 - uz^2.
-// Roots are the stable pair q / A, C0 / q, then the root nearer the original origin by Vieta.
+// Roots are the stable pair q / A, C0 / q, paired back as for the circular cylinder
+// (src/cylinder.cpp); a line on the surface only from the certified computation.
 //
 // certified: the same quantities in Bounded arithmetic, c = H - C exact (hi and bound); signs
 // used only when certain (see cylinder.cpp).
@@ -54,7 +55,7 @@ Result seed::intersect(const EllipticCone& s, const Line& l, Query q) {
     // A line on the surface is a claim of infinitely many hits: only with proof (see roots.hpp).
     if (roots.kind == Roots::on_surface)
         return without_certification(certified::intersect(s, l, q));
-    return finish_roots(roots, 1, z_of, e, l, q, w.z, v.z);
+    return finish_roots(roots, 1, z_of, e, l, q);
 }
 
 Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {

@@ -15,7 +15,7 @@
 // (|u| / sqrt(A) is the distance from the axis to the line: D < 0 iff it exceeds 1), u as a
 // double-double triple product; the origin moved to the closest approach to the axis' midpoint,
 // and the roots paired as for the circular cylinder (src/cylinder.cpp). A = 0 exactly when v'
-// is along the axis.
+// is along the axis (on the surface only from the certified computation).
 //
 // certified: the same quantities in Bounded arithmetic, the dual frame as adjugate rows over a
 // bounded determinant; signs used only when certain (see cylinder.cpp).
@@ -47,7 +47,7 @@ Result seed::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     // A line on the surface is a claim of infinitely many hits: only with proof (see roots.hpp).
     if (roots.kind == Roots::on_surface)
         return without_certification(certified::intersect(s, l, q));
-    return finish_roots(roots, 1, z_of, e, l, q, w.z, v.z);
+    return finish_roots(roots, 1, z_of, e, l, q);
 }
 
 Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
