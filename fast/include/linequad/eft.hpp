@@ -14,19 +14,26 @@
 
 namespace linequad {
 
-struct TwoTerm {
-    double hi, lo; // value = hi + lo exactly, |lo| <= ulp(hi)/2
+template <class T>
+struct TwoTermT {
+    T hi, lo; // value = hi + lo exactly, |lo| <= ulp(hi)/2
 };
+using TwoTerm = TwoTermT<double>;
 
-inline TwoTerm two_sum(double a, double b) {
-    double s = a + b;
-    double bb = s - a;
+// Inside these templates fma and sqrt are found by argument-dependent lookup for the batch
+// lane type, and are std::fma and std::sqrt for double.
+template <class T>
+TwoTermT<T> two_sum(T a, T b) {
+    T s = a + b;
+    T bb = s - a;
     return {s, (a - (s - bb)) + (b - bb)};
 }
 
-inline TwoTerm two_prod(double a, double b) {
-    double p = a * b;
-    return {p, std::fma(a, b, -p)};
+template <class T>
+TwoTermT<T> two_prod(T a, T b) {
+    using std::fma;
+    T p = a * b;
+    return {p, fma(a, b, -p)};
 }
 
 inline double difference_of_products(double a, double b, double c, double d) {
@@ -37,83 +44,94 @@ inline double difference_of_products(double a, double b, double c, double d) {
 }
 
 // sum_i x_i*y_i for n terms, Dot2 of Ogita, Rump and Oishi.
-template <int N>
-double dot2(const double (&x)[N], const double (&y)[N]) {
-    TwoTerm p = two_prod(x[0], y[0]);
-    double s = p.hi, c = p.lo;
+template <class T, int N>
+T dot2(const T (&x)[N], const T (&y)[N]) {
+    TwoTermT<T> p = two_prod(x[0], y[0]);
+    T s = p.hi, c = p.lo;
     for (int i = 1; i < N; ++i) {
-        TwoTerm q = two_prod(x[i], y[i]);
-        TwoTerm t = two_sum(s, q.hi);
+        TwoTermT<T> q = two_prod(x[i], y[i]);
+        TwoTermT<T> t = two_sum(s, q.hi);
         s = t.hi;
-        c += q.lo + t.lo;
+        c = c + (q.lo + t.lo);
     }
     return s + c;
 }
 
-inline double dot2(Vec3 a, Vec3 b) {
-    const double x[3] = {a.x, a.y, a.z};
-    const double y[3] = {b.x, b.y, b.z};
+template <class T>
+T dot2(Vec3T<T> a, Vec3T<T> b) {
+    const T x[3] = {a.x, a.y, a.z};
+    const T y[3] = {b.x, b.y, b.z};
     return dot2(x, y);
 }
 
 // a + b when |a| >= |b| or a = 0 (Dekker): exact as hi + lo.
-inline TwoTerm fast_two_sum(double a, double b) {
-    double s = a + b;
+template <class T>
+TwoTermT<T> fast_two_sum(T a, T b) {
+    T s = a + b;
     return {s, b - (s - a)};
 }
 
 // a*b - c*d as hi + lo, accurate to a few units of u^2 |ab| + u |ab - cd| (a double-double):
 // what a tiny cross product of nearly parallel vectors needs.
-inline TwoTerm difference_of_products_dd(double a, double b, double c, double d) {
-    TwoTerm p = two_prod(a, b), q = two_prod(c, d);
-    TwoTerm s = two_sum(p.hi, -q.hi);
+template <class T>
+TwoTermT<T> difference_of_products_dd(T a, T b, T c, T d) {
+    TwoTermT<T> p = two_prod(a, b), q = two_prod(c, d);
+    TwoTermT<T> s = two_sum(p.hi, -q.hi);
     return fast_two_sum(s.hi, s.lo + (p.lo - q.lo));
 }
 
-struct Vec3TwoTerm {
-    Vec3 hi, lo;
-    Vec3 rounded() const { return hi + lo; }
+template <class T>
+struct Vec3TwoTermT {
+    Vec3T<T> hi, lo;
+    Vec3T<T> rounded() const { return hi + lo; }
 };
+using Vec3TwoTerm = Vec3TwoTermT<double>;
 
 // a x b in double-double.
-inline Vec3TwoTerm cross_dd(Vec3 a, Vec3 b) {
-    TwoTerm x = difference_of_products_dd(a.y, b.z, a.z, b.y);
-    TwoTerm y = difference_of_products_dd(a.z, b.x, a.x, b.z);
-    TwoTerm z = difference_of_products_dd(a.x, b.y, a.y, b.x);
+template <class T>
+Vec3TwoTermT<T> cross_dd(Vec3T<T> a, Vec3T<T> b) {
+    TwoTermT<T> x = difference_of_products_dd(a.y, b.z, a.z, b.y);
+    TwoTermT<T> y = difference_of_products_dd(a.z, b.x, a.x, b.z);
+    TwoTermT<T> z = difference_of_products_dd(a.x, b.y, a.y, b.x);
     return {{x.hi, y.hi, z.hi}, {x.lo, y.lo, z.lo}};
 }
 
 // a x (b_hi + b_lo): the small part's cross product joins the low part (its own rounding is
 // of order u |a| |b_lo| <= u^2 |a| |b|).
-inline Vec3TwoTerm cross_dd(Vec3 a, const Vec3TwoTerm& b) {
-    Vec3TwoTerm r = cross_dd(a, b.hi);
+template <class T>
+Vec3TwoTermT<T> cross_dd(Vec3T<T> a, const Vec3TwoTermT<T>& b) {
+    Vec3TwoTermT<T> r = cross_dd(a, b.hi);
     r.lo = r.lo + cross(a, b.lo);
     return r;
 }
-inline Vec3TwoTerm cross_dd(const Vec3TwoTerm& a, Vec3 b) {
-    Vec3TwoTerm r = cross_dd(a.hi, b);
+template <class T>
+Vec3TwoTermT<T> cross_dd(const Vec3TwoTermT<T>& a, Vec3T<T> b) {
+    Vec3TwoTermT<T> r = cross_dd(a.hi, b);
     r.lo = r.lo + cross(a.lo, b);
     return r;
 }
 
 // u . (n_hi + n_lo), compensated: a triple product accurate even when it nearly vanishes.
-inline double dot2(Vec3 u, const Vec3TwoTerm& n) {
-    const double x[6] = {u.x, u.y, u.z, u.x, u.y, u.z};
-    const double y[6] = {n.hi.x, n.hi.y, n.hi.z, n.lo.x, n.lo.y, n.lo.z};
+template <class T>
+T dot2(Vec3T<T> u, const Vec3TwoTermT<T>& n) {
+    const T x[6] = {u.x, u.y, u.z, u.x, u.y, u.z};
+    const T y[6] = {n.hi.x, n.hi.y, n.hi.z, n.lo.x, n.lo.y, n.lo.z};
     return dot2(x, y);
 }
 
 // (p - q) as an unevaluated sum, per component: exact.
-inline Vec3TwoTerm difference_exact(Vec3 p, Vec3 q) {
-    TwoTerm x = two_sum(p.x, -q.x), y = two_sum(p.y, -q.y), z = two_sum(p.z, -q.z);
+template <class T>
+Vec3TwoTermT<T> difference_exact(Vec3T<T> p, Vec3T<T> q) {
+    TwoTermT<T> x = two_sum(p.x, -q.x), y = two_sum(p.y, -q.y), z = two_sum(p.z, -q.z);
     return {{x.hi, y.hi, z.hi}, {x.lo, y.lo, z.lo}};
 }
 
 // (hi + lo) + s*v with one rounding per component up to the tiny lo term: how the stable
 // solvers move a line's origin to its point of closest approach without losing it.
-inline Vec3 moved_origin(const Vec3TwoTerm& w, double s, Vec3 v) {
-    return {std::fma(s, v.x, w.hi.x) + w.lo.x, std::fma(s, v.y, w.hi.y) + w.lo.y,
-            std::fma(s, v.z, w.hi.z) + w.lo.z};
+template <class T>
+Vec3T<T> moved_origin(const Vec3TwoTermT<T>& w, T s, Vec3T<T> v) {
+    using std::fma;
+    return {fma(s, v.x, w.hi.x) + w.lo.x, fma(s, v.y, w.hi.y) + w.lo.y, fma(s, v.z, w.hi.z) + w.lo.z};
 }
 
 // sqrt(x^2 + y^2) - |z| times sqrt(x^2 + y^2) + |z|: x^2 + y^2 - z^2 without the cancellation

@@ -1,4 +1,5 @@
-// Plain 3-vectors of doubles. Accurate variants of the products live in eft.hpp.
+// 3-vectors. Vec3 is the double one; the templates also serve the batch solvers' 4-lane type,
+// so that scalar and batch results come from the same code. Accurate products: eft.hpp.
 #pragma once
 
 #include <algorithm>
@@ -6,43 +7,43 @@
 
 namespace linequad {
 
-struct Vec3 {
-    double x = 0, y = 0, z = 0;
-    double operator[](int i) const { return i == 0 ? x : i == 1 ? y : z; }
+template <class T>
+struct Vec3T {
+    T x{}, y{}, z{};
+    T operator[](int i) const { return i == 0 ? x : i == 1 ? y : z; }
 };
+using Vec3 = Vec3T<double>;
 
-inline Vec3 operator+(Vec3 a, Vec3 b) {
+template <class T>
+Vec3T<T> operator+(Vec3T<T> a, Vec3T<T> b) {
     return {a.x + b.x, a.y + b.y, a.z + b.z};
 }
-inline Vec3 operator-(Vec3 a, Vec3 b) {
+template <class T>
+Vec3T<T> operator-(Vec3T<T> a, Vec3T<T> b) {
     return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
-inline Vec3 operator*(double s, Vec3 a) {
+template <class T>
+Vec3T<T> operator*(T s, Vec3T<T> a) {
     return {s * a.x, s * a.y, s * a.z};
 }
-inline bool operator==(Vec3 a, Vec3 b) {
-    return a.x == b.x && a.y == b.y && a.z == b.z;
-}
-inline bool operator!=(Vec3 a, Vec3 b) {
-    return !(a == b);
-}
-inline double dot(Vec3 a, Vec3 b) {
+inline Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+inline bool operator==(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+inline bool operator!=(Vec3 a, Vec3 b) { return !(a == b); }
+template <class T>
+T dot(Vec3T<T> a, Vec3T<T> b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
-inline Vec3 cross(Vec3 a, Vec3 b) {
+template <class T>
+Vec3T<T> cross(Vec3T<T> a, Vec3T<T> b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double norm(Vec3 a) {
-    return std::sqrt(dot(a, a));
+template <class T>
+T norm(Vec3T<T> a) {
+    using std::sqrt;
+    return sqrt(dot(a, a));
 }
-inline double max_abs(Vec3 a) {
-    return std::max(std::fabs(a.x), std::max(std::fabs(a.y), std::fabs(a.z)));
-}
-inline bool is_finite(Vec3 a) {
-    return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
-}
-inline Vec3 ldexp(Vec3 a, int e) {
-    return {std::ldexp(a.x, e), std::ldexp(a.y, e), std::ldexp(a.z, e)};
-}
+inline double max_abs(Vec3 a) { return std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}); }
+inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+inline Vec3 ldexp(Vec3 a, int e) { return {std::ldexp(a.x, e), std::ldexp(a.y, e), std::ldexp(a.z, e)}; }
 
 } // namespace linequad
