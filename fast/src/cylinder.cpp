@@ -33,6 +33,7 @@
 // used only when the bound excludes zero, so a certain classification is never wrong.
 #include "linequad/cylinder.hpp"
 
+#include "cylinder_stable.hpp"
 #include "linequad/eft.hpp"
 #include "roots.hpp"
 
@@ -67,60 +68,29 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
     double extent = std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.H), s.r});
     Prescale ps = prescale_for(extent, l.v);
-    Vec3 C = ps.pos(s.C), L0 = ps.pos(l.L0), v = ps.dir(l.v);
-    double r = ps.len(s.r);
-    // h = H - C exactly, as hi + lo: for a line nearly along the axis, v x h is a tiny
-    // difference that the rounding of H - C alone would swamp.
-    Vec3TwoTerm hx = difference_exact(ps.pos(s.H), C);
-    Vec3 h = hx.rounded();
-    double hh = dot(h, h), hn = std::sqrt(hh);
-    if (r < min_relative_size || hn < min_relative_size)
+    CylinderStable<double> k(ps.pos(s.C), ps.pos(s.H), ps.pos(l.L0), ps.dir(l.v), ps.len(s.r));
+    if (k.r < min_relative_size || k.hn < min_relative_size)
         return Result::failure(ErrorCode::out_of_range, "r,H-C");
-
-    Vec3TwoTerm w = difference_exact(L0, C);
     auto fragile = [&] { return fragile_scene(extent, {s.C, s.H, l.L0, {s.r, 0, 0}}, l.v); };
-    Vec3 vh = cross_dd(v, hx).rounded();
-    double A = dot(vh, vh), rh = r * hn;
-    Extent e = s.finite ? Extent{0, hh} : Extent{-inf, inf};
-    // C0 at the caller's origin: for lines parallel to the axis, and for Vieta's product.
-    auto C0_at_origin = [&] {
-        double wn = norm(cross_dd(w.rounded(), hx).rounded());
-        return (wn - rh) * (wn + rh);
-    };
+    Extent e = s.finite ? Extent{0, k.hh} : Extent{-inf, inf};
 
     Roots roots;
-    if (A == 0) { // parallel to the axis
-        double C0 = C0_at_origin();
+    if (k.A == 0) { // parallel to the axis
+        double C0 = k.C0_at_origin();
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
-        if (undecidable(roots, fragile, A, C0))
+        if (undecidable(roots, fragile, k.A, C0))
             return Result::failure(ErrorCode::out_of_range, "v,H-C");
         if (roots.kind == Roots::on_surface)
             return without_certification(certified::intersect(s, l, q));
         return Result{};
     }
-    // The origin moved to the line's closest approach to the axis' midpoint: never farther
-    // than the caller's origin, so every later product is as small as the geometry allows.
-    double tc = -dot2(v, w.rounded() - 0.5 * h) / dot(v, v);
-    Vec3 wc = moved_origin(w, tc, v);
-    Vec3TwoTerm whc = cross_dd(wc, hx);
-    double B = dot2(vh, whc.rounded());
-    double wn = norm(whc.rounded());
-    double Cc = (wn - rh) * (wn + rh);
-    // det = v . (w x h): the line's distance to the axis times |v x h| |h|, a triple product
-    // in double-double (moving along the line does not change it).
-    double det = std::fabs(dot2(v, whc));
-    double rA = r * std::sqrt(A);
-    double gap = rA - det;
-    double D = gap < 0 ? -1 : hh * gap * (rA + det);
-    roots = stable_roots(A, B, Cc, D);
-    if (undecidable(roots, fragile, A, D)) return Result::failure(ErrorCode::out_of_range, "v,H-C");
-    shift_back(roots, tc, [&] { return C0_at_origin() / A; });
-    // z = (P - C) . h at each root: from the moved origin, or from the caller's for a root
-    // that is near it (Vieta's); one fma either way.
-    double zc = dot2(wc, h), dz = dot2(v, h);
+    k.discriminant();
+    roots = stable_roots(k.A, k.B, k.Cc, k.D);
+    if (undecidable(roots, fragile, k.A, k.D))
+        return Result::failure(ErrorCode::out_of_range, "v,H-C");
+    shift_back(roots, k.tc, [&] { return k.C0_at_origin() / k.A; });
     auto z_of = [&](const Roots& r, int i) {
-        return r.from_vieta[i] ? std::fma(r.t[i], dz, dot2(w.rounded(), h))
-                               : std::fma(r.s[i], dz, zc);
+        return r.from_vieta[i] ? k.z_at_origin(r.t[i]) : k.z_moved(r.s[i]);
     };
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }

@@ -117,12 +117,17 @@ inline bool seed_undecidable(const Roots& r, double a, double disc,
 // Turns roots into candidates (t scaled back by t_scale, z_of(roots, i) the axial coordinate
 // of root i) and finishes. Lines on the surface never get here: see without_certification.
 template <class AxialOf>
-Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e, const Line& l, Query q) {
+Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e, const Line& l,
+                    Query q) {
     Candidate c[2];
     int n = 0;
     HitKind kind = r.kind == Roots::tangent ? HitKind::tangent : HitKind::cross;
-    int count = r.kind == Roots::one ? 1 : r.kind == Roots::two ? 2 : r.kind == Roots::tangent ? 1 : 0;
-    for (int i = 0; i < count; ++i) c[n++] = {r.t[i] * t_scale, kind, z_of(r, i)};
+    int count = r.kind == Roots::one       ? 1
+                : r.kind == Roots::two     ? 2
+                : r.kind == Roots::tangent ? 1
+                                           : 0;
+    for (int i = 0; i < count; ++i)
+        c[n++] = {r.t[i] * t_scale, kind, z_of(r, i)};
     return finish(c, n, e, l, q);
 }
 

@@ -176,25 +176,41 @@ Error check_all(const Line& l, std::initializer_list<Named> points) {
 
 namespace detail {
 
-Result finish(Candidate* c, int n, Extent e, const Line& l, Query q) {
+void assemble(FinishedCandidate* c, int n, Query q, Result& r) {
+    // Field by field: r may be a caller's buffer, and a whole Result is large to write twice.
+    r.error = {};
+    r.count = 0;
+    r.on_surface = false;
+    r.s0 = r.s1 = 0;
+    r.certainty = Certainty::unknown;
     for (int i = 0; i < n; ++i)
-        if (!std::isfinite(c[i].t) || std::isnan(c[i].z))
-            return Result::failure(ErrorCode::out_of_range, "t");
+        if (c[i].bad) return void(r.error = {ErrorCode::out_of_range, "t"});
     if (n == 2 && c[1].t < c[0].t) std::swap(c[0], c[1]);
-    Result r;
     for (int i = 0; i < n; ++i) {
-        if (!(c[i].z >= e.lo && c[i].z <= e.hi) || !in_range(c[i].t, l.range)) continue;
-        Hit& h = r.hits[r.count++];
-        h.t = c[i].t;
-        h.kind = c[i].kind;
-        if (q.points) {
-            h.p = {std::fma(h.t, l.v.x, l.L0.x), std::fma(h.t, l.v.y, l.L0.y),
-                   std::fma(h.t, l.v.z, l.L0.z)};
-            // A hit whose point lies beyond double's range is refused, not returned as inf.
-            if (!is_finite(h.p)) return Result::failure(ErrorCode::out_of_range, "p");
-        }
+        if (!c[i].keep) continue;
+        // A hit whose point lies beyond double's range is refused, not returned as inf.
+        if (q.points && !is_finite(c[i].p))
+            return void(r = Result::failure(ErrorCode::out_of_range, "p"));
+        r.hits[r.count++] = Hit{c[i].t, c[i].kind, q.points ? c[i].p : Vec3{}};
         if (q.need != Need::all) break; // sorted, so the first kept is also the nearest
     }
+}
+
+Result finish(Candidate* c, int n, Extent e, const Line& l, Query q) {
+    FinishedCandidate f[2];
+    for (int i = 0; i < n; ++i) {
+        double t = c[i].t;
+        f[i] = {t,
+                c[i].kind,
+                !std::isfinite(t) || std::isnan(c[i].z),
+                c[i].z >= e.lo && c[i].z <= e.hi && in_range(t, l.range),
+                {}};
+        if (q.points)
+            f[i].p = {std::fma(t, l.v.x, l.L0.x), std::fma(t, l.v.y, l.L0.y),
+                      std::fma(t, l.v.z, l.L0.z)};
+    }
+    Result r;
+    assemble(f, n, q, r);
     return r;
 }
 

@@ -43,6 +43,17 @@ inline bool in_range(double t, Range r) {
 // give an out_of_range error.
 Result finish(Candidate* c, int n, Extent e, const Line& l, Query q);
 
+// finish() in two steps, so that the batch solvers can compute the first in vector lanes: each
+// candidate's facts (t in the caller's units; not finite; inside extent and range; its point
+// fma(t, v, L0)), then the Result (sorted, as many as the query needs).
+struct FinishedCandidate {
+    double t;
+    HitKind kind;
+    bool bad, keep;
+    Vec3 p;
+};
+void assemble(FinishedCandidate* c, int n, Query q, Result& out);
+
 // The line lies on the surface: z(t) = z0 + (t / t_scale) dz. The interval of t where it is
 // inside the extent, intersected with the range.
 Result finish_on_surface(double z0, double dz, double t_scale, Extent e, const Line& l);

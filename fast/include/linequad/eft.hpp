@@ -10,6 +10,14 @@
 
 #include "linequad/vec3.hpp"
 
+// These helpers are a handful of instructions each: inlined always, so that the batch solvers'
+// 4-lane values stay in registers (a call spills them through memory).
+#if defined(__GNUC__)
+#define LINEQUAD_INLINE inline __attribute__((always_inline))
+#else
+#define LINEQUAD_INLINE inline
+#endif
+
 #include <cmath>
 
 namespace linequad {
@@ -23,14 +31,14 @@ using TwoTerm = TwoTermT<double>;
 // Inside these templates fma and sqrt are found by argument-dependent lookup for the batch
 // lane type, and are std::fma and std::sqrt for double.
 template <class T>
-TwoTermT<T> two_sum(T a, T b) {
+LINEQUAD_INLINE TwoTermT<T> two_sum(T a, T b) {
     T s = a + b;
     T bb = s - a;
     return {s, (a - (s - bb)) + (b - bb)};
 }
 
 template <class T>
-TwoTermT<T> two_prod(T a, T b) {
+LINEQUAD_INLINE TwoTermT<T> two_prod(T a, T b) {
     using std::fma;
     T p = a * b;
     return {p, fma(a, b, -p)};
@@ -45,7 +53,7 @@ inline double difference_of_products(double a, double b, double c, double d) {
 
 // sum_i x_i*y_i for n terms, Dot2 of Ogita, Rump and Oishi.
 template <class T, int N>
-T dot2(const T (&x)[N], const T (&y)[N]) {
+LINEQUAD_INLINE T dot2(const T (&x)[N], const T (&y)[N]) {
     TwoTermT<T> p = two_prod(x[0], y[0]);
     T s = p.hi, c = p.lo;
     for (int i = 1; i < N; ++i) {
@@ -58,7 +66,7 @@ T dot2(const T (&x)[N], const T (&y)[N]) {
 }
 
 template <class T>
-T dot2(Vec3T<T> a, Vec3T<T> b) {
+LINEQUAD_INLINE T dot2(Vec3T<T> a, Vec3T<T> b) {
     const T x[3] = {a.x, a.y, a.z};
     const T y[3] = {b.x, b.y, b.z};
     return dot2(x, y);
@@ -66,7 +74,7 @@ T dot2(Vec3T<T> a, Vec3T<T> b) {
 
 // a + b when |a| >= |b| or a = 0 (Dekker): exact as hi + lo.
 template <class T>
-TwoTermT<T> fast_two_sum(T a, T b) {
+LINEQUAD_INLINE TwoTermT<T> fast_two_sum(T a, T b) {
     T s = a + b;
     return {s, b - (s - a)};
 }
@@ -74,7 +82,7 @@ TwoTermT<T> fast_two_sum(T a, T b) {
 // a*b - c*d as hi + lo, accurate to a few units of u^2 |ab| + u |ab - cd| (a double-double):
 // what a tiny cross product of nearly parallel vectors needs.
 template <class T>
-TwoTermT<T> difference_of_products_dd(T a, T b, T c, T d) {
+LINEQUAD_INLINE TwoTermT<T> difference_of_products_dd(T a, T b, T c, T d) {
     TwoTermT<T> p = two_prod(a, b), q = two_prod(c, d);
     TwoTermT<T> s = two_sum(p.hi, -q.hi);
     return fast_two_sum(s.hi, s.lo + (p.lo - q.lo));
@@ -89,7 +97,7 @@ using Vec3TwoTerm = Vec3TwoTermT<double>;
 
 // a x b in double-double.
 template <class T>
-Vec3TwoTermT<T> cross_dd(Vec3T<T> a, Vec3T<T> b) {
+LINEQUAD_INLINE Vec3TwoTermT<T> cross_dd(Vec3T<T> a, Vec3T<T> b) {
     TwoTermT<T> x = difference_of_products_dd(a.y, b.z, a.z, b.y);
     TwoTermT<T> y = difference_of_products_dd(a.z, b.x, a.x, b.z);
     TwoTermT<T> z = difference_of_products_dd(a.x, b.y, a.y, b.x);
@@ -99,13 +107,13 @@ Vec3TwoTermT<T> cross_dd(Vec3T<T> a, Vec3T<T> b) {
 // a x (b_hi + b_lo): the small part's cross product joins the low part (its own rounding is
 // of order u |a| |b_lo| <= u^2 |a| |b|).
 template <class T>
-Vec3TwoTermT<T> cross_dd(Vec3T<T> a, const Vec3TwoTermT<T>& b) {
+LINEQUAD_INLINE Vec3TwoTermT<T> cross_dd(Vec3T<T> a, const Vec3TwoTermT<T>& b) {
     Vec3TwoTermT<T> r = cross_dd(a, b.hi);
     r.lo = r.lo + cross(a, b.lo);
     return r;
 }
 template <class T>
-Vec3TwoTermT<T> cross_dd(const Vec3TwoTermT<T>& a, Vec3T<T> b) {
+LINEQUAD_INLINE Vec3TwoTermT<T> cross_dd(const Vec3TwoTermT<T>& a, Vec3T<T> b) {
     Vec3TwoTermT<T> r = cross_dd(a.hi, b);
     r.lo = r.lo + cross(a.lo, b);
     return r;
@@ -113,7 +121,7 @@ Vec3TwoTermT<T> cross_dd(const Vec3TwoTermT<T>& a, Vec3T<T> b) {
 
 // u . (n_hi + n_lo), compensated: a triple product accurate even when it nearly vanishes.
 template <class T>
-T dot2(Vec3T<T> u, const Vec3TwoTermT<T>& n) {
+LINEQUAD_INLINE T dot2(Vec3T<T> u, const Vec3TwoTermT<T>& n) {
     const T x[6] = {u.x, u.y, u.z, u.x, u.y, u.z};
     const T y[6] = {n.hi.x, n.hi.y, n.hi.z, n.lo.x, n.lo.y, n.lo.z};
     return dot2(x, y);
@@ -121,7 +129,7 @@ T dot2(Vec3T<T> u, const Vec3TwoTermT<T>& n) {
 
 // (p - q) as an unevaluated sum, per component: exact.
 template <class T>
-Vec3TwoTermT<T> difference_exact(Vec3T<T> p, Vec3T<T> q) {
+LINEQUAD_INLINE Vec3TwoTermT<T> difference_exact(Vec3T<T> p, Vec3T<T> q) {
     TwoTermT<T> x = two_sum(p.x, -q.x), y = two_sum(p.y, -q.y), z = two_sum(p.z, -q.z);
     return {{x.hi, y.hi, z.hi}, {x.lo, y.lo, z.lo}};
 }
@@ -129,9 +137,10 @@ Vec3TwoTermT<T> difference_exact(Vec3T<T> p, Vec3T<T> q) {
 // (hi + lo) + s*v with one rounding per component up to the tiny lo term: how the stable
 // solvers move a line's origin to its point of closest approach without losing it.
 template <class T>
-Vec3T<T> moved_origin(const Vec3TwoTermT<T>& w, T s, Vec3T<T> v) {
+LINEQUAD_INLINE Vec3T<T> moved_origin(const Vec3TwoTermT<T>& w, T s, Vec3T<T> v) {
     using std::fma;
-    return {fma(s, v.x, w.hi.x) + w.lo.x, fma(s, v.y, w.hi.y) + w.lo.y, fma(s, v.z, w.hi.z) + w.lo.z};
+    return {fma(s, v.x, w.hi.x) + w.lo.x, fma(s, v.y, w.hi.y) + w.lo.y,
+            fma(s, v.z, w.hi.z) + w.lo.z};
 }
 
 // sqrt(x^2 + y^2) - |z| times sqrt(x^2 + y^2) + |z|: x^2 + y^2 - z^2 without the cancellation

@@ -26,9 +26,15 @@ template <class T>
 Vec3T<T> operator*(T s, Vec3T<T> a) {
     return {s * a.x, s * a.y, s * a.z};
 }
-inline Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
-inline bool operator==(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
-inline bool operator!=(Vec3 a, Vec3 b) { return !(a == b); }
+inline Vec3 operator*(double s, Vec3 a) {
+    return {s * a.x, s * a.y, s * a.z};
+}
+inline bool operator==(Vec3 a, Vec3 b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+inline bool operator!=(Vec3 a, Vec3 b) {
+    return !(a == b);
+}
 template <class T>
 T dot(Vec3T<T> a, Vec3T<T> b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
@@ -42,8 +48,14 @@ T norm(Vec3T<T> a) {
     using std::sqrt;
     return sqrt(dot(a, a));
 }
-inline double max_abs(Vec3 a) { return std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}); }
-inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
-inline Vec3 ldexp(Vec3 a, int e) { return {std::ldexp(a.x, e), std::ldexp(a.y, e), std::ldexp(a.z, e)}; }
+inline double max_abs(Vec3 a) {
+    return std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
+}
+inline bool is_finite(Vec3 a) {
+    return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
+inline Vec3 ldexp(Vec3 a, int e) {
+    return {std::ldexp(a.x, e), std::ldexp(a.y, e), std::ldexp(a.z, e)};
+}
 
 } // namespace linequad
