@@ -29,22 +29,23 @@ void solve(benchmark::State& state, const Solver* solver, int shape, Query q) {
         benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// One cylinder, 1024 generic lines aimed at it: the scalar solver in a loop, and the batch.
+// One shape, 1024 generic lines aimed at it: the scalar solver in a loop, and the batch.
 struct OneShape {
-    Cylinder shape;
+    Shape shape;
     std::vector<double> soa[6];
     LineArrays lines() const {
         return {soa[0].data(), soa[1].data(), soa[2].data(), soa[3].data(),
                 soa[4].data(), soa[5].data(), soa[0].size(), Range::line};
     }
 };
-OneShape one_cylinder() {
-    auto cases = bench::generic_cases(0, 1024);
-    OneShape o{std::get<Cylinder>(cases[0].shape), {}};
-    const Cylinder& c = o.shape;
+OneShape one_shape(int shape) {
+    auto cases = bench::generic_cases(shape, 1024);
+    OneShape o{cases[0].shape, {}};
+    // Re-aim each line at this one shape: through a point near its middle (the generic cases'
+    // own lines aim at their own shapes; their middle is where they aimed).
+    Vec3 middle = cases[0].line.L0 + cases[0].line.v;
     for (std::size_t i = 0; i < cases.size(); ++i) {
-        // Re-aim each line at this one shape: through a point near its axis' middle.
-        Vec3 from = cases[i].line.L0, target = 0.5 * (c.C + c.H) + 0.1 * cases[i].line.v;
+        Vec3 from = cases[i].line.L0, target = middle + 0.1 * cases[i].line.v;
         Vec3 v = target - from;
         for (int a = 0; a < 3; ++a)
             o.soa[a].push_back(from[a]), o.soa[3 + a].push_back(v[a]);
@@ -52,33 +53,36 @@ OneShape one_cylinder() {
     return o;
 }
 
-void cylinder_stable_scalar_loop(benchmark::State& state) {
-    OneShape o = one_cylinder();
+void stable_scalar_loop(benchmark::State& state, int shape) {
+    OneShape o = one_shape(shape);
     LineArrays l = o.lines();
     std::vector<Result> out(l.count);
     for (auto _ : state) {
         for (std::size_t i = 0; i < l.count; ++i)
-            out[i] = stable::intersect(
+            out[i] = fast_solvers()[1](
                 o.shape, Line{{l.x[i], l.y[i], l.z[i]}, {l.vx[i], l.vy[i], l.vz[i]}}, {});
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
 }
-void cylinder_stable_batch(benchmark::State& state) {
-    OneShape o = one_cylinder();
+void stable_batch(benchmark::State& state, int shape) {
+    OneShape o = one_shape(shape);
     LineArrays l = o.lines();
     std::vector<Result> out(l.count);
     for (auto _ : state) {
-        stable::intersect(o.shape, l, {}, out.data());
+        std::visit([&](const auto& s) { stable::intersect(s, l, {}, out.data()); }, o.shape);
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
     state.SetLabel(batch_uses_avx2() ? "avx2" : "scalar path");
 }
-BENCHMARK(cylinder_stable_scalar_loop);
-BENCHMARK(cylinder_stable_batch);
 
 int register_all() {
+    for (int shape = 0; shape < 3; ++shape) {
+        std::string name = std::string(shape_names[shape]) + "/stable/1024_lines/";
+        benchmark::RegisterBenchmark((name + "scalar_loop").c_str(), stable_scalar_loop, shape);
+        benchmark::RegisterBenchmark((name + "batch").c_str(), stable_batch, shape);
+    }
     std::vector<const Solver*> solvers;
     for (const Solver& s : fast_solvers())
         solvers.push_back(&s);

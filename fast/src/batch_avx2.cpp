@@ -1,6 +1,9 @@
-// The AVX2 batch kernels: the shared solver cores instantiated on four lanes.
+// The AVX2 batch kernels: the shared solver cores (cylinder_stable.hpp, elliptic_stable.hpp)
+// instantiated on four lanes, and the steps around them that the scalar solvers take, in lanes:
+// prescaling, the pairing of roots, and finish()'s facts.
 #include "batch_kernels.hpp"
 #include "cylinder_stable.hpp"
+#include "elliptic_stable.hpp"
 #include "lanes_avx2.hpp"
 #include "support.hpp"
 
@@ -8,20 +11,28 @@
 
 namespace linequad::detail {
 
-void cylinder_stable_x4(const Cylinder& s, double shape_extent, const double* const soa[6],
-                        std::size_t i, Range range, LaneResult out[4]) {
-    // The power-of-two prescaling of prescale_for(), in lanes: exponents read from the bits,
-    // powers of two built from them. Lanes that prescale_for() would send down a slow path (a
-    // subnormal extent, exponents beyond +-1000) go back to the scalar solver.
-    Vec3T<D4> L0{D4(_mm256_loadu_pd(soa[0] + i)), D4(_mm256_loadu_pd(soa[1] + i)),
-                 D4(_mm256_loadu_pd(soa[2] + i))};
-    Vec3T<D4> vin{D4(_mm256_loadu_pd(soa[3] + i)), D4(_mm256_loadu_pd(soa[4] + i)),
-                  D4(_mm256_loadu_pd(soa[5] + i))};
-    auto max_abs4 = [](Vec3T<D4> a) {
-        return D4(_mm256_max_pd(_mm256_max_pd(fabs(a.x).v, fabs(a.y).v), fabs(a.z).v));
-    };
-    D4 extent(_mm256_max_pd(max_abs4(L0).v, _mm256_set1_pd(shape_extent)));
-    auto exponent = [](D4 m, __m256i& ok) {
+namespace {
+
+// A line's lanes: L0 and v as given, and prescale_for()'s powers of two built from their bits.
+// `ok` drops the lanes that prescale_for() would take down a slow path (a subnormal extent,
+// exponents beyond +-1000): they go back to the scalar solver.
+struct LineLanes {
+    Vec3T<D4> L0, v;
+    D4 to_unit, dir_to_unit, t_scale;
+    M4 ok;
+};
+
+D4 max_abs4(Vec3T<D4> a) {
+    return D4(_mm256_max_pd(_mm256_max_pd(fabs(a.x).v, fabs(a.y).v), fabs(a.z).v));
+}
+
+LineLanes line_lanes(const double* const soa[6], std::size_t i, double shape_extent) {
+    LineLanes ln;
+    auto load = [&](int a) { return D4(_mm256_loadu_pd(soa[a] + i)); };
+    ln.L0 = {load(0), load(1), load(2)};
+    ln.v = {load(3), load(4), load(5)};
+    __m256i ok = _mm256_set1_epi64x(-1);
+    auto exponent = [&ok](D4 m) {
         __m256i biased = _mm256_and_si256(_mm256_srli_epi64(_mm256_castpd_si256(m.v), 52),
                                           _mm256_set1_epi64x(0x7ff));
         __m256i e = _mm256_sub_epi64(biased, _mm256_set1_epi64x(1023));
@@ -38,30 +49,34 @@ void cylinder_stable_x4(const Cylinder& s, double shape_extent, const double* co
         return D4(_mm256_castsi256_pd(
             _mm256_slli_epi64(_mm256_add_epi64(e, _mm256_set1_epi64x(1023)), 52)));
     };
-    __m256i ok = _mm256_set1_epi64x(-1);
-    __m256i kx = exponent(extent, ok), jx = exponent(max_abs4(vin), ok);
-    __m256i kj = _mm256_sub_epi64(kx, jx);
+    D4 extent(_mm256_max_pd(max_abs4(ln.L0).v, _mm256_set1_pd(shape_extent)));
+    __m256i k = exponent(extent), j = exponent(max_abs4(ln.v)), kj = _mm256_sub_epi64(k, j);
     ok = _mm256_andnot_si256(_mm256_or_si256(_mm256_cmpgt_epi64(kj, _mm256_set1_epi64x(1000)),
                                              _mm256_cmpgt_epi64(_mm256_set1_epi64x(-1000), kj)),
                              ok);
-    D4 to_unit = pow2(_mm256_sub_epi64(_mm256_setzero_si256(), kx));
-    D4 dir_to_unit = pow2(_mm256_sub_epi64(_mm256_setzero_si256(), jx));
-    D4 t_scale = pow2(kj);
-    auto pos = [&](Vec3 p) {
-        return Vec3T<D4>{to_unit * D4(p.x), to_unit * D4(p.y), to_unit * D4(p.z)};
-    };
-    CylinderStable<D4> k(pos(s.C), pos(s.H), to_unit * L0, dir_to_unit * vin, to_unit * D4(s.r));
-    D4 min_size(min_relative_size), tiny(tiny_decisive), zero(0.0);
-    // The lanes the scalar solver would branch on go back to it.
-    M4 generic =
-        M4{_mm256_castsi256_pd(ok)} & (k.r >= min_size) & (k.hn >= min_size) & (k.A >= tiny);
-    k.discriminant();
-    generic = generic & (fabs(k.D) >= tiny);
+    ln.to_unit = pow2(_mm256_sub_epi64(_mm256_setzero_si256(), k));
+    ln.dir_to_unit = pow2(_mm256_sub_epi64(_mm256_setzero_si256(), j));
+    ln.t_scale = pow2(kj);
+    ln.ok = M4{_mm256_castsi256_pd(ok)};
+    return ln;
+}
+
+Vec3T<D4> scaled(D4 f, Vec3 p) {
+    return {f * D4(p.x), f * D4(p.y), f * D4(p.z)};
+}
+Vec3T<D4> scaled(D4 f, Vec3T<D4> p) {
+    return f * p;
+}
+
+// From the moved roots to finish()'s facts, as shift_back() and finish() do for one line. z_of(t,
+// s, from_vieta) gives a root's axial coordinate; [lo, hi] is the extent.
+template <class Core, class AxialOf>
+void finish_lanes(const Core& k, M4 generic, const LineLanes& ln, D4 lo, D4 hi, Range range,
+                  AxialOf z_of, LaneResult out[4]) {
+    D4 zero(0.0), sm[2];
     M4 two = k.D >= zero;
-    D4 sm[2];
-    k.moved_roots(sm);
-    // Back to the caller's origin: the root of larger magnitude directly, the other from
-    // Vieta's product when it cancelled (shift_back in roots.hpp).
+    stable_pair(k.A, k.B, k.Cc, k.D, sm);
+    // The root of larger magnitude directly, the other from Vieta's product when it cancelled.
     D4 ta = k.tc + sm[0], tb = k.tc + sm[1];
     M4 far_is_a = fabs(ta) >= fabs(tb);
     D4 t_far = select(far_is_a, ta, tb), t_near = select(far_is_a, tb, ta);
@@ -69,24 +84,21 @@ void cylinder_stable_x4(const Cylinder& s, double shape_extent, const double* co
     if (bits(vieta)) t_near = select(vieta, (k.C0_at_origin() / k.A) / t_far, t_near);
     D4 t[2] = {select(far_is_a, t_far, t_near), select(far_is_a, t_near, t_far)};
     M4 from_vieta[2] = {(!far_is_a) & vieta, far_is_a & vieta};
-    // finish()'s facts for each root, in lanes: t in the caller's units, not finite, inside the
-    // extent and the range, and the point fma(t, v, L0) from the caller's own line.
-    D4 lo(s.finite ? 0.0 : -inf), hi = s.finite ? k.hh : D4(inf);
     D4 big(std::numeric_limits<double>::max());
     alignas(32) double tt[2][4], px[2][4], py[2][4], pz[2][4];
     int bad[2], keep[2];
     for (int j = 0; j < 2; ++j) {
-        D4 z = select(from_vieta[j], k.z_at_origin(t[j]), k.z_moved(sm[j]));
-        D4 tcall = t[j] * t_scale;
+        D4 z = z_of(t[j], sm[j], from_vieta[j]);
+        D4 tcall = t[j] * ln.t_scale;
         M4 in = (z >= lo) & (z <= hi);
         if (range != Range::line) in = in & (tcall >= zero);
         if (range == Range::segment) in = in & (tcall <= D4(1.0));
         bad[j] = bits((!(fabs(tcall) <= big)) | (z != z));
         keep[j] = bits(in);
         _mm256_store_pd(tt[j], tcall.v);
-        _mm256_store_pd(px[j], fma(tcall, vin.x, L0.x).v);
-        _mm256_store_pd(py[j], fma(tcall, vin.y, L0.y).v);
-        _mm256_store_pd(pz[j], fma(tcall, vin.z, L0.z).v);
+        _mm256_store_pd(px[j], fma(tcall, ln.v.x, ln.L0.x).v);
+        _mm256_store_pd(py[j], fma(tcall, ln.v.y, ln.L0.y).v);
+        _mm256_store_pd(pz[j], fma(tcall, ln.v.z, ln.L0.z).v);
     }
     int g = bits(generic), tw = bits(two);
     for (int lane = 0; lane < 4; ++lane) {
@@ -100,6 +112,59 @@ void cylinder_stable_x4(const Cylinder& s, double shape_extent, const double* co
                          bool((keep[j] >> lane) & 1),
                          {px[j][lane], py[j][lane], pz[j][lane]}};
     }
+}
+
+} // namespace
+
+// The lanes the scalar solver would branch on (sizes out of reach, A or D zero or in the
+// underflow zone) are not generic: they go back to it.
+void cylinder_stable_x4(const Cylinder& s, double shape_extent, const double* const soa[6],
+                        std::size_t i, Range range, LaneResult out[4]) {
+    LineLanes ln = line_lanes(soa, i, shape_extent);
+    CylinderStable<D4> k(scaled(ln.to_unit, s.C), scaled(ln.to_unit, s.H),
+                         scaled(ln.to_unit, ln.L0), scaled(ln.dir_to_unit, ln.v),
+                         ln.to_unit * D4(s.r));
+    D4 min_size(min_relative_size), tiny(tiny_decisive);
+    M4 generic = ln.ok & (k.r >= min_size) & (k.hn >= min_size) & (k.A >= tiny);
+    k.discriminant();
+    generic = generic & (fabs(k.D) >= tiny);
+    auto z_of = [&](D4 t, D4 sm, M4 from_vieta) {
+        return select(from_vieta, k.z_at_origin(t), k.z_moved(sm));
+    };
+    finish_lanes(k, generic, ln, D4(s.finite ? 0.0 : -inf), s.finite ? k.hh : D4(inf), range, z_of,
+                 out);
+}
+
+void elliptic_cylinder_stable_x4(const EllipticCylinder& s, double shape_extent,
+                                 const double* const soa[6], std::size_t i, Range range,
+                                 LaneResult out[4]) {
+    LineLanes ln = line_lanes(soa, i, shape_extent);
+    Vec3T<D4> a = scaled(ln.to_unit, s.a), b = scaled(ln.to_unit, s.b), c = scaled(ln.to_unit, s.c);
+    EllipticStable<D4> k(a, b, c, scaled(ln.to_unit, s.C), scaled(ln.to_unit, ln.L0),
+                         scaled(ln.dir_to_unit, ln.v));
+    D4 min_size(min_relative_size), tiny(tiny_decisive);
+    M4 generic = ln.ok & (max_abs4(a) >= min_size) & (max_abs4(b) >= min_size) &
+                 (max_abs4(c) >= min_size) & (k.A >= tiny);
+    k.discriminant();
+    generic = generic & (fabs(k.D) >= tiny);
+    auto z_of = [&](D4 t, D4, M4) { return k.z_at(t); };
+    finish_lanes(k, generic, ln, D4(s.finite ? 0.0 : -inf), D4(s.finite ? 1.0 : inf), range, z_of,
+                 out);
+}
+
+void elliptic_cone_stable_x4(const EllipticCone& s, double shape_extent, const double* const soa[6],
+                             std::size_t i, Range range, LaneResult out[4]) {
+    LineLanes ln = line_lanes(soa, i, shape_extent);
+    Vec3T<D4> a = scaled(ln.to_unit, s.a), b = scaled(ln.to_unit, s.b);
+    ConeStable<D4> k(a, b, scaled(ln.to_unit, s.H), scaled(ln.to_unit, s.C),
+                     scaled(ln.to_unit, ln.L0), scaled(ln.dir_to_unit, ln.v));
+    D4 min_size(min_relative_size), tiny(tiny_decisive);
+    M4 generic = ln.ok & (max_abs4(a) >= min_size) & (max_abs4(b) >= min_size) &
+                 (max_abs4(k.c.hi) >= min_size) & (fabs(k.A) >= tiny);
+    k.discriminant();
+    generic = generic & (fabs(k.D) >= tiny);
+    auto z_of = [&](D4 t, D4, M4) { return k.z_at(t); };
+    finish_lanes(k, generic, ln, D4(s.finite ? -1.0 : -inf), D4(0.0), range, z_of, out);
 }
 
 } // namespace linequad::detail

@@ -16,8 +16,14 @@ struct LaneResult {
     FinishedCandidate root[2];
 };
 
-// Lines [i, i + 4) of `lines` against the cylinder; AVX2 and FMA.
+// Lines [i, i + 4) of the arrays (x, y, z, vx, vy, vz) against the shape; AVX2 and FMA.
+// shape_extent: the largest magnitude among the shape's points and vectors (prescaling).
 void cylinder_stable_x4(const Cylinder& s, double shape_extent, const double* const soa[6],
                         std::size_t i, Range range, LaneResult out[4]);
+void elliptic_cylinder_stable_x4(const EllipticCylinder& s, double shape_extent,
+                                 const double* const soa[6], std::size_t i, Range range,
+                                 LaneResult out[4]);
+void elliptic_cone_stable_x4(const EllipticCone& s, double shape_extent, const double* const soa[6],
+                             std::size_t i, Range range, LaneResult out[4]);
 
 } // namespace linequad::detail

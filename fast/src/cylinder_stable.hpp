@@ -74,15 +74,6 @@ struct CylinderStable {
         D = select(gap < T(0), T(-1), hh * gap * (rA + det));
     }
 
-    // Two roots in the moved parameter (valid where D > 0), smaller first: the stable pair.
-    void moved_roots(T s[2]) const {
-        using std::copysign;
-        using std::sqrt;
-        T q = -(B + copysign(sqrt(D), B));
-        T t0 = q / A, t1 = Cc / q;
-        s[0] = lane_min(t0, t1), s[1] = lane_max(t0, t1);
-    }
-
     // z = (P - C) . h at a root: from the moved origin, or from the caller's for a root that
     // came from Vieta's product (near the caller's origin); one fma either way.
     T z_moved(T s) const {

@@ -29,6 +29,7 @@
 // used only when certain (see cylinder.cpp).
 #include "linequad/elliptic_cone.hpp"
 
+#include "elliptic_stable.hpp"
 #include "frame.hpp"
 #include "roots.hpp"
 
@@ -63,40 +64,21 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
     double extent =
         std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.H), max_abs(s.a), max_abs(s.b)});
     Prescale ps = prescale_for(extent, l.v);
-    Vec3 a = ps.pos(s.a), b = ps.pos(s.b), H = ps.pos(s.H), v = ps.dir(l.v);
-    Vec3TwoTerm c = difference_exact(H, ps.pos(s.C)); // exact: c = H - C is not a double
-    if (std::min(max_abs(a), std::min(max_abs(b), max_abs(c.hi))) < min_relative_size)
+    Vec3 a = ps.pos(s.a), b = ps.pos(s.b);
+    ConeStable<double> k(a, b, ps.pos(s.H), ps.pos(s.C), ps.pos(l.L0), ps.dir(l.v));
+    if (std::min({max_abs(a), max_abs(b), max_abs(k.c.hi)}) < min_relative_size)
         return Result::failure(ErrorCode::out_of_range, "a,b,H-C");
-    DualFrame f(a, b, c);
-    Vec3TwoTerm w = difference_exact(ps.pos(l.L0), H);
-    Vec3 vl = f.local(v);
     Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
 
-    // Origin moved to the line's closest approach to the apex: never farther than the caller's.
-    double tc = -dot2(v, w.rounded()) / dot(v, v);
-    Vec3 wcw = moved_origin(w, tc, v), wc = f.local(wcw);
-    double A = circle_minus_square(vl.x, vl.y, vl.z);
-    const double vm[3] = {vl.x, vl.y, -vl.z}, wm[3] = {wc.x, wc.y, wc.z};
-    double B = dot2(vm, wm);
-    double Cc = circle_minus_square(wc.x, wc.y, wc.z);
-    // u = v' x w' = M^T (v x w) / det, each component a double-double triple product.
-    Vec3TwoTerm vw = cross_dd(v, wcw);
-    Vec3 u = Vec3{dot2(a, vw), dot2(b, vw), dot2(c.hi, vw) + dot(c.lo, vw.hi)};
-    u = (1 / f.det) * u;
-    double D = circle_minus_square(u.x, u.y, u.z);
-    Roots roots = stable_roots(A, B, Cc, D);
+    k.discriminant();
+    Roots roots = stable_roots(k.A, k.B, k.Cc, k.D);
     auto fragile = [&] { return fragile_scene(extent, {s.C, s.H, s.a, s.b, l.L0}, l.v); };
-    if (undecidable(roots, fragile, A, D) || (A == 0 && fragile()))
+    if (undecidable(roots, fragile, k.A, k.D) || (k.A == 0 && fragile()))
         return Result::failure(ErrorCode::out_of_range, "v,a,b,H-C");
     if (roots.kind == Roots::on_surface)
         return without_certification(certified::intersect(s, l, q));
-    shift_back(roots, tc, [&] { // C0 at the caller's origin, for Vieta's product
-        Vec3 wl = f.local(w.rounded());
-        return circle_minus_square(wl.x, wl.y, wl.z) / A;
-    });
-    // The local z of each hit point itself, in compensated arithmetic: near the extent's ends,
-    // where it decides, a sum of moved-origin terms would cancel.
-    auto z_of = [&](const Roots& r, int i) { return f.local_z(moved_origin(w, r.t[i], v)); };
+    shift_back(roots, k.tc, [&] { return k.C0_at_origin() / k.A; });
+    auto z_of = [&](const Roots& r, int i) { return k.z_at(r.t[i]); };
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }
 

@@ -21,6 +21,7 @@
 // bounded determinant; signs used only when certain (see cylinder.cpp).
 #include "linequad/elliptic_cylinder.hpp"
 
+#include "elliptic_stable.hpp"
 #include "frame.hpp"
 #include "roots.hpp"
 
@@ -55,50 +56,29 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     double extent =
         std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.a), max_abs(s.b), max_abs(s.c)});
     Prescale ps = prescale_for(extent, l.v);
-    Vec3 a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c), v = ps.dir(l.v);
+    Vec3 a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c);
     if (std::min({max_abs(a), max_abs(b), max_abs(c)}) < min_relative_size)
         return Result::failure(ErrorCode::out_of_range, "a,b,c");
-    DualFrame f(a, b, {c, {}});
-    Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
-    Vec3 vl = f.local(v);
+    EllipticStable<double> k(a, b, c, ps.pos(s.C), ps.pos(l.L0), ps.dir(l.v));
     auto fragile = [&] { return fragile_scene(extent, {s.C, s.a, s.b, s.c, l.L0}, l.v); };
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
-    // C0 at the caller's origin: for lines along the axis, and for Vieta's product.
-    auto C0_at_origin = [&] {
-        Vec3 wl = f.local(w.rounded());
-        return circle_minus_square(wl.x, wl.y, 1);
-    };
 
-    double A = vl.x * vl.x + vl.y * vl.y;
     Roots roots;
-    if (A == 0) { // along the axis
-        double C0 = C0_at_origin();
+    if (k.A == 0) { // along the axis
+        double C0 = k.C0_at_origin();
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
-        if (undecidable(roots, fragile, A, C0))
+        if (undecidable(roots, fragile, k.A, C0))
             return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
         if (roots.kind == Roots::on_surface)
             return without_certification(certified::intersect(s, l, q));
         return Result{};
     }
-    // Origin moved to the closest approach to the axis' midpoint (see cylinder.cpp).
-    double tc = -dot2(v, w.rounded() - 0.5 * c) / dot(v, v);
-    Vec3 wc = moved_origin(w, tc, v);
-    Vec3 wcl = f.local(wc);
-    const double vxy[2] = {vl.x, vl.y}, wxy[2] = {wcl.x, wcl.y};
-    double B = dot2(vxy, wxy);
-    double Cc = circle_minus_square(wcl.x, wcl.y, 1);
-    // u = v'x w'y - v'y w'x = c . (v x w) / det: a triple product in double-double.
-    double u = std::fabs(dot2(c, cross_dd(v, wc)) / f.det);
-    double sA = std::sqrt(A);
-    double gap = sA - u;
-    double D = gap < 0 ? -1 : gap * (sA + u);
-    roots = stable_roots(A, B, Cc, D);
-    if (undecidable(roots, fragile, A, D))
+    k.discriminant();
+    roots = stable_roots(k.A, k.B, k.Cc, k.D);
+    if (undecidable(roots, fragile, k.A, k.D))
         return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
-    shift_back(roots, tc, [&] { return C0_at_origin() / A; });
-    // The local z of each hit point itself, in compensated arithmetic: near the extent's ends,
-    // where it decides, a sum of moved-origin terms would cancel.
-    auto z_of = [&](const Roots& r, int i) { return f.local_z(moved_origin(w, r.t[i], v)); };
+    shift_back(roots, k.tc, [&] { return k.C0_at_origin() / k.A; });
+    auto z_of = [&](const Roots& r, int i) { return k.z_at(r.t[i]); };
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }
 

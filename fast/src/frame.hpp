@@ -36,13 +36,17 @@ inline Vec3 apply_vector(const Eigen::Matrix4d& m, Vec3 v) {
 // (adjugate over determinant, erratum 3), each kept in double-double: for a line nearly along
 // the axis, v . (b x c) is a tiny difference that a rounded b x c would swamp. c may carry a
 // low part (the cone's c = H - C is not a double).
-struct DualFrame {
-    Vec3TwoTerm nx, ny, nz;
-    double det;
-    DualFrame(Vec3 a, Vec3 b, const Vec3TwoTerm& c)
+template <class T>
+struct DualFrameT {
+    Vec3TwoTermT<T> nx, ny, nz;
+    T det;
+    DualFrameT(Vec3T<T> a, Vec3T<T> b, const Vec3TwoTermT<T>& c)
         : nx(cross_dd(b, c)), ny(cross_dd(c, a)), nz(cross_dd(a, b)), det(dot2(a, nx)) {}
-    Vec3 local(Vec3 u) const { return {dot2(u, nx) / det, dot2(u, ny) / det, dot2(u, nz) / det}; }
-    double local_z(Vec3 u) const { return dot2(u, nz) / det; }
+    Vec3T<T> local(Vec3T<T> u) const {
+        return {dot2(u, nx) / det, dot2(u, ny) / det, dot2(u, nz) / det};
+    }
+    T local_z(Vec3T<T> u) const { return dot2(u, nz) / det; }
 };
+using DualFrame = DualFrameT<double>;
 
 } // namespace linequad::detail

@@ -21,6 +21,8 @@ struct LineArrays {
 namespace stable {
 // out[i] = stable::intersect(s, line i, q) for every i < lines.count.
 void intersect(const Cylinder& s, const LineArrays& lines, Query q, Result* out);
+void intersect(const EllipticCylinder& s, const LineArrays& lines, Query q, Result* out);
+void intersect(const EllipticCone& s, const LineArrays& lines, Query q, Result* out);
 } // namespace stable
 
 // Whether the batch solvers run their AVX2 path on this machine (or the scalar loop).

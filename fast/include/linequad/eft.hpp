@@ -145,9 +145,12 @@ LINEQUAD_INLINE Vec3T<T> moved_origin(const Vec3TwoTermT<T>& w, T s, Vec3T<T> v)
 
 // sqrt(x^2 + y^2) - |z| times sqrt(x^2 + y^2) + |z|: x^2 + y^2 - z^2 without the cancellation
 // of subtracting two rounded squares (the geometric form of the discriminant).
-inline double circle_minus_square(double x, double y, double z) {
-    double rho = std::sqrt(x * x + y * y);
-    double az = std::fabs(z);
+template <class T>
+LINEQUAD_INLINE T circle_minus_square(T x, T y, T z) {
+    using std::fabs;
+    using std::sqrt;
+    T rho = sqrt(x * x + y * y);
+    T az = fabs(z);
     return (rho - az) * (rho + az);
 }
 
