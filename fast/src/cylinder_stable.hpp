@@ -60,7 +60,7 @@ struct CylinderStable {
     void discriminant() {
         using std::fabs;
         using std::sqrt;
-        tc = -dot2(v, w.rounded() - T(0.5) * h) / dot(v, v);
+        tc = -dot(v, w.rounded() - T(0.5) * h) / dot(v, v); // any tc is an exact move
         wc = moved_origin(w, tc, v);
         Vec3TwoTermT<T> whc = cross_dd(wc, hx);
         B = dot2(vh, whc.rounded());

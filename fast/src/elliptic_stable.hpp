@@ -40,7 +40,7 @@ struct EllipticStable {
     void discriminant() {
         using std::fabs;
         using std::sqrt;
-        tc = -dot2(v, w.rounded() - T(0.5) * c) / dot(v, v);
+        tc = -dot(v, w.rounded() - T(0.5) * c) / dot(v, v); // any tc is an exact move
         Vec3T<T> wc = moved_origin(w, tc, v);
         Vec3T<T> wcl = f.local(wc);
         const T vxy[2] = {vl.x, vl.y}, wxy[2] = {wcl.x, wcl.y};
@@ -77,7 +77,7 @@ struct ConeStable {
     // Origin moved to the line's closest approach to the apex; D = ux^2 + uy^2 - uz^2 with
     // u = v' x w' = M^T (v x w) / det, each component a double-double triple product.
     void discriminant() {
-        tc = -dot2(v, w.rounded()) / dot(v, v);
+        tc = -dot(v, w.rounded()) / dot(v, v); // any tc is an exact move
         Vec3T<T> wcw = moved_origin(w, tc, v), wc = f.local(wcw);
         const T vm[3] = {vl.x, vl.y, -vl.z}, wm[3] = {wc.x, wc.y, wc.z};
         B = dot2(vm, wm);

@@ -166,6 +166,12 @@ struct Named {
 };
 
 Error check_all(const Line& l, std::initializer_list<Named> points) {
+    // 0 * (sum of every coordinate) is NaN iff one is NaN or infinite: one test for the usual
+    // case, the field by field checks (which name the culprit) only when it fails.
+    double sum = l.L0.x + l.L0.y + l.L0.z + l.v.x + l.v.y + l.v.z;
+    for (const Named& n : points)
+        sum += n.p.x + n.p.y + n.p.z;
+    if (0 * sum == 0) return l.v == Vec3{} ? Error{ErrorCode::zero_direction, "v"} : Error{};
     Error e = check_line(l);
     for (const Named& n : points)
         if (e.code == ErrorCode::none) e = check_point(n.p, n.field);
