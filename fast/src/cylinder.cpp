@@ -74,25 +74,11 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     auto fragile = [&] { return fragile_scene(extent, {s.C, s.H, l.L0, {s.r, 0, 0}}, l.v); };
     Extent e = s.finite ? Extent{0, k.hh} : Extent{-inf, inf};
 
-    Roots roots;
-    if (k.A == 0) { // parallel to the axis
-        double C0 = k.C0_at_origin();
-        roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
-        if (undecidable(roots, fragile, k.A, C0))
-            return Result::failure(ErrorCode::out_of_range, "v,H-C");
-        if (roots.kind == Roots::on_surface)
-            return without_certification(certified::intersect(s, l, q));
-        return Result{};
-    }
-    k.discriminant();
-    roots = stable_roots(k.A, k.B, k.Cc, k.D);
-    if (undecidable(roots, fragile, k.A, k.D))
-        return Result::failure(ErrorCode::out_of_range, "v,H-C");
-    shift_back(roots, k.tc, [&] { return k.C0_at_origin() / k.A; });
-    auto z_of = [&](const Roots& r, int i) {
+    auto z_of = [](const CylinderStable<double>& k, const Roots& r, int i) {
         return r.from_vieta[i] ? k.z_at_origin(r.t[i]) : k.z_moved(r.s[i]);
     };
-    return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
+    auto on_surface = [&] { return without_certification(certified::intersect(s, l, q)); };
+    return stable_solve(k, true, fragile, on_surface, z_of, ps.t_scale(), e, l, q, "v,H-C");
 }
 
 Result certified::intersect(const Cylinder& s, const Line& l, Query q) {
@@ -120,17 +106,7 @@ Result certified::intersect(const Cylinder& s, const Line& l, Query q) {
     CertifiedRoots cr = certified_roots(quad);
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
     Bounded z0 = dot(wc, h) / hh, dz = dot(V, h) / hh; // z = (P - C) . h / h.h
-    if (cr.on_surface) {
-        Result r = finish_on_surface(z0.v - tc * dz.v, dz.v, ps.t_scale(), e, l);
-        r.certainty = Certainty::certain;
-        return r;
-    }
-    CertifiedCandidate c[2];
-    for (int i = 0; i < cr.count; ++i) {
-        c[i] = {caller_t(tc, cr.root[i].s, ps.t_scale()), z0 + cr.root[i].s * dz, cr.root[i].kind,
-                cr.root[i].certain};
-    }
-    return finish_certified(c, cr.count, cr.certain, e, l, q);
+    return certified_result(cr, tc, z0, dz, ps.t_scale(), e, l, q);
 }
 
 } // namespace linequad

@@ -70,16 +70,10 @@ Result stable::intersect(const EllipticCone& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "a,b,H-C");
     Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
 
-    k.discriminant();
-    Roots roots = stable_roots(k.A, k.B, k.Cc, k.D);
     auto fragile = [&] { return fragile_scene(extent, {s.C, s.H, s.a, s.b, l.L0}, l.v); };
-    if (undecidable(roots, fragile, k.A, k.D) || (k.A == 0 && fragile()))
-        return Result::failure(ErrorCode::out_of_range, "v,a,b,H-C");
-    if (roots.kind == Roots::on_surface)
-        return without_certification(certified::intersect(s, l, q));
-    shift_back(roots, k.tc, [&] { return k.C0_at_origin() / k.A; });
-    auto z_of = [&](const Roots& r, int i) { return k.z_at(r.t[i]); };
-    return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
+    auto z_of = [](const ConeStable<double>& k, const Roots& r, int i) { return k.z_at(r.t[i]); };
+    auto on_surface = [&] { return without_certification(certified::intersect(s, l, q)); };
+    return stable_solve(k, false, fragile, on_surface, z_of, ps.t_scale(), e, l, q, "v,a,b,H-C");
 }
 
 Result certified::intersect(const EllipticCone& s, const Line& l, Query q) {
@@ -92,11 +86,8 @@ Result certified::intersect(const EllipticCone& s, const Line& l, Query q) {
     Vec3 H = ps.pos(s.H), v = ps.dir(l.v);
     BoundedVec3 a3 = exact(ps.pos(s.a)), b3 = exact(ps.pos(s.b)), V = exact(v);
     BoundedVec3 c3 = difference_bounded(H, ps.pos(s.C)); // c = H - C exactly, as hi and bound
-    BoundedVec3 nx = cross(b3, c3), ny = cross(c3, a3), nz = cross(a3, b3);
-    Bounded det = dot(a3, nx);
-    auto local = [&](const BoundedVec3& u) -> BoundedVec3 {
-        return {dot(nx, u) / det, dot(ny, u) / det, dot(nz, u) / det};
-    };
+    BoundedDualFrame frame(a3, b3, c3);
+    auto local = [&](const BoundedVec3& u) { return frame.local(u); };
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), H);
     BoundedVec3 vl = local(V);
     Bounded A = vl.x * vl.x + vl.y * vl.y - vl.z * vl.z;
@@ -104,23 +95,13 @@ Result certified::intersect(const EllipticCone& s, const Line& l, Query q) {
     double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded()) / dot(v, v);
     BoundedVec3 wc = moved_origin_bounded(w, tc, v), wl = local(wc);
     BoundedVec3 vw = cross(V, wc);
-    BoundedVec3 u{dot(a3, vw) / det, dot(b3, vw) / det, dot(c3, vw) / det};
+    BoundedVec3 u{dot(a3, vw) / frame.det, dot(b3, vw) / frame.det, dot(c3, vw) / frame.det};
     BoundedQuadratic quad{A, vl.x * wl.x + vl.y * wl.y - vl.z * wl.z,
                           wl.x * wl.x + wl.y * wl.y - wl.z * wl.z,
                           u.x * u.x + u.y * u.y - u.z * u.z};
     CertifiedRoots cr = certified_roots(quad);
     Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
-    if (cr.on_surface) {
-        Result r = finish_on_surface(wl.z.v - tc * vl.z.v, vl.z.v, ps.t_scale(), e, l);
-        r.certainty = Certainty::certain;
-        return r;
-    }
-    CertifiedCandidate cand[2];
-    for (int i = 0; i < cr.count; ++i) {
-        cand[i] = {caller_t(tc, cr.root[i].s, ps.t_scale()), wl.z + cr.root[i].s * vl.z,
-                   cr.root[i].kind, cr.root[i].certain};
-    }
-    return finish_certified(cand, cr.count, cr.certain, e, l, q);
+    return certified_result(cr, tc, wl.z, vl.z, ps.t_scale(), e, l, q);
 }
 
 } // namespace linequad

@@ -63,23 +63,11 @@ Result stable::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     auto fragile = [&] { return fragile_scene(extent, {s.C, s.a, s.b, s.c, l.L0}, l.v); };
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
 
-    Roots roots;
-    if (k.A == 0) { // along the axis
-        double C0 = k.C0_at_origin();
-        roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
-        if (undecidable(roots, fragile, k.A, C0))
-            return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
-        if (roots.kind == Roots::on_surface)
-            return without_certification(certified::intersect(s, l, q));
-        return Result{};
-    }
-    k.discriminant();
-    roots = stable_roots(k.A, k.B, k.Cc, k.D);
-    if (undecidable(roots, fragile, k.A, k.D))
-        return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
-    shift_back(roots, k.tc, [&] { return k.C0_at_origin() / k.A; });
-    auto z_of = [&](const Roots& r, int i) { return k.z_at(r.t[i]); };
-    return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
+    auto z_of = [](const EllipticStable<double>& k, const Roots& r, int i) {
+        return k.z_at(r.t[i]);
+    };
+    auto on_surface = [&] { return without_certification(certified::intersect(s, l, q)); };
+    return stable_solve(k, true, fragile, on_surface, z_of, ps.t_scale(), e, l, q, "v,a,b,c");
 }
 
 Result certified::intersect(const EllipticCylinder& s, const Line& l, Query q) {
@@ -91,32 +79,19 @@ Result certified::intersect(const EllipticCylinder& s, const Line& l, Query q) {
     Prescale ps = prescale_for(extent, l.v);
     Vec3 c = ps.pos(s.c), v = ps.dir(l.v);
     BoundedVec3 a3 = exact(ps.pos(s.a)), b3 = exact(ps.pos(s.b)), c3 = exact(c), V = exact(v);
-    BoundedVec3 nx = cross(b3, c3), ny = cross(c3, a3), nz = cross(a3, b3);
-    Bounded det = dot(a3, nx);
-    auto local = [&](const BoundedVec3& u) -> BoundedVec3 {
-        return {dot(nx, u) / det, dot(ny, u) / det, dot(nz, u) / det};
-    };
+    BoundedDualFrame frame(a3, b3, c3);
+    auto local = [&](const BoundedVec3& u) { return frame.local(u); };
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
     BoundedVec3 vl = local(V);
     Bounded A = vl.x * vl.x + vl.y * vl.y;
     double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * c) / dot(v, v);
     BoundedVec3 wc = moved_origin_bounded(w, tc, v), wl = local(wc);
-    Bounded u = dot(c3, cross(V, wc)) / det;
+    Bounded u = dot(c3, cross(V, wc)) / frame.det;
     BoundedQuadratic quad{A, vl.x * wl.x + vl.y * wl.y,
                           wl.x * wl.x + wl.y * wl.y - Bounded::exact(1), A - u * u};
     CertifiedRoots cr = certified_roots(quad);
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
-    if (cr.on_surface) {
-        Result r = finish_on_surface(wl.z.v - tc * vl.z.v, vl.z.v, ps.t_scale(), e, l);
-        r.certainty = Certainty::certain;
-        return r;
-    }
-    CertifiedCandidate cand[2];
-    for (int i = 0; i < cr.count; ++i) {
-        cand[i] = {caller_t(tc, cr.root[i].s, ps.t_scale()), wl.z + cr.root[i].s * vl.z,
-                   cr.root[i].kind, cr.root[i].certain};
-    }
-    return finish_certified(cand, cr.count, cr.certain, e, l, q);
+    return certified_result(cr, tc, wl.z, vl.z, ps.t_scale(), e, l, q);
 }
 
 } // namespace linequad

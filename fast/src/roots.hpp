@@ -131,6 +131,34 @@ Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e, cons
     return finish(c, n, e, l, q);
 }
 
+// The scalar stable solve around a shape's core k (cylinder_stable.hpp, elliptic_stable.hpp):
+// the branches that the batch kernels send back here. `parallel_first`: the cylinders, whose
+// A = 0 (a line along the axis) means no hit or a line on the surface; for the cone A = 0 is a
+// line along a generator, a linear equation that stable_roots solves. on_surface() supplies the
+// certified result (a claim of infinitely many hits needs proof); z_of(k, roots, i) is root i's
+// axial coordinate.
+template <class Core, class Fragile, class OnSurface, class AxialOf>
+Result stable_solve(Core& k, bool parallel_first, Fragile fragile, OnSurface on_surface,
+                    AxialOf z_of, double t_scale, Extent e, const Line& l, Query q,
+                    const char* field) {
+    Roots roots;
+    if (parallel_first && k.A == 0) {
+        double C0 = k.C0_at_origin();
+        roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
+        if (undecidable(roots, fragile, k.A, C0))
+            return Result::failure(ErrorCode::out_of_range, field);
+        return roots.kind == Roots::on_surface ? on_surface() : Result{};
+    }
+    k.discriminant();
+    roots = stable_roots(k.A, k.B, k.Cc, k.D);
+    if (undecidable(roots, fragile, k.A, k.D) || (k.A == 0 && fragile()))
+        return Result::failure(ErrorCode::out_of_range, field);
+    if (roots.kind == Roots::on_surface) return on_surface();
+    shift_back(roots, k.tc, [&] { return k.C0_at_origin() / k.A; });
+    return finish_roots(
+        roots, t_scale, [&](const Roots& r, int i) { return z_of(k, r, i); }, e, l, q);
+}
+
 // A result from the certified rung, presented as an uncertified one (no bounds, no claims):
 // how stable settles the rare cases where its rounded zeros would otherwise claim that a line
 // lies on the surface (infinitely many hits) without proof.
@@ -263,5 +291,32 @@ struct CertifiedCandidate {
 };
 Result finish_certified(CertifiedCandidate* c, int n, bool classification_certain, Extent e,
                         const Line& l, Query q);
+
+// The last step of every certified solve: the roots s (moved by tc), their axial coordinate
+// z0 + s dz, and the result; a line on the surface only from exact zeros (certified_roots).
+inline Result certified_result(const CertifiedRoots& cr, double tc, Bounded z0, Bounded dz,
+                               double t_scale, Extent e, const Line& l, Query q) {
+    if (cr.on_surface) {
+        Result r = finish_on_surface(z0.v - tc * dz.v, dz.v, t_scale, e, l);
+        r.certainty = Certainty::certain;
+        return r;
+    }
+    CertifiedCandidate c[2];
+    for (int i = 0; i < cr.count; ++i)
+        c[i] = {caller_t(tc, cr.root[i].s, t_scale), z0 + cr.root[i].s * dz, cr.root[i].kind,
+                cr.root[i].certain};
+    return finish_certified(c, cr.count, cr.certain, e, l, q);
+}
+
+// M^-1 of the elliptic shapes' frame in Bounded arithmetic: adjugate rows over the determinant.
+struct BoundedDualFrame {
+    BoundedVec3 nx, ny, nz;
+    Bounded det;
+    BoundedDualFrame(const BoundedVec3& a, const BoundedVec3& b, const BoundedVec3& c)
+        : nx(cross(b, c)), ny(cross(c, a)), nz(cross(a, b)), det(dot(a, nx)) {}
+    BoundedVec3 local(const BoundedVec3& u) const {
+        return {dot(nx, u) / det, dot(ny, u) / det, dot(nz, u) / det};
+    }
+};
 
 } // namespace linequad::detail
