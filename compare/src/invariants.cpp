@@ -6,13 +6,17 @@
 //    range; an on-surface interval is ordered and inside the range;
 //  - the oracle's Mpzf and Gmpq kernels agree bit for bit;
 //  - when the oracle says no hit and no interval, no solver reports an on-surface interval;
-//  - a certified result that says it is certain has the oracle's classification.
+//  - a certified result that says it is certain has the oracle's classification;
+//  - the batch solver (four lanes and a scalar tail) returns the scalar solver's result, bit for
+//    bit, for this line among variants of it.
 #include "linequad/invariants.hpp"
 
+#include "linequad/batch.hpp"
 #include "linequad/exact.hpp"
 #include "linequad/registry.hpp"
 
 #include <cmath>
+#include <vector>
 
 namespace linequad {
 
@@ -82,6 +86,27 @@ std::string broken_invariant(const Case& c) {
                 k.require(same, "a certain classification is the oracle's", name, r);
             }
         }
+    }
+    // Five lines through the batch: this one, reversed, doubled, moved, and this one again.
+    const Line variants[5] = {c.line,
+                              {c.line.L0, -1.0 * c.line.v, c.line.range},
+                              {c.line.L0, 2.0 * c.line.v, c.line.range},
+                              {c.line.L0 + c.line.v, c.line.v, c.line.range},
+                              c.line};
+    std::vector<double> soa[6];
+    for (const Line& l : variants)
+        for (int a = 0; a < 3; ++a)
+            soa[a].push_back(l.L0[a]), soa[3 + a].push_back(l.v[a]);
+    LineArrays lines{
+        soa[0].data(), soa[1].data(), soa[2].data(), soa[3].data(), soa[4].data(), soa[5].data(), 5,
+        c.line.range};
+    Result batch[5];
+    std::visit([&](const auto& s) { stable::intersect(s, lines, Query{}, batch); }, c.shape);
+    for (int i = 0; i < 5; ++i) {
+        Result scalar = std::visit(
+            [&](const auto& s) { return stable::intersect(s, variants[i], Query{}); }, c.shape);
+        k.require(format_result(c.id, "", batch[i]) == format_result(c.id, "", scalar),
+                  "batch equals scalar bit for bit", "stable (batch)", batch[i]);
     }
     return k.broken;
 }

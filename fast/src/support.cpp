@@ -273,7 +273,9 @@ Result finish_on_surface(double z0, double dz, double t_scale, Extent e, const L
     Result r;
     if (!(s0 <= s1)) return r;
     r.on_surface = true;
-    r.s0 = s0 * t_scale, r.s1 = s1 * t_scale;
+    // An unbounded end stays unbounded, even if t_scale underflowed (inf * 0 would be NaN).
+    auto to_caller = [&](double x) { return std::isinf(x) ? x : x * t_scale; };
+    r.s0 = to_caller(s0), r.s1 = to_caller(s1);
     if (l.range != Range::line) r.s0 = std::max(r.s0, 0.0) + 0.0; // +0, never -0, at a range start
     if (l.range == Range::segment) r.s1 = std::min(r.s1, 1.0);
     return r;
