@@ -20,22 +20,7 @@ TEST_CASE("cylinder: tilted axis with integer frame / radius 25", "[cylinder]") 
     Cylinder tilted{{1, 1, 1}, {1 + 30, 1 + 40, 1}, 25};
     Vec3 p{1 - 12 + 3, 1 + 9 + 4, 1 + 20};   // s = 1/10
     Vec3 q{1 + 12 + 15, 1 - 9 + 20, 1 - 20}; // e1 -> -20, e2 -> -15, s = 1/2
-    Result r = run("exact", tilted, through(p, q));
-    INFO(describe(r));
-    REQUIRE(r.count == 2);
-    CHECK(r.hits[0].t == 0);
-    CHECK(r.hits[1].t == 1);
-    CHECK(r.hits[0].p == p);
-    CHECK(r.hits[1].p == q);
-    // The fast solvers round (the seed normalises the axis): a few ulps of the scene, whose
-    // coordinates are below 64, so 1e-12 absolute is some 2^6 ulps of slack for t in [0, 1].
-    for (const char* s : {"seed", "stable"}) {
-        Result f = run(s, tilted, through(p, q));
-        INFO(s << " " << describe(f));
-        REQUIRE(f.count == 2);
-        CHECK(std::fabs(f.hits[0].t) < 1e-12);
-        CHECK(std::fabs(f.hits[1].t - 1) < 1e-12);
-    }
+    check_through_two_points(tilted, p, q, {"seed", "stable", "certified", "exact"});
 }
 
 TEST_CASE("cylinder: power-of-two scales leave t unchanged", "[cylinder]") {

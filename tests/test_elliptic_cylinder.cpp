@@ -23,21 +23,7 @@ TEST_CASE("elliptic cylinder: a point off the axes / (3/5 / 4/5)", "[elliptic_cy
     // frame by 5 instead: a' = 5a, b' = 5b, then 3/5 a' + 4/5 b' = 3a + 4b exactly.
     EllipticCylinder big{C, 5 * a, 5 * b, c};
     Vec3 p = C + 3 * a + 4 * b + 0.5 * c, q = C - 5 * a + 0.75 * c;
-    Result r = run("exact", big, through(p, q));
-    INFO(describe(r));
-    REQUIRE(r.count == 2);
-    CHECK(r.hits[0].t == 0);
-    CHECK(r.hits[1].t == 1);
-    CHECK(r.hits[0].p == p);
-    // The fast solvers round in the dual frame: t within a few ulps of the scene (|t| <= 1,
-    // coordinates below 2^6): 1e-12 absolute.
-    for (const char* s : {"seed", "stable"}) {
-        Result f = run(s, big, through(p, q));
-        INFO(s << " " << describe(f));
-        REQUIRE(f.count == 2);
-        CHECK(std::fabs(f.hits[0].t) < 1e-12);
-        CHECK(std::fabs(f.hits[1].t - 1) < 1e-12);
-    }
+    check_through_two_points(big, p, q, {"seed", "stable", "certified", "exact"});
 }
 
 TEST_CASE("elliptic cylinder: oblique (sheared) frame", "[elliptic_cylinder]") {

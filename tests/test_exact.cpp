@@ -225,7 +225,6 @@ TEST_CASE("exact: rounding needs few precision steps on the oracle's own cases",
         exact::intersect(r.shape(), r.line());
     const auto& st = exact::rounding_stats();
     CHECK(st.values > 1000);
-    CHECK(st.max_steps >= 1);
     // Almost all values resolve at the first precision (64 bits).
     CHECK(st.by_steps[0] * 100 >= st.values * 99);
 }

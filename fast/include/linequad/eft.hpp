@@ -3,8 +3,8 @@
 // Everything here relies on std::fma being a true fused multiply-add and on the compiler not
 // contracting other expressions (fast/ is built with -ffp-contract=off). Barring underflow:
 //  - two_sum / two_prod return the rounded result and its exact rounding error;
-//  - difference_of_products is Kahan's 2x2 determinant, relative error <= 2u
-//    (Jeannerod, Louvet, Muller 2013), and exactly zero iff a*b == c*d;
+//  - difference_of_products_dd is a*b - c*d in double-double (Kahan's 2x2 determinant carried
+//    one word further), exactly zero iff a*b == c*d;
 //  - dot2 is Ogita-Rump-Oishi's Dot2: as accurate as if computed in twice the precision.
 #pragma once
 
@@ -42,13 +42,6 @@ LINEQUAD_INLINE TwoTermT<T> two_prod(T a, T b) {
     using std::fma;
     T p = a * b;
     return {p, fma(a, b, -p)};
-}
-
-inline double difference_of_products(double a, double b, double c, double d) {
-    double cd = c * d;
-    double err = std::fma(-c, d, cd);
-    double dop = std::fma(a, b, -cd);
-    return dop + err;
 }
 
 // sum_i x_i*y_i for n terms, Dot2 of Ogita, Rump and Oishi.
