@@ -25,7 +25,7 @@ inline std::string describe(const Result& r) {
 }
 
 // The solvers that must return exact answers where the arithmetic of a case is exact.
-inline const char* const every_solver[] = {"seed", "stable", "certified", "exact"};
+inline const char* const every_solver[] = {"seed", "stable", "certified", "correct", "exact"};
 
 // Two points on a surface: the line through them meets it exactly at t = 0 and t = 1.
 inline Line through(Vec3 p, Vec3 q, Range range = Range::line) {
@@ -40,12 +40,13 @@ inline double ulps(double a, double b) {
     return std::fabs(a - b) / u;
 }
 
-// The oracle must be exact. The fast solvers round: in these hand-built tests every input and
+// The oracle and the correct solver must be exact (correctly rounded). The others round: in
+// these hand-built tests every input and
 // root is O(1..100) and the roots are well separated (no tangency), so each coefficient carries
 // a few ulps and the roots at most a few dozen; 64 ulps of max(1, |expected|) bounds that with
 // room and still fails on any real mistake (a wrong formula is off by O(1)).
 inline bool exact_solver(const std::string& solver) {
-    return solver == "exact";
+    return solver == "exact" || solver == "correct";
 }
 inline double fast_tolerance(double expected) {
     return 64 * 0x1p-53 * std::fmax(1.0, std::fabs(expected));

@@ -65,6 +65,8 @@ std::string row_json(const Row& r) {
          ",\"bound_violations\":" + num(r.bound_violations) +
          ",\"tightness_p50\":" + real(r.tightness.quantile(0.5)) +
          ",\"tightness\":" + array(r.tightness.count) + "}";
+    s += ",\"rungs\":{\"double_double\":" + num(r.rungs[std::size_t(Rung::double_double)]) +
+         ",\"exact\":" + num(r.rungs[std::size_t(Rung::exact)]) + "}";
     s += ",\"worst\":[";
     for (std::size_t i = 0; i < r.worst.size(); ++i) {
         const Worst& w = r.worst[i];
@@ -117,6 +119,10 @@ Row row_from(const Value& v) {
         r.bounded_roots = u64(c->find("bounded_roots")),
         r.bound_violations = u64(c->find("bound_violations"));
         read_array(c->find("tightness"), r.tightness.count);
+    }
+    if (const Value* g = v.find("rungs")) {
+        r.rungs[std::size_t(Rung::double_double)] = u64(g->find("double_double"));
+        r.rungs[std::size_t(Rung::exact)] = u64(g->find("exact"));
     }
     if (const Value* w = v.find("worst"))
         for (const Value& x : w->items) {
@@ -241,6 +247,27 @@ bool read_json(const std::string& path, Report* r, std::string* why) {
     return true;
 }
 
+// How often the correct solver needed each rung of its ladder, by family.
+void write_rungs(std::ostream& md, const Report& r) {
+    std::map<std::string, Row> by_family;
+    for (const auto& [key, row] : r.rows)
+        if (key.size() > 8 && key.compare(key.size() - 8, 8, "/correct") == 0)
+            by_family[key.substr(0, key.find('/'))].merge(row);
+    if (by_family.empty()) return;
+    md << "\n## The correct solver's rungs\n\n"
+          "Results settled by the double-double rung (its bounds proved every sign and every "
+          "rounding) and by the exact rung, by family; ns/solve is the median of the mix.\n\n";
+    md << "| family | cases | double-double | exact | exact % | ns/solve |\n";
+    md << "|---|---:|---:|---:|---:|---:|\n";
+    for (const auto& [family, row] : by_family) {
+        std::uint64_t dd = row.rungs[std::size_t(Rung::double_double)];
+        std::uint64_t ex = row.rungs[std::size_t(Rung::exact)];
+        md << "| " << family << " | " << row.cases << " | " << dd << " | " << ex << " | "
+           << fmt(dd + ex ? 100.0 * double(ex) / double(dd + ex) : 0) << " | "
+           << fmt(row.ns.median()) << " |\n";
+    }
+}
+
 void write_markdown(const Report& r, const std::string& dir) {
     std::ostringstream md;
     md << "# linequad accuracy audit\n\n";
@@ -314,6 +341,8 @@ void write_markdown(const Report& r, const std::string& dir) {
            << fmt(row.graded_roots ? row.t_sum / double(row.graded_roots) : 0) << " | "
            << fmt_ulps(row.p_max) << " | " << fmt(row.ns.median()) << " |\n";
     }
+
+    write_rungs(md, r);
 
     md << "\n## Error against difficulty\n\n";
     for (const char* f : {"near_tangent", "axis_parallel", "apex", "generator", "degenerate_frame",

@@ -112,6 +112,7 @@ bool finite_result(const Result& r) {
 // enormous relative error that says nothing about the hit.
 std::uint64_t point_ulps(Vec3 got, Vec3 want, const Line& l, double t) {
     double scale = std::max({max_abs(want), max_abs(l.L0), std::fabs(t) * max_abs(l.v)});
+    if (got == want) return 0; // equal infinities included
     double err = max_abs(got - want);
     if (err == 0) return 0;
     if (!std::isfinite(err)) return std::numeric_limits<std::uint64_t>::max();
@@ -135,6 +136,8 @@ void Row::merge(const Row& o) {
     uncertain += o.uncertain, certain_wrong += o.certain_wrong;
     bounded_roots += o.bounded_roots, bound_violations += o.bound_violations;
     tightness.merge(o.tightness);
+    for (std::size_t i = 0; i < rungs.size(); ++i)
+        rungs[i] += o.rungs[i];
     for (const Worst& w : o.worst)
         keep(worst, w);
 }
@@ -143,6 +146,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
            Row& row, CurvePoint* curve, bool points) {
     bool flags[mismatch_kinds] = {};
     ++row.cases;
+    if (got.ok() && got.rung != Rung::none) ++row.rungs[std::size_t(got.rung)];
     std::uint64_t case_max = 0;
     if (!oracle.ok() || !got.ok()) {
         if (oracle.ok() != got.ok() || oracle.error.code != got.error.code) flags[refused] = true;

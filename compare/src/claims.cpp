@@ -23,6 +23,17 @@ std::vector<std::string> broken_claims(const Report& r) {
             claim(row.bound_violations == 0,
                   std::to_string(row.bound_violations) + " error bounds violated");
         }
+        if (solver == "correct") {
+            // The oracle's answer bit for bit on every family: classification, t, points and
+            // interval ends, and it never refuses what the oracle answers.
+            claim(row.cases_mismatched == 0,
+                  std::to_string(row.cases_mismatched) + " cases classified unlike the oracle");
+            claim(row.t_max == 0, "t not correctly rounded (" + std::to_string(row.t_max) +
+                                      " ulps)");
+            claim(row.p_max == 0, "a point not correctly rounded (" + std::to_string(row.p_max) +
+                                      " ulps)");
+            claim(row.uncertain == 0, "a result not marked certain");
+        }
         if (solver == "stable") {
             // On generic cases stable classifies like the oracle and its t error has p99 <= 32
             // ulps. (Its maximum follows the case's condition number, which random cases can

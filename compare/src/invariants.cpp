@@ -7,6 +7,8 @@
 //  - the oracle's Mpzf and Gmpq kernels agree bit for bit;
 //  - when the oracle says no hit and no interval, no solver reports an on-surface interval;
 //  - a certified result that says it is certain has the oracle's classification;
+//  - the correct solver returns the oracle's answer bit for bit (all hits with points, and the
+//    nearest without);
 //  - the batch solver (four lanes and a scalar tail) returns the scalar solver's result, bit for
 //    bit, for this line among variants of it.
 #include "linequad/invariants.hpp"
@@ -16,11 +18,30 @@
 #include "linequad/registry.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 namespace linequad {
 
 namespace {
+
+bool same_bits(double a, double b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// The same answer, bit for bit (signed zeros included); bounds and certainty aside.
+bool same_answer(const Result& a, const Result& b) {
+    if (a.error.code != b.error.code || a.count != b.count || a.on_surface != b.on_surface)
+        return false;
+    if (a.on_surface && !(same_bits(a.s0, b.s0) && same_bits(a.s1, b.s1))) return false;
+    for (int i = 0; i < a.count; ++i) {
+        const Hit &x = a.hits[i], &y = b.hits[i];
+        if (x.kind != y.kind || !same_bits(x.t, y.t) || !same_bits(x.p.x, y.p.x) ||
+            !same_bits(x.p.y, y.p.y) || !same_bits(x.p.z, y.p.z))
+            return false;
+    }
+    return true;
+}
 
 struct Checker {
     const Case& c;
@@ -38,7 +59,7 @@ struct Checker {
         if (!r.ok()) return;
         require(r.count >= 0 && r.count <= 2, "at most two hits", name, r);
         require(!(r.on_surface && r.count), "hits or an interval, not both", name, r);
-        bool oracle = name == "exact";
+        bool oracle = name == "exact" || name == "correct"; // infinities are correct roundings
         for (int i = 0; i < r.count; ++i) {
             const Hit& h = r.hits[i];
             require(oracle ? !std::isnan(h.t) : std::isfinite(h.t), "finite t", name, r);
@@ -86,6 +107,12 @@ std::string broken_invariant(const Case& c) {
                 k.require(same, "a certain classification is the oracle's", name, r);
             }
         }
+    }
+    for (Query q : {Query{}, Query{Need::nearest, false}}) {
+        Result want = q.need == Need::all ? oracle : exact::intersect(c.shape, c.line, q);
+        Result got = std::visit([&](const auto& s) { return correct::intersect(s, c.line, q); },
+                                c.shape);
+        k.require(same_answer(got, want), "correct equals the oracle bit for bit", "correct", got);
     }
     // Five lines through the batch: this one, reversed, doubled, moved, and this one again.
     const Line variants[5] = {c.line,

@@ -116,6 +116,8 @@ void add_det_terms(Expansion<128>& e, double s, Vec3 a, Vec3 b, Vec3 c) {
     e.add_product(s * a.z, b.x, c.y), e.add_product(-s * a.z, b.y, c.x);
 }
 
+} // namespace
+
 // The cone's frame uses c = H - C, which is not a double. det is linear in c, so
 // det[a b H-C] = det[a b H] - det[a b C]: both scaled by one power of two, then summed exactly.
 int cone_det_sign_exact(Vec3 a, Vec3 b, Vec3 C, Vec3 H) {
@@ -133,8 +135,6 @@ int cone_det_sign_exact(Vec3 a, Vec3 b, Vec3 C, Vec3 H) {
     add_det_terms(e, -1, a, b, C);
     return e.sign();
 }
-
-} // namespace
 
 int det3_sign_exact(Vec3 a, Vec3 b, Vec3 c) {
     if (int s = filtered_sign(dot(a, cross(b, c)), permanent3(a, b, c))) return s;
@@ -298,6 +298,13 @@ int exponent_of(double m) {
     return std::clamp(e, -1000, 1000);
 }
 } // namespace
+
+int frame_orientation(const EllipticCylinder& s) {
+    return det3_sign_exact(s.a, s.b, s.c);
+}
+int frame_orientation(const EllipticCone& s) {
+    return cone_det_sign_exact(s.a, s.b, s.C, s.H);
+}
 
 bool fragile_scene(double extent, std::initializer_list<Vec3> positions, Vec3 v) {
     auto tiny = [](Vec3 u, double scale) {

@@ -83,6 +83,10 @@ inline bool underflow_zone(double x) {
     return x != 0 && std::fabs(x) < tiny_decisive;
 }
 
+// The sign of det[a b c] (of det[a b H-C] for the cone), exactly; 0 for a singular frame.
+int frame_orientation(const EllipticCylinder& s);
+int frame_orientation(const EllipticCone& s);
+
 // After prescaling, sizes below this (relative to the scene) would underflow when multiplied
 // four times; the stable solvers refuse them with out_of_range rather than guess.
 constexpr double min_relative_size = 0x1p-240;

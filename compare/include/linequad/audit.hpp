@@ -71,6 +71,8 @@ struct Row {
     // the bounds are (bound / actual error, rounded up).
     std::uint64_t uncertain = 0, certain_wrong = 0, bounded_roots = 0, bound_violations = 0;
     Histogram tightness;
+    // The correct solver: results by the rung that settled them (indexed by Rung).
+    std::array<std::uint64_t, 3> rungs{};
     std::vector<Worst> worst; // at most keep_worst, worst first
     static constexpr std::size_t keep_worst = 3;
     void merge(const Row& o);

@@ -18,4 +18,9 @@ namespace certified {
 // error and is certain or marked uncertain; the classification is never wrong when certain.
 Result intersect(const Cylinder& s, const Line& l, Query q = {});
 } // namespace certified
+namespace correct {
+// The exact classification, with t and points correctly rounded (the oracle's answer, bit for
+// bit): double-double with proven bounds, exact arithmetic when they do not settle it.
+Result intersect(const Cylinder& s, const Line& l, Query q = {});
+} // namespace correct
 } // namespace linequad

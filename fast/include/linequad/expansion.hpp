@@ -50,5 +50,7 @@ class Expansion {
 
 // Exact sign of det[a b c] = a . (b x c), for a frame that has been scaled near unit size.
 int det3_sign_exact(Vec3 a, Vec3 b, Vec3 c);
+// Exact sign of det[a b H-C], without rounding H - C.
+int cone_det_sign_exact(Vec3 a, Vec3 b, Vec3 C, Vec3 H);
 
 } // namespace linequad

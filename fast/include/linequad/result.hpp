@@ -31,6 +31,10 @@ enum class Certainty : std::uint8_t {
     uncertain, // some decision could not be certified: the hits are best guesses
 };
 
+// Which rung of the correct solver's ladder gave a result (Ziv's strategy): the double-double
+// rung, whose error bounds proved every sign and every rounding, or the exact one.
+enum class Rung : std::uint8_t { none, double_double, exact };
+
 // Why an input was refused. Never a hit, never undefined behaviour.
 enum class ErrorCode : std::uint8_t {
     none,
@@ -73,6 +77,7 @@ struct Result {
     bool on_surface = false;
     double s0 = 0, s1 = 0;
     Certainty certainty = Certainty::unknown;
+    Rung rung = Rung::none; // set by the correct solver only
 
     bool ok() const { return error.code == ErrorCode::none; }
     bool any_hit() const { return count > 0 || on_surface; }

@@ -21,7 +21,7 @@ struct Solver {
     Result operator()(const Shape& s, const Line& l, Query q = {}) const;
 };
 
-// seed, stable and certified, in that order.
+// seed, stable, certified and correct, in that order.
 const std::vector<Solver>& fast_solvers();
 
 struct BuildInfo {

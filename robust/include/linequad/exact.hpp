@@ -1,7 +1,7 @@
 // The exact oracle: every case classified exactly, every t and hit point correctly rounded.
 //
-// Inputs are taken as the exact rationals their doubles denote. The derivation
-// (exact_derivation.hpp) runs in CGAL::Simple_cartesian<CGAL::Mpzf> (exact ring arithmetic on
+// Inputs are taken as the exact rationals their doubles denote. The derivation and the
+// classification (fast/'s line_quadratic.hpp) run in CGAL::Mpzf (exact ring arithmetic on
 // dyadic numbers: no rounding, no gcd); roots stay in the form (N + S sqrt(D)) / Den and every
 // decision (discriminant, extent, range, order) is the exact sign of such a number. Only the
 // outputs are rounded, each to the nearest double (ties to even) by an MPFR enclosure whose
@@ -21,7 +21,7 @@ Result intersect(const EllipticCylinder& s, const Line& l, Query q = {});
 Result intersect(const EllipticCone& s, const Line& l, Query q = {});
 Result intersect(const Shape& s, const Line& l, Query q = {});
 
-// The same derivation and classification in CGAL::Simple_cartesian<CGAL::Gmpq>: a slower,
+// The same derivation and classification in CGAL::Gmpq: a slower,
 // independent number type, used to cross-check the oracle.
 Result intersect_gmpq(const Shape& s, const Line& l, Query q = {});
 

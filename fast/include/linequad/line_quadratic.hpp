@@ -1,0 +1,308 @@
+// The three seed derivations in division-free form, and their exact classification, as one
+// template over the number type. Each shape becomes one quadratic in the line's parameter whose
+// coefficients are polynomials in the double inputs, plus the axial coordinate that the extent
+// test needs. Nothing here divides, takes a root or rounds.
+//
+// The number type NT needs NT(double) (exact), +, -, * and a sign(const NT&) found by
+// argument-dependent lookup. Three instantiate it:
+//  - CGAL::Mpzf in robust/ (the oracle): exact ring arithmetic, every sign decided;
+//  - BigFloat in fast/ (the correct solver's exact rung): the same, without GMP;
+//  - BoundedDD in fast/ (the correct solver's double-double rung): a filter, whose sign is
+//    `undecided` when its error bound cannot exclude zero; classify() then says so and the
+//    caller moves to an exact type.
+//
+// Roots are kept as t = (N + S sqrt(D)) / Den with S in {-1, 0, +1}:
+//   A != 0, D > 0:  N = -B, S = -1 and +1, Den = A   (two crossings)
+//   A != 0, D = 0:  N = -B, S = 0,         Den = A   (tangent: double root)
+//   A = 0, B != 0:  N = -C0, S = 0,        Den = 2B  (one crossing: parallel to a generator)
+//   A = B = 0:      on the surface if C0 = 0, else no hit
+// and every test on a root (inside the extent, inside the range) is the sign of an X + Y sqrt(D).
+#pragma once
+
+#include "linequad/result.hpp"
+#include "linequad/shapes.hpp"
+#include "linequad/vec3.hpp"
+
+#include <cstdint>
+
+namespace linequad::exact_form {
+
+// What sign() returns when a filtered number type cannot decide.
+inline constexpr int undecided = 2;
+
+// A t^2 + 2 B t + C0 = 0 along the line, and Z(t) = Z0 + t dZ with the extent lo <= Z <= hi.
+template <class NT>
+struct LineQuadratic {
+    NT A, B, C0;
+    NT Z0, dZ, lo, hi;
+    bool lo_bounded = true, hi_bounded = true;
+};
+
+template <class NT>
+Vec3T<NT> lift(Vec3 p) {
+    return {NT(p.x), NT(p.y), NT(p.z)};
+}
+
+// Seed 001, multiplied through by h.h so that the axis needs no normalisation (erratum 3):
+//   |P - C|^2 (h.h) - ((P - C).h)^2 = r^2 (h.h),  0 <= (P - C).h <= h.h,
+// with P = L0 + t v, w = L0 - C, h = H - C.
+template <class NT>
+LineQuadratic<NT> line_quadratic(const Cylinder& s, const Line& l) {
+    Vec3T<NT> h = lift<NT>(s.H) - lift<NT>(s.C), w = lift<NT>(l.L0) - lift<NT>(s.C);
+    Vec3T<NT> v = lift<NT>(l.v);
+    NT hh = dot(h, h), vh = dot(v, h), wh = dot(w, h), r(s.r);
+    LineQuadratic<NT> q;
+    q.A = dot(v, v) * hh - vh * vh;
+    q.B = dot(v, w) * hh - vh * wh;
+    q.C0 = dot(w, w) * hh - wh * wh - r * r * hh;
+    q.Z0 = wh, q.dZ = vh, q.lo = NT(0), q.hi = hh;
+    q.lo_bounded = q.hi_bounded = s.finite;
+    return q;
+}
+
+// M^-1 = adj(M) / det(M), M = [a b c] (erratum 3); the rows of adj(M) are b x c, c x a, a x b.
+// The equations below are multiplied through by det^2 (or det), so only adj(M) is needed.
+template <class NT>
+struct AdjugateFrame {
+    Vec3T<NT> nx, ny, nz;
+    NT det;
+    AdjugateFrame(const Vec3T<NT>& a, const Vec3T<NT>& b, const Vec3T<NT>& c)
+        : nx(cross(b, c)), ny(cross(c, a)), nz(cross(a, b)), det(dot(a, nx)) {}
+    // det * M^-1 u
+    Vec3T<NT> scaled_local(const Vec3T<NT>& u) const { return {dot(nx, u), dot(ny, u), dot(nz, u)}; }
+};
+
+// Seed 000 in the unit cylinder's frame, w = M^-1 (L0 - C), v' = M^-1 v (a vector, erratum 2):
+//   x^2 + y^2 = 1, 0 <= z <= 1; times det^2 with W = det w, V = det v'.
+// The sign of det is needed to fold it into the extent: the caller gives it (validate() has
+// already decided it exactly), so that a filtered number type need not.
+template <class NT>
+LineQuadratic<NT> line_quadratic(const EllipticCylinder& s, const Line& l, bool negative_det) {
+    AdjugateFrame<NT> f(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.c));
+    Vec3T<NT> W = f.scaled_local(lift<NT>(l.L0) - lift<NT>(s.C));
+    Vec3T<NT> V = f.scaled_local(lift<NT>(l.v));
+    LineQuadratic<NT> q;
+    q.A = V.x * V.x + V.y * V.y;
+    q.B = V.x * W.x + V.y * W.y;
+    q.C0 = W.x * W.x + W.y * W.y - f.det * f.det;
+    // z = Z / det in [0, 1]: with the sign of det folded into Z, 0 <= Z <= |det|.
+    q.Z0 = negative_det ? -W.z : W.z;
+    q.dZ = negative_det ? -V.z : V.z;
+    q.lo = NT(0), q.hi = negative_det ? -f.det : f.det;
+    q.lo_bounded = q.hi_bounded = s.finite;
+    return q;
+}
+
+// Seed 002 with its own equation (erratum 1): c = H - C (erratum 4), w = M^-1 (L0 - H),
+//   x^2 + y^2 = z^2 (homogeneous, so the det^2 factor drops out), -1 <= z <= 0 (erratum 5).
+template <class NT>
+LineQuadratic<NT> line_quadratic(const EllipticCone& s, const Line& l, bool negative_det) {
+    AdjugateFrame<NT> f(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.H) - lift<NT>(s.C));
+    Vec3T<NT> W = f.scaled_local(lift<NT>(l.L0) - lift<NT>(s.H));
+    Vec3T<NT> V = f.scaled_local(lift<NT>(l.v));
+    LineQuadratic<NT> q;
+    q.A = V.x * V.x + V.y * V.y - V.z * V.z;
+    q.B = V.x * W.x + V.y * W.y - V.z * W.z;
+    q.C0 = W.x * W.x + W.y * W.y - W.z * W.z;
+    q.Z0 = negative_det ? -W.z : W.z;
+    q.dZ = negative_det ? -V.z : V.z;
+    q.lo = negative_det ? f.det : -f.det, q.hi = NT(0);
+    q.lo_bounded = s.finite;
+    q.hi_bounded = true; // the nappe z <= 0
+    return q;
+}
+
+// det[a b c] of the frame (its sign is the negative_det above).
+template <class NT>
+NT frame_determinant(const EllipticCylinder& s) {
+    return AdjugateFrame<NT>(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.c)).det;
+}
+template <class NT>
+NT frame_determinant(const EllipticCone& s) {
+    return AdjugateFrame<NT>(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.H) - lift<NT>(s.C)).det;
+}
+
+// sgn(X + Y sqrt(D)) for D >= 0, or undecided. When X and Y differ in sign: compare X^2, Y^2 D.
+template <class NT>
+int sign_surd(const NT& X, const NT& Y, const NT& D) {
+    int sx = sign(X), sd = sign(D);
+    if (sx == undecided || sd == undecided) return undecided;
+    int sy = sd == 0 ? 0 : int(sign(Y));
+    if (sy == undecided) return undecided;
+    if (sy == 0) return sx;
+    if (sx == 0 || sx == sy) return sy;
+    int cmp = sign(NT(X * X - Y * Y * D)); // |X| against |Y| sqrt(D)
+    if (cmp == undecided) return undecided;
+    return cmp > 0 ? sx : cmp < 0 ? sy : 0;
+}
+
+// sgn(X + Y sqrt(D)) for one D. Exact types compare squares (sign_surd); a filtered type may
+// specialise it to evaluate X + Y sqrt(D) with sqrt(D) computed once.
+template <class NT>
+struct SurdSign {
+    NT D;
+    explicit SurdSign(const NT& d) : D(d) {}
+    int operator()(const NT& X, const NT& Y) const { return sign_surd(X, Y, D); }
+};
+
+// t = (N + S sqrt(D)) / Den.
+template <class NT>
+struct SurdRoot {
+    NT N, Den;
+    int S = 0;
+    HitKind kind = HitKind::cross;
+};
+
+// An end of the on-surface interval: num / den with den > 0, or unbounded.
+template <class NT>
+struct Fraction {
+    bool bounded = false;
+    NT num, den;
+};
+
+enum class Outcome : std::uint8_t { none, hits, on_surface, undecided };
+
+template <class NT>
+struct Classification {
+    Outcome outcome = Outcome::none;
+    NT D;                   // B^2 - A C0 (zero for a single rational root)
+    int count = 0;          // hits: roots[0..count) kept, by increasing t, as the query needs
+    SurdRoot<NT> roots[2];
+    Fraction<NT> s0, s1;    // on_surface: the interval of t
+};
+
+namespace detail {
+
+// Z(t) within [lo, hi]: Z(t) - lo = (Den (Z0 - lo) + dZ N + S dZ sqrt(D)) / Den, and so on.
+template <class NT>
+int in_extent(const SurdRoot<NT>& r, const SurdSign<NT>& surd, const LineQuadratic<NT>& q,
+              int sden) {
+    NT SdZ = r.S > 0 ? q.dZ : r.S < 0 ? NT(-q.dZ) : NT(0);
+    if (q.lo_bounded) {
+        int s = surd(NT(r.Den * (q.Z0 - q.lo) + q.dZ * r.N), SdZ);
+        if (s == undecided) return undecided;
+        if (s * sden < 0) return 0;
+    }
+    if (q.hi_bounded) {
+        int s = surd(NT(r.Den * (q.hi - q.Z0) - q.dZ * r.N), NT(-SdZ));
+        if (s == undecided) return undecided;
+        if (s * sden < 0) return 0;
+    }
+    return 1;
+}
+
+template <class NT>
+int in_range(const SurdRoot<NT>& r, const SurdSign<NT>& surd, Range range, const NT& end,
+             int sden) {
+    if (range == Range::line) return 1;
+    NT S(r.S);
+    int s = surd(r.N, S); // t >= 0
+    if (s == undecided) return undecided;
+    if (s * sden < 0) return 0;
+    if (range == Range::segment) { // end - t >= 0
+        s = surd(NT(r.Den * end - r.N), NT(-S));
+        if (s == undecided) return undecided;
+        if (s * sden < 0) return 0;
+    }
+    return 1;
+}
+
+// x < y for two bounded ends, or undecided.
+template <class NT>
+int less(const Fraction<NT>& x, const Fraction<NT>& y) {
+    int s = sign(NT(y.num * x.den - x.num * y.den));
+    return s == undecided ? undecided : s > 0;
+}
+
+// The line on the surface: Z(t) = Z0 + t dZ within the extent and t within the range.
+template <class NT>
+Classification<NT> on_surface(const LineQuadratic<NT>& q, Range range, const NT& end) {
+    Classification<NT> c;
+    c.outcome = Outcome::undecided;
+    int sdz = sign(q.dZ);
+    if (sdz == undecided) return c;
+    auto frac = [&](const NT& num) {
+        Fraction<NT> f{true, num, q.dZ};
+        if (sdz < 0) f.num = -f.num, f.den = -f.den;
+        return f;
+    };
+    Fraction<NT> a = q.lo_bounded ? frac(NT(q.lo - q.Z0)) : Fraction<NT>{false, NT(0), NT(1)};
+    Fraction<NT> b = q.hi_bounded ? frac(NT(q.hi - q.Z0)) : Fraction<NT>{false, NT(0), NT(1)};
+    // Which bound of Z limits t from below depends on the direction dZ.
+    Fraction<NT> lo = sdz > 0 ? a : b, hi = sdz > 0 ? b : a;
+    if (range != Range::line) {
+        Fraction<NT> zero{true, NT(0), NT(1)};
+        int below = lo.bounded ? less(lo, zero) : 1;
+        if (below == undecided) return c;
+        if (below) lo = zero;
+    }
+    if (range == Range::segment) {
+        Fraction<NT> last{true, end, NT(1)};
+        int above = hi.bounded ? less(last, hi) : 1;
+        if (above == undecided) return c;
+        if (above) hi = last;
+    }
+    if (lo.bounded && hi.bounded) {
+        int empty = less(hi, lo);
+        if (empty == undecided) return c;
+        if (empty) return c.outcome = Outcome::none, c;
+    }
+    c.outcome = Outcome::on_surface;
+    c.s0 = lo, c.s1 = hi;
+    return c;
+}
+
+} // namespace detail
+
+// Which roots of q are hits of a line over `range`, in the order of t, as many as `need` asks
+// for; or the on-surface interval; or undecided (only for a filtered NT). A segment ends at
+// t = end: 1, unless the caller has rescaled the parameter.
+template <class NT>
+Classification<NT> classify(const LineQuadratic<NT>& q, Range range, Need need,
+                            const NT& end = NT(1)) {
+    Classification<NT> c;
+    c.outcome = Outcome::undecided;
+    int sa = sign(q.A);
+    if (sa == undecided) return c;
+    SurdRoot<NT> roots[2];
+    int n = 0, sden = sa; // the sign of the roots' Den: A, or 2B
+    if (sa == 0) {
+        int sb = sign(q.B);
+        if (sb == undecided) return c;
+        if (sb == 0) {
+            int sc = sign(q.C0);
+            if (sc == undecided) return c;
+            if (sc == 0) return detail::on_surface(q, range, end);
+            return c.outcome = Outcome::none, c;
+        }
+        c.D = NT(0);
+        sden = sb;
+        roots[n++] = {-q.C0, NT(2) * q.B, 0, HitKind::cross};
+    } else {
+        c.D = q.B * q.B - q.A * q.C0;
+        int sd = sign(c.D);
+        if (sd == undecided) return c;
+        if (sd > 0) {
+            int first = sa > 0 ? -1 : 1; // the smaller root first
+            roots[n++] = {-q.B, q.A, first, HitKind::cross};
+            roots[n++] = {-q.B, q.A, -first, HitKind::cross};
+        } else if (sd == 0) {
+            roots[n++] = {-q.B, q.A, 0, HitKind::tangent};
+        } else {
+            return c.outcome = Outcome::none, c;
+        }
+    }
+    SurdSign<NT> surd(c.D);
+    for (int i = 0; i < n; ++i) {
+        int inside = detail::in_extent(roots[i], surd, q, sden);
+        if (inside == 1) inside = detail::in_range(roots[i], surd, range, end, sden);
+        if (inside == undecided) return c;
+        if (!inside) continue;
+        c.roots[c.count++] = roots[i];
+        if (need != Need::all) break;
+    }
+    c.outcome = c.count > 0 ? Outcome::hits : Outcome::none;
+    return c;
+}
+
+} // namespace linequad::exact_form
