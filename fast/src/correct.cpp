@@ -205,10 +205,11 @@ struct Approx {
 class ExactRounder {
   public:
     ExactRounder(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den)
-        : X_(X), Y_(Y), D_(D), Den_(Den), sden_(sign(Den)) {}
+        : X_(X), Y_(Y), D_(D), Den_(Den), sden_(sign(Den)), sy_(sign(D) == 0 ? 0 : sign(Y)),
+          Y2D_(sy_ == 0 ? BigFloat() : Y * Y * D) {}
 
     double run() const {
-        int s = sden_ * exact_form::sign_surd(X_, Y_, D_);
+        int s = sden_ * exact_form::sign_surd(X_, sy_, Y2D_);
         if (s == 0) return 0.0;
         Key k = search(key_of(guess()));
         if (k > key_max) return INFINITY;
@@ -219,21 +220,22 @@ class ExactRounder {
 
   private:
     const BigFloat &X_, &Y_, &D_, &Den_;
-    int sden_;
+    int sden_, sy_;
+    BigFloat Y2D_; // Y^2 D, the same for every comparison
 
     // sign(value - midpoint_after(k)): decreasing in k.
     int above_midpoint(Key k) const {
         BigFloat m = midpoint_after(k);
-        return sden_ * exact_form::sign_surd(BigFloat(X_ - m * Den_), Y_, D_);
+        return sden_ * exact_form::sign_surd(BigFloat(X_ - m * Den_), sy_, Y2D_);
     }
 
     double guess() const {
-        int sx = sign(X_), sy = sign(D_) == 0 ? 0 : sign(Y_);
+        int sx = sign(X_), sy = sy_;
         Approx x = Approx::of(X_), y = Approx::of(Y_), d = Approx::of(D_), den = Approx::of(Den_);
         if (sy == 0) return (x / den).value();
         Approx ysd = y * d.sqrt();
         if (sx == 0 || sx == sy) return ((x + ysd) / den).value();
-        Approx conj = Approx::of(BigFloat(X_ * X_ - Y_ * Y_ * D_)); // X^2 - Y^2 D
+        Approx conj = Approx::of(BigFloat(X_ * X_ - Y2D_)); // X^2 - Y^2 D
         return (conj / (den * (x + Approx{-ysd.m, ysd.e}))).value();
     }
 

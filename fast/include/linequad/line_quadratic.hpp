@@ -122,18 +122,27 @@ NT frame_determinant(const EllipticCone& s) {
     return AdjugateFrame<NT>(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.H) - lift<NT>(s.C)).det;
 }
 
-// sgn(X + Y sqrt(D)) for D >= 0, or undecided. When X and Y differ in sign: compare X^2, Y^2 D.
+// sgn(X + Y sqrt(D)) given sy = sgn(Y sqrt(D)) and Y2D = Y^2 D, or undecided. When X and Y
+// differ in sign, |X| is compared with |Y| sqrt(D) through X^2 - Y^2 D.
 template <class NT>
-int sign_surd(const NT& X, const NT& Y, const NT& D) {
-    int sx = sign(X), sd = sign(D);
-    if (sx == undecided || sd == undecided) return undecided;
-    int sy = sd == 0 ? 0 : int(sign(Y));
-    if (sy == undecided) return undecided;
+int sign_surd(const NT& X, int sy, const NT& Y2D) {
+    int sx = sign(X);
+    if (sx == undecided || sy == undecided) return undecided;
     if (sy == 0) return sx;
     if (sx == 0 || sx == sy) return sy;
-    int cmp = sign(NT(X * X - Y * Y * D)); // |X| against |Y| sqrt(D)
+    int cmp = sign(NT(X * X - Y2D));
     if (cmp == undecided) return undecided;
     return cmp > 0 ? sx : cmp < 0 ? sy : 0;
+}
+
+// sgn(X + Y sqrt(D)) for D >= 0, or undecided.
+template <class NT>
+int sign_surd(const NT& X, const NT& Y, const NT& D) {
+    int sd = sign(D);
+    if (sd == undecided) return undecided;
+    int sy = sd == 0 ? 0 : int(sign(Y));
+    if (sy == 0 || sy == undecided) return sign_surd(X, sy, X); // Y2D unused
+    return sign_surd(X, sy, NT(Y * Y * D));
 }
 
 // sgn(X + Y sqrt(D)) for one D. Exact types compare squares (sign_surd); a filtered type may

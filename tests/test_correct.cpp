@@ -1,0 +1,280 @@
+// The correct solver and the two number types of its ladder: BigFloat (exact) and BoundedDD
+// (double-double with a proven bound). References: GMP rationals and 4096-bit MPFR.
+#include "support.hpp"
+
+#include "big_float.hpp"
+#include "bounded_dd.hpp"
+
+#include "linequad/exact.hpp"
+#include "linequad/families.hpp"
+
+#include <gmp.h>
+#include <mpfr.h>
+
+#include <cstring>
+#include <string>
+
+using namespace linequad;
+using namespace linequad::test;
+
+namespace {
+
+// Doubles over the whole range: random mantissas, exponents from -1074 to 1023 (subnormals
+// included), either sign.
+double wide_double(std::mt19937_64& rng) {
+    double m = std::uniform_real_distribution<double>(1, 2)(rng);
+    int e = int(rng() % 2098) - 1074;
+    double x = std::ldexp(m, e); // rounds to a subnormal below 2^-1022: still a double
+    return rng() % 2 ? -x : x;
+}
+
+// An mpq_t that frees itself.
+struct Q {
+    mpq_t q;
+    Q() { mpq_init(q); }
+    explicit Q(double x) {
+        mpq_init(q);
+        mpq_set_d(q, x);
+    }
+    ~Q() { mpq_clear(q); }
+    Q(const Q&) = delete;
+};
+
+bool same_bits(double a, double b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// The correct solver's answer equals the oracle's bit for bit (signed zeros, infinities).
+void check_equal(const Result& got, const Result& want) {
+    INFO("correct " << describe(got) << "\noracle  " << describe(want));
+    REQUIRE(got.error.code == want.error.code);
+    REQUIRE(got.count == want.count);
+    REQUIRE(got.on_surface == want.on_surface);
+    if (want.on_surface) {
+        CHECK(same_bits(got.s0, want.s0));
+        CHECK(same_bits(got.s1, want.s1));
+    }
+    for (int i = 0; i < want.count; ++i) {
+        CHECK(got.hits[i].kind == want.hits[i].kind);
+        CHECK(same_bits(got.hits[i].t, want.hits[i].t));
+        for (int k = 0; k < 3; ++k)
+            CHECK(same_bits(got.hits[i].p[k], want.hits[i].p[k]));
+    }
+}
+
+Result correct_solve(const Shape& s, const Line& l, Query q = {}) {
+    return std::visit([&](const auto& shape) { return correct::intersect(shape, l, q); }, s);
+}
+
+} // namespace
+
+TEST_CASE("BigFloat sums and products are exact over the whole double range") {
+    std::mt19937_64 rng(11);
+    for (int i = 0; i < 3000; ++i) {
+        double a = wide_double(rng), b = wide_double(rng), c = wide_double(rng),
+               d = wide_double(rng);
+        // a b + c - d, exactly, both ways; then their signs and difference must agree.
+        BigFloat x = BigFloat(a) * BigFloat(b) + BigFloat(c) - BigFloat(d);
+        Q qa(a), qb(b), qc(c), qd(d), r;
+        mpq_mul(r.q, qa.q, qb.q);
+        mpq_add(r.q, r.q, qc.q);
+        mpq_sub(r.q, r.q, qd.q);
+        INFO(hex(a) << " " << hex(b) << " " << hex(c) << " " << hex(d));
+        REQUIRE(sign(x) == mpq_sgn(r.q));
+        // Subtracting the same value built another way leaves exactly zero.
+        BigFloat y = BigFloat(c) - BigFloat(d) + BigFloat(b) * BigFloat(a);
+        REQUIRE(sign(x - y) == 0);
+        // The approximation: within 2^-52 of the value (compared in MPFR at 4096 bits).
+        BigFloat::Approx ap = x.approx();
+        if (sign(x) == 0) {
+            CHECK(ap.m == 0);
+            continue;
+        }
+        mpfr_t exact, approx;
+        mpfr_inits2(4096, exact, approx, (mpfr_ptr)nullptr);
+        mpfr_set_q(exact, r.q, MPFR_RNDN);
+        mpfr_set_d(approx, ap.m, MPFR_RNDN);
+        mpfr_mul_2si(approx, approx, ap.e, MPFR_RNDN);
+        mpfr_sub(approx, approx, exact, MPFR_RNDN);
+        mpfr_div(approx, approx, exact, MPFR_RNDN);
+        CHECK(std::fabs(mpfr_get_d(approx, MPFR_RNDN)) <= 0x1p-52);
+        CHECK(std::fabs(ap.m) >= 1);
+        CHECK(std::fabs(ap.m) < 2);
+        mpfr_clears(exact, approx, (mpfr_ptr)nullptr);
+    }
+}
+
+TEST_CASE("BoundedDD bounds hold: |hi + lo - exact| <= e for every operation") {
+    // Operands near unit size, as the solver's prescaling makes them, with the low words and
+    // error bounds that chains of operations produce; the exact results in 4096-bit MPFR.
+    std::mt19937_64 rng(12);
+    auto operand = [&](bool exact) {
+        double hi = std::ldexp(std::uniform_real_distribution<double>(1, 2)(rng),
+                               int(rng() % 40) - 20) *
+                    (rng() % 2 ? 1 : -1);
+        double lo = exact ? 0 : hi * 0x1p-54 * std::uniform_real_distribution<double>(-1, 1)(rng);
+        TwoTerm n = two_sum(hi, lo);
+        double e = exact ? 0 : std::fabs(n.hi) * 0x1p-100 * std::uniform_real_distribution<double>(0, 1)(rng);
+        return BoundedDD(n.hi, n.lo, e);
+    };
+    mpfr_t x, y, z, w;
+    mpfr_inits2(4096, x, y, z, w, (mpfr_ptr)nullptr);
+    auto load = [](mpfr_t m, const BoundedDD& a) {
+        mpfr_set_d(m, a.hi, MPFR_RNDN);
+        mpfr_add_d(m, m, a.lo, MPFR_RNDN); // exact at 4096 bits
+    };
+    int checked = 0;
+    for (int i = 0; i < 20000; ++i) {
+        BoundedDD a = operand(i % 3 == 0), b = operand(i % 5 == 0);
+        for (int op = 0; op < 5; ++op) {
+            BoundedDD r;
+            load(x, a);
+            load(y, b);
+            switch (op) {
+            case 0:
+                r = a + b, mpfr_add(z, x, y, MPFR_RNDN);
+                break;
+            case 1:
+                r = a - b, mpfr_sub(z, x, y, MPFR_RNDN);
+                break;
+            case 2:
+                r = a * b, mpfr_mul(z, x, y, MPFR_RNDN);
+                break;
+            case 3:
+                r = a / b, mpfr_div(z, x, y, MPFR_RNDN);
+                break;
+            default: {
+                BoundedDD pos = a.hi < 0 ? -a : a;
+                r = sqrt(pos);
+                load(x, pos);
+                mpfr_sqrt(z, x, MPFR_RNDN);
+            }
+            }
+            // The centres' exact result must lie within the bound (the propagated terms only
+            // make it larger): |hi + lo - z| <= e.
+            load(w, r);
+            mpfr_sub(w, w, z, MPFR_RNDN);
+            mpfr_abs(w, w, MPFR_RNDN);
+            double err = mpfr_get_d(w, MPFR_RNDU);
+            INFO("op " << op << " a " << hex(a.hi) << "+" << hex(a.lo) << " b " << hex(b.hi) << "+"
+                       << hex(b.lo));
+            REQUIRE(err <= r.e);
+            ++checked;
+        }
+    }
+    CHECK(checked == 100000);
+    mpfr_clears(x, y, z, w, (mpfr_ptr)nullptr);
+}
+
+TEST_CASE("BoundedDD decides a sign only when it is certain, and keeps exact zeros exact") {
+    BoundedDD a(0.1), b(3.0);
+    BoundedDD p = a * b; // a product of two doubles is exact
+    CHECK(p.e == 0);
+    CHECK(sign(a - a) == 0); // so is a sum of two: an exact zero is decided
+    // A sum of double-doubles is not tracked as exact: its zero is left to the exact rung.
+    CHECK(sign(p - p) == exact_form::undecided);
+    BoundedDD q = p * BoundedDD(1.0 / 3.0); // inexact: carries a bound
+    CHECK(q.e > 0);
+    CHECK(sign(q - q) == exact_form::undecided); // zero within the bound: not decided
+    CHECK(sign(q) == 1);
+    BoundedDD huge(0x1p+1000);
+    CHECK(sign(huge * huge * huge - huge) == exact_form::undecided); // overflow decides nothing
+}
+
+TEST_CASE("correct rounds ties to even, as the oracle does") {
+    // Along the x axis through a cylinder of radius r around the z axis: t = -x0 -+ r exactly.
+    auto line_across = [](double x0, double r) {
+        return std::pair<Shape, Line>{Cylinder{{0, 0, -1}, {0, 0, 1}, r, true},
+                                      Line{{x0, 0, 0}, {1, 0, 0}, Range::line}};
+    };
+    SECTION("1 +- 2^-53: a midpoint rounds to the even 1, the other root is a double") {
+        auto [s, l] = line_across(-1, 0x1p-53);
+        Result r = correct_solve(s, l);
+        REQUIRE(r.count == 2);
+        CHECK(r.hits[0].t == 1 - 0x1p-53);
+        CHECK(r.hits[1].t == 1.0); // 1 + 2^-53 is halfway to 1 + 2^-52
+        CHECK(r.hits[0].p.x == -0x1p-53);
+        CHECK(r.hits[1].p.x == 0x1p-53);
+        check_equal(r, exact::intersect(s, l));
+    }
+    SECTION("-1 +- 2^-54: both roots round to -1") {
+        auto [s, l] = line_across(1, 0x1p-54);
+        Result r = correct_solve(s, l);
+        REQUIRE(r.count == 2);
+        CHECK(r.hits[0].t == -1.0);
+        CHECK(r.hits[1].t == -1.0); // -1 + 2^-54 is halfway to -(1 - 2^-53): even is -1
+        check_equal(r, exact::intersect(s, l));
+    }
+}
+
+TEST_CASE("correct rounds beyond double's range to infinity, and into subnormals, as the oracle") {
+    SECTION("a root beyond DBL_MAX") {
+        Cylinder s{{0, 0, -1}, {0, 0, 1}, 1, true};
+        Line l{{-0x1p+1000, 0, 0}, {0x1p-100, 0, 0}, Range::line};
+        Result r = correct_solve(s, l);
+        REQUIRE(r.ok());
+        REQUIRE(r.count == 2);
+        CHECK(std::isinf(r.hits[0].t));
+        CHECK(r.rung == Rung::exact); // the double-double rung cannot scale there
+        check_equal(r, exact::intersect(s, l));
+    }
+    SECTION("roots in the subnormal range") {
+        Cylinder s{{0, 0, -1}, {0, 0, 1}, 0x1p-1060, true};
+        Line l{{0x1.8p-1060, 0, 0}, {3, 0, 0}, Range::line}; // t = (-x0 -+ r) / 3
+        Result r = correct_solve(s, l);
+        REQUIRE(r.count == 2);
+        CHECK(r.hits[0].t < 0);
+        CHECK(std::fabs(r.hits[1].t) < 0x1p-1022);
+        check_equal(r, exact::intersect(s, l));
+    }
+}
+
+TEST_CASE("correct answers exactly where exact zeros decide: on the surface, at the apex") {
+    SECTION("a line on the cylinder, clipped by the extent and the segment") {
+        Cylinder s{{0, 0, 0}, {0, 0, 4}, 1, true};
+        Line l{{1, 0, -1}, {0, 0, 2}, Range::segment};
+        Result r = correct_solve(s, l);
+        REQUIRE(r.on_surface);
+        CHECK(r.s0 == 0.5);
+        CHECK(r.s1 == 1.0);
+        CHECK(r.rung == Rung::exact);
+        check_equal(r, exact::intersect(s, l));
+    }
+    SECTION("a line through the cone's apex") {
+        EllipticCone s{{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, true};
+        Line l{{-0.25, 0, 2}, {0.25, 0, -1}, Range::line}; // through the apex at t = 1
+        Result r = correct_solve(s, l);
+        check_equal(r, exact::intersect(s, l));
+        REQUIRE(r.count >= 1);
+        CHECK(r.hits[0].t == 1.0);
+        CHECK(r.hits[0].kind == HitKind::tangent);
+    }
+}
+
+TEST_CASE("correct equals the oracle bit for bit on every family, range and query") {
+    const Query queries[] = {{Need::all, true}, {Need::nearest, false}, {Need::any, true}};
+    std::uint64_t by_rung[3] = {};
+    for (Family f : {Family::generic, Family::near_tangent, Family::axis_parallel, Family::apex,
+                     Family::generator, Family::degenerate_frame, Family::scale,
+                     Family::extent_edge})
+        for (int shape = 0; shape < 3; ++shape) {
+            if (!family_applies(f, shape)) continue;
+            for (Range range : {Range::line, Range::ray, Range::segment})
+                for (std::uint64_t i = 0; i < 60; ++i) {
+                    Case c = make_case(f, shape, range, 31, i);
+                    for (Query q : queries) {
+                        Result got = correct_solve(c.shape, c.line, q);
+                        INFO(format_case(c));
+                        check_equal(got, exact::intersect(c.shape, c.line, q));
+                        if (got.ok()) {
+                            ++by_rung[std::size_t(got.rung)];
+                            CHECK(got.certainty == Certainty::certain);
+                        }
+                    }
+                }
+        }
+    // Both rungs are exercised, and only they answer.
+    CHECK(by_rung[std::size_t(Rung::none)] == 0);
+    CHECK(by_rung[std::size_t(Rung::double_double)] > 0);
+    CHECK(by_rung[std::size_t(Rung::exact)] > 0);
+}
