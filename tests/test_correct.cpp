@@ -91,7 +91,7 @@ TEST_CASE("BigFloat sums and products are exact over the whole double range") {
             continue;
         }
         mpfr_t exact, approx;
-        mpfr_inits2(4096, exact, approx, (mpfr_ptr)nullptr);
+        mpfr_inits2(4096, exact, approx, (mpfr_ptr) nullptr);
         mpfr_set_q(exact, r.q, MPFR_RNDN);
         mpfr_set_d(approx, ap.m, MPFR_RNDN);
         mpfr_mul_2si(approx, approx, ap.e, MPFR_RNDN);
@@ -100,7 +100,7 @@ TEST_CASE("BigFloat sums and products are exact over the whole double range") {
         CHECK(std::fabs(mpfr_get_d(approx, MPFR_RNDN)) <= 0x1p-52);
         CHECK(std::fabs(ap.m) >= 1);
         CHECK(std::fabs(ap.m) < 2);
-        mpfr_clears(exact, approx, (mpfr_ptr)nullptr);
+        mpfr_clears(exact, approx, (mpfr_ptr) nullptr);
     }
 }
 
@@ -109,16 +109,18 @@ TEST_CASE("BoundedDD bounds hold: |hi + lo - exact| <= e for every operation") {
     // error bounds that chains of operations produce; the exact results in 4096-bit MPFR.
     std::mt19937_64 rng(12);
     auto operand = [&](bool exact) {
-        double hi = std::ldexp(std::uniform_real_distribution<double>(1, 2)(rng),
-                               int(rng() % 40) - 20) *
-                    (rng() % 2 ? 1 : -1);
+        double hi =
+            std::ldexp(std::uniform_real_distribution<double>(1, 2)(rng), int(rng() % 40) - 20) *
+            (rng() % 2 ? 1 : -1);
         double lo = exact ? 0 : hi * 0x1p-54 * std::uniform_real_distribution<double>(-1, 1)(rng);
         TwoTerm n = two_sum(hi, lo);
-        double e = exact ? 0 : std::fabs(n.hi) * 0x1p-100 * std::uniform_real_distribution<double>(0, 1)(rng);
+        double e =
+            exact ? 0
+                  : std::fabs(n.hi) * 0x1p-100 * std::uniform_real_distribution<double>(0, 1)(rng);
         return BoundedDD(n.hi, n.lo, e);
     };
     mpfr_t x, y, z, w;
-    mpfr_inits2(4096, x, y, z, w, (mpfr_ptr)nullptr);
+    mpfr_inits2(4096, x, y, z, w, (mpfr_ptr) nullptr);
     auto load = [](mpfr_t m, const BoundedDD& a) {
         mpfr_set_d(m, a.hi, MPFR_RNDN);
         mpfr_add_d(m, m, a.lo, MPFR_RNDN); // exact at 4096 bits
@@ -163,7 +165,7 @@ TEST_CASE("BoundedDD bounds hold: |hi + lo - exact| <= e for every operation") {
         }
     }
     CHECK(checked == 100000);
-    mpfr_clears(x, y, z, w, (mpfr_ptr)nullptr);
+    mpfr_clears(x, y, z, w, (mpfr_ptr) nullptr);
 }
 
 TEST_CASE("BoundedDD decides a sign only when it is certain, and keeps exact zeros exact") {
@@ -254,9 +256,9 @@ TEST_CASE("correct answers exactly where exact zeros decide: on the surface, at 
 TEST_CASE("correct equals the oracle bit for bit on every family, range and query") {
     const Query queries[] = {{Need::all, true}, {Need::nearest, false}, {Need::any, true}};
     std::uint64_t by_rung[3] = {};
-    for (Family f : {Family::generic, Family::near_tangent, Family::axis_parallel, Family::apex,
-                     Family::generator, Family::degenerate_frame, Family::scale,
-                     Family::extent_edge})
+    for (Family f :
+         {Family::generic, Family::near_tangent, Family::axis_parallel, Family::apex,
+          Family::generator, Family::degenerate_frame, Family::scale, Family::extent_edge})
         for (int shape = 0; shape < 3; ++shape) {
             if (!family_applies(f, shape)) continue;
             for (Range range : {Range::line, Range::ray, Range::segment})

@@ -64,6 +64,7 @@ std::string row_json(const Row& r) {
          ",\"bounded_roots\":" + num(r.bounded_roots) +
          ",\"bound_violations\":" + num(r.bound_violations) +
          ",\"tightness_p50\":" + real(r.tightness.quantile(0.5)) +
+         ",\"bound_below_half_ulp\":" + num(r.bound_below_half_ulp) +
          ",\"tightness\":" + array(r.tightness.count) + "}";
     s += ",\"rungs\":{\"double_double\":" + num(r.rungs[std::size_t(Rung::double_double)]) +
          ",\"exact\":" + num(r.rungs[std::size_t(Rung::exact)]) + "}";
@@ -119,6 +120,7 @@ Row row_from(const Value& v) {
         r.bounded_roots = u64(c->find("bounded_roots")),
         r.bound_violations = u64(c->find("bound_violations"));
         read_array(c->find("tightness"), r.tightness.count);
+        r.bound_below_half_ulp = u64(c->find("bound_below_half_ulp"));
     }
     if (const Value* g = v.find("rungs")) {
         r.rungs[std::size_t(Rung::double_double)] = u64(g->find("double_double"));
@@ -266,6 +268,12 @@ void write_rungs(std::ostream& md, const Report& r) {
            << fmt(dd + ex ? 100.0 * double(ex) / double(dd + ex) : 0) << " | "
            << fmt(row.ns.median()) << " |\n";
     }
+    Row certified = r.total("certified");
+    if (certified.bounded_roots)
+        md << "\nA certified bound below half an ulp of t (the only kind that could prove a "
+              "rounding on its own, as a first rung would need): "
+           << certified.bound_below_half_ulp << " of " << certified.bounded_roots
+           << " certified roots.\n";
 }
 
 void write_markdown(const Report& r, const std::string& dir) {

@@ -136,6 +136,7 @@ void Row::merge(const Row& o) {
     uncertain += o.uncertain, certain_wrong += o.certain_wrong;
     bounded_roots += o.bounded_roots, bound_violations += o.bound_violations;
     tightness.merge(o.tightness);
+    bound_below_half_ulp += o.bound_below_half_ulp;
     for (std::size_t i = 0; i < rungs.size(); ++i)
         rungs[i] += o.rungs[i];
     for (const Worst& w : o.worst)
@@ -177,6 +178,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
                                      : 0;
                 double err = std::fabs(h.t - o);
                 if (!(err <= h.bound + half_ulp)) ++row.bound_violations;
+                if (h.bound < half_ulp) ++row.bound_below_half_ulp;
                 double ratio = h.bound / std::fmax(err, half_ulp);
                 row.tightness.add(std::isfinite(ratio) && ratio < 1.8e19
                                       ? std::uint64_t(std::ceil(ratio))

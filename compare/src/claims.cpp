@@ -28,10 +28,10 @@ std::vector<std::string> broken_claims(const Report& r) {
             // interval ends, and it never refuses what the oracle answers.
             claim(row.cases_mismatched == 0,
                   std::to_string(row.cases_mismatched) + " cases classified unlike the oracle");
-            claim(row.t_max == 0, "t not correctly rounded (" + std::to_string(row.t_max) +
-                                      " ulps)");
-            claim(row.p_max == 0, "a point not correctly rounded (" + std::to_string(row.p_max) +
-                                      " ulps)");
+            claim(row.t_max == 0,
+                  "t not correctly rounded (" + std::to_string(row.t_max) + " ulps)");
+            claim(row.p_max == 0,
+                  "a point not correctly rounded (" + std::to_string(row.p_max) + " ulps)");
             claim(row.uncertain == 0, "a result not marked certain");
         }
         if (solver == "stable") {

@@ -110,8 +110,8 @@ std::string broken_invariant(const Case& c) {
     }
     for (Query q : {Query{}, Query{Need::nearest, false}}) {
         Result want = q.need == Need::all ? oracle : exact::intersect(c.shape, c.line, q);
-        Result got = std::visit([&](const auto& s) { return correct::intersect(s, c.line, q); },
-                                c.shape);
+        Result got =
+            std::visit([&](const auto& s) { return correct::intersect(s, c.line, q); }, c.shape);
         k.require(same_answer(got, want), "correct equals the oracle bit for bit", "correct", got);
     }
     // Five lines through the batch: this one, reversed, doubled, moved, and this one again.

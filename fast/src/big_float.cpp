@@ -106,7 +106,8 @@ LINEQUAD_LIMB_LOOP void BigFloat::normalize() {
     std::size_t n = mag.size() - words;
     for (std::size_t i = 0; i < n; ++i) {
         std::uint64_t lo = mag[i + words] >> s;
-        std::uint64_t hi = (s != 0 && i + words + 1 < mag.size()) ? mag[i + words + 1] << (64 - s) : 0;
+        std::uint64_t hi =
+            (s != 0 && i + words + 1 < mag.size()) ? mag[i + words + 1] << (64 - s) : 0;
         mag[i] = lo | hi;
     }
     mag.resize(n);

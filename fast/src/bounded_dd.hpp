@@ -74,7 +74,8 @@ LINEQUAD_INLINE BoundedDD operator-(const BoundedDD& a, const BoundedDD& b) {
 LINEQUAD_INLINE BoundedDD operator*(const BoundedDD& a, const BoundedDD& b) {
     using dd_detail::mag;
     TwoTerm c = two_prod(a.hi, b.hi);
-    if (a.lo == 0 && b.lo == 0 && a.e == 0 && b.e == 0 && dd_detail::product_exact(a.hi, b.hi, c.hi))
+    if (a.lo == 0 && b.lo == 0 && a.e == 0 && b.e == 0 &&
+        dd_detail::product_exact(a.hi, b.hi, c.hi))
         return {c.hi, c.lo, 0};
     double tl = std::fma(a.hi, b.lo, a.lo * b.lo);
     double cl = c.lo + std::fma(a.lo, b.hi, tl);

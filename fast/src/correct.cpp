@@ -87,7 +87,8 @@ struct Unit {
     Line line;
 };
 
-std::optional<Unit> unit_scale(const Line& l, double extent, std::initializer_list<Vec3> positions) {
+std::optional<Unit> unit_scale(const Line& l, double extent,
+                               std::initializer_list<Vec3> positions) {
     if (detail::fragile_scene(extent, positions, l.v)) return std::nullopt;
     detail::Prescale ps = detail::prescale_for(extent, l.v);
     double pos_factor = 1 / ps.to_unit, end = ps.to_unit / ps.dir_to_unit;
@@ -189,7 +190,8 @@ struct Approx {
         long d = e - b.e;
         if (d > 2000) return *this;
         if (d < -2000) return b;
-        return d >= 0 ? Approx{m + std::ldexp(b.m, int(-d)), e} : Approx{std::ldexp(m, int(d)) + b.m, b.e};
+        return d >= 0 ? Approx{m + std::ldexp(b.m, int(-d)), e}
+                      : Approx{std::ldexp(m, int(d)) + b.m, b.e};
     }
     double value() const {
         if (m == 0) return 0;

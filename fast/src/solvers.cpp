@@ -23,7 +23,8 @@ const std::vector<Solver>& fast_solvers() {
          stable::intersect, stable::intersect, stable::intersect},
         {"certified", "stable's geometry with rigorous error bounds; certain or marked uncertain",
          certified::intersect, certified::intersect, certified::intersect},
-        {"correct", "exact classification, correctly rounded t and points: double-double, then exact",
+        {"correct",
+         "exact classification, correctly rounded t and points: double-double, then exact",
          correct::intersect, correct::intersect, correct::intersect},
     };
     return solvers;

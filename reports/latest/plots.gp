@@ -24,7 +24,7 @@ set y2tics
 set ytics nomirror
 set grid
 set key outside right
-plot 'reports/latest/difficulty_apex_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_apex_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_apex_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_apex_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_apex_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_apex_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+plot 'reports/latest/difficulty_apex_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_apex_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_apex_correct.dat' using 1:4 with linespoints lw 2 title 'correct max error', 'reports/latest/difficulty_apex_correct.dat' using 1:3 axes x1y2 with lines dt 2 title 'correct misclassified', 'reports/latest/difficulty_apex_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_apex_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_apex_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_apex_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
 set terminal pngcairo size 800,500 noenhanced font 'sans,10'
 set output 'reports/latest/difficulty_apex.png'
 replot
@@ -41,7 +41,7 @@ set y2tics
 set ytics nomirror
 set grid
 set key outside right
-plot 'reports/latest/difficulty_axis_parallel_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_axis_parallel_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_axis_parallel_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_axis_parallel_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_axis_parallel_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_axis_parallel_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+plot 'reports/latest/difficulty_axis_parallel_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_axis_parallel_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_axis_parallel_correct.dat' using 1:4 with linespoints lw 2 title 'correct max error', 'reports/latest/difficulty_axis_parallel_correct.dat' using 1:3 axes x1y2 with lines dt 2 title 'correct misclassified', 'reports/latest/difficulty_axis_parallel_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_axis_parallel_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_axis_parallel_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_axis_parallel_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
 set terminal pngcairo size 800,500 noenhanced font 'sans,10'
 set output 'reports/latest/difficulty_axis_parallel.png'
 replot
@@ -58,7 +58,7 @@ set y2tics
 set ytics nomirror
 set grid
 set key outside right
-plot 'reports/latest/difficulty_degenerate_frame_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_degenerate_frame_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_degenerate_frame_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_degenerate_frame_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_degenerate_frame_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_degenerate_frame_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+plot 'reports/latest/difficulty_degenerate_frame_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_degenerate_frame_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_degenerate_frame_correct.dat' using 1:4 with linespoints lw 2 title 'correct max error', 'reports/latest/difficulty_degenerate_frame_correct.dat' using 1:3 axes x1y2 with lines dt 2 title 'correct misclassified', 'reports/latest/difficulty_degenerate_frame_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_degenerate_frame_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_degenerate_frame_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_degenerate_frame_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
 set terminal pngcairo size 800,500 noenhanced font 'sans,10'
 set output 'reports/latest/difficulty_degenerate_frame.png'
 replot
@@ -75,7 +75,7 @@ set y2tics
 set ytics nomirror
 set grid
 set key outside right
-plot 'reports/latest/difficulty_extent_edge_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_extent_edge_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_extent_edge_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_extent_edge_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_extent_edge_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_extent_edge_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+plot 'reports/latest/difficulty_extent_edge_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_extent_edge_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_extent_edge_correct.dat' using 1:4 with linespoints lw 2 title 'correct max error', 'reports/latest/difficulty_extent_edge_correct.dat' using 1:3 axes x1y2 with lines dt 2 title 'correct misclassified', 'reports/latest/difficulty_extent_edge_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_extent_edge_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_extent_edge_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_extent_edge_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
 set terminal pngcairo size 800,500 noenhanced font 'sans,10'
 set output 'reports/latest/difficulty_extent_edge.png'
 replot
@@ -92,7 +92,7 @@ set y2tics
 set ytics nomirror
 set grid
 set key outside right
-plot 'reports/latest/difficulty_generator_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_generator_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_generator_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_generator_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_generator_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_generator_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+plot 'reports/latest/difficulty_generator_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_generator_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_generator_correct.dat' using 1:4 with linespoints lw 2 title 'correct max error', 'reports/latest/difficulty_generator_correct.dat' using 1:3 axes x1y2 with lines dt 2 title 'correct misclassified', 'reports/latest/difficulty_generator_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_generator_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_generator_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_generator_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
 set terminal pngcairo size 800,500 noenhanced font 'sans,10'
 set output 'reports/latest/difficulty_generator.png'
 replot
@@ -109,7 +109,7 @@ set y2tics
 set ytics nomirror
 set grid
 set key outside right
-plot 'reports/latest/difficulty_near_tangent_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_near_tangent_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_near_tangent_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_near_tangent_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_near_tangent_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_near_tangent_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+plot 'reports/latest/difficulty_near_tangent_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_near_tangent_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_near_tangent_correct.dat' using 1:4 with linespoints lw 2 title 'correct max error', 'reports/latest/difficulty_near_tangent_correct.dat' using 1:3 axes x1y2 with lines dt 2 title 'correct misclassified', 'reports/latest/difficulty_near_tangent_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_near_tangent_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_near_tangent_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_near_tangent_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
 set terminal pngcairo size 800,500 noenhanced font 'sans,10'
 set output 'reports/latest/difficulty_near_tangent.png'
 replot
@@ -126,7 +126,7 @@ set y2tics
 set ytics nomirror
 set grid
 set key outside right
-plot 'reports/latest/difficulty_scale_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_scale_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_scale_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_scale_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_scale_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_scale_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
+plot 'reports/latest/difficulty_scale_certified.dat' using 1:4 with linespoints lw 2 title 'certified max error', 'reports/latest/difficulty_scale_certified.dat' using 1:3 axes x1y2 with lines dt 2 title 'certified misclassified', 'reports/latest/difficulty_scale_correct.dat' using 1:4 with linespoints lw 2 title 'correct max error', 'reports/latest/difficulty_scale_correct.dat' using 1:3 axes x1y2 with lines dt 2 title 'correct misclassified', 'reports/latest/difficulty_scale_seed.dat' using 1:4 with linespoints lw 2 title 'seed max error', 'reports/latest/difficulty_scale_seed.dat' using 1:3 axes x1y2 with lines dt 2 title 'seed misclassified', 'reports/latest/difficulty_scale_stable.dat' using 1:4 with linespoints lw 2 title 'stable max error', 'reports/latest/difficulty_scale_stable.dat' using 1:3 axes x1y2 with lines dt 2 title 'stable misclassified'
 set terminal pngcairo size 800,500 noenhanced font 'sans,10'
 set output 'reports/latest/difficulty_scale.png'
 replot

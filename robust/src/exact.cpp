@@ -133,7 +133,6 @@ Result solve(const ShapeT& shape, const Line& l, Query query) {
     return r;
 }
 
-
 } // namespace
 
 Result intersect(const Cylinder& s, const Line& l, Query q) {

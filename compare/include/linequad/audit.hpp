@@ -71,6 +71,9 @@ struct Row {
     // the bounds are (bound / actual error, rounded up).
     std::uint64_t uncertain = 0, certain_wrong = 0, bounded_roots = 0, bound_violations = 0;
     Histogram tightness;
+    // Bounded roots whose bound is below half an ulp of t: the most that the bound alone could
+    // prove correctly rounded (Ziv's first test).
+    std::uint64_t bound_below_half_ulp = 0;
     // The correct solver: results by the rung that settled them (indexed by Rung).
     std::array<std::uint64_t, 3> rungs{};
     std::vector<Worst> worst; // at most keep_worst, worst first

@@ -69,7 +69,9 @@ struct AdjugateFrame {
     AdjugateFrame(const Vec3T<NT>& a, const Vec3T<NT>& b, const Vec3T<NT>& c)
         : nx(cross(b, c)), ny(cross(c, a)), nz(cross(a, b)), det(dot(a, nx)) {}
     // det * M^-1 u
-    Vec3T<NT> scaled_local(const Vec3T<NT>& u) const { return {dot(nx, u), dot(ny, u), dot(nz, u)}; }
+    Vec3T<NT> scaled_local(const Vec3T<NT>& u) const {
+        return {dot(nx, u), dot(ny, u), dot(nz, u)};
+    }
 };
 
 // Seed 000 in the unit cylinder's frame, w = M^-1 (L0 - C), v' = M^-1 v (a vector, erratum 2):
@@ -174,10 +176,10 @@ enum class Outcome : std::uint8_t { none, hits, on_surface, undecided };
 template <class NT>
 struct Classification {
     Outcome outcome = Outcome::none;
-    NT D;                   // B^2 - A C0 (zero for a single rational root)
-    int count = 0;          // hits: roots[0..count) kept, by increasing t, as the query needs
+    NT D;          // B^2 - A C0 (zero for a single rational root)
+    int count = 0; // hits: roots[0..count) kept, by increasing t, as the query needs
     SurdRoot<NT> roots[2];
-    Fraction<NT> s0, s1;    // on_surface: the interval of t
+    Fraction<NT> s0, s1; // on_surface: the interval of t
 };
 
 namespace detail {
