@@ -340,6 +340,19 @@ Result finish(Result r, Rung rung) {
     return r;
 }
 
+// The ladder for one shape. scaled(s, f): the shape with its positions times f (a power of
+// two). quadratic(NT(), s, l): the exact form of its derivation in the number type NT.
+template <class ShapeT, class Scaled, class Quadratic>
+Result ladder(const ShapeT& s, const Line& l, Query q, double extent,
+              std::initializer_list<Vec3> positions, Scaled scaled, Quadratic quadratic) {
+    if (std::optional<Unit> u = unit_scale(l, extent, positions)) {
+        auto dd = quadratic(BoundedDD(), scaled(s, 1 / u->pos_factor), u->line);
+        if (std::optional<Result> r = double_double_rung(dd, *u, q))
+            return finish(*r, Rung::double_double);
+    }
+    return finish(exact_rung(quadratic(BigFloat(), s, l), l, q), Rung::exact);
+}
+
 } // namespace
 
 namespace correct {
@@ -347,14 +360,14 @@ namespace correct {
 Result intersect(const Cylinder& s, const Line& l, Query q) {
     if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
     double extent = std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.H), s.r});
-    if (std::optional<Unit> u = unit_scale(l, extent, {s.C, s.H, l.L0, {s.r, 0, 0}})) {
-        double f = 1 / u->pos_factor;
-        Cylinder su{f * s.C, f * s.H, f * s.r, s.finite};
-        auto dd = exact_form::line_quadratic<BoundedDD>(su, u->line);
-        if (std::optional<Result> r = double_double_rung(dd, *u, q))
-            return finish(*r, Rung::double_double);
-    }
-    return finish(exact_rung(exact_form::line_quadratic<BigFloat>(s, l), l, q), Rung::exact);
+    return ladder(
+        s, l, q, extent, {s.C, s.H, l.L0, {s.r, 0, 0}},
+        [](const Cylinder& x, double f) {
+            return Cylinder{f * x.C, f * x.H, f * x.r, x.finite};
+        },
+        [](auto number, const Cylinder& x, const Line& line) {
+            return exact_form::line_quadratic<decltype(number)>(x, line);
+        });
 }
 
 Result intersect(const EllipticCylinder& s, const Line& l, Query q) {
@@ -362,15 +375,14 @@ Result intersect(const EllipticCylinder& s, const Line& l, Query q) {
     bool negative = detail::frame_orientation(s) < 0;
     double extent =
         std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.a), max_abs(s.b), max_abs(s.c)});
-    if (std::optional<Unit> u = unit_scale(l, extent, {s.C, s.a, s.b, s.c, l.L0})) {
-        double f = 1 / u->pos_factor;
-        EllipticCylinder su{f * s.C, f * s.a, f * s.b, f * s.c, s.finite};
-        auto dd = exact_form::line_quadratic<BoundedDD>(su, u->line, negative);
-        if (std::optional<Result> r = double_double_rung(dd, *u, q))
-            return finish(*r, Rung::double_double);
-    }
-    return finish(exact_rung(exact_form::line_quadratic<BigFloat>(s, l, negative), l, q),
-                  Rung::exact);
+    return ladder(
+        s, l, q, extent, {s.C, s.a, s.b, s.c, l.L0},
+        [](const EllipticCylinder& x, double f) {
+            return EllipticCylinder{f * x.C, f * x.a, f * x.b, f * x.c, x.finite};
+        },
+        [&](auto number, const EllipticCylinder& x, const Line& line) {
+            return exact_form::line_quadratic<decltype(number)>(x, line, negative);
+        });
 }
 
 Result intersect(const EllipticCone& s, const Line& l, Query q) {
@@ -378,15 +390,14 @@ Result intersect(const EllipticCone& s, const Line& l, Query q) {
     bool negative = detail::frame_orientation(s) < 0;
     double extent =
         std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.H), max_abs(s.a), max_abs(s.b)});
-    if (std::optional<Unit> u = unit_scale(l, extent, {s.C, s.H, s.a, s.b, l.L0})) {
-        double f = 1 / u->pos_factor;
-        EllipticCone su{f * s.C, f * s.H, f * s.a, f * s.b, s.finite};
-        auto dd = exact_form::line_quadratic<BoundedDD>(su, u->line, negative);
-        if (std::optional<Result> r = double_double_rung(dd, *u, q))
-            return finish(*r, Rung::double_double);
-    }
-    return finish(exact_rung(exact_form::line_quadratic<BigFloat>(s, l, negative), l, q),
-                  Rung::exact);
+    return ladder(
+        s, l, q, extent, {s.C, s.H, s.a, s.b, l.L0},
+        [](const EllipticCone& x, double f) {
+            return EllipticCone{f * x.C, f * x.H, f * x.a, f * x.b, x.finite};
+        },
+        [&](auto number, const EllipticCone& x, const Line& line) {
+            return exact_form::line_quadratic<decltype(number)>(x, line, negative);
+        });
 }
 
 } // namespace correct
