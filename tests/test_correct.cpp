@@ -6,6 +6,7 @@
 #include "bounded_dd.hpp"
 
 #include "linequad/exact.hpp"
+#include "linequad/expansion.hpp"
 #include "linequad/families.hpp"
 
 #include <gmp.h>
@@ -101,6 +102,72 @@ TEST_CASE("BigFloat sums and products are exact over the whole double range") {
         CHECK(std::fabs(ap.m) >= 1);
         CHECK(std::fabs(ap.m) < 2);
         mpfr_clears(exact, approx, (mpfr_ptr) nullptr);
+    }
+}
+
+namespace {
+
+// A vector whose components are far apart: one exponent near `base`, the others up to 1100
+// binades below it (into subnormals or to zero), so that two-fold products underflow while
+// the third factor is huge.
+Vec3 spread_vector(std::mt19937_64& rng, int base) {
+    Vec3 u;
+    for (int k = 0; k < 3; ++k) {
+        double m = std::uniform_real_distribution<double>(1, 2)(rng);
+        int drop = rng() % 3 == 0 ? 0 : int(rng() % 1100);
+        double x = rng() % 5 == 0 ? 0 : std::ldexp(rng() % 2 ? -m : m, base - drop);
+        (k == 0 ? u.x : k == 1 ? u.y : u.z) = x;
+    }
+    return u;
+}
+
+// sgn(a . (b x (H - C))) in GMP rationals.
+int det_sign_gmp(Vec3 a, Vec3 b, Vec3 C, Vec3 H) {
+    Q c[3], t, u, det;
+    for (int k = 0; k < 3; ++k) {
+        Q h(H[k]), g(C[k]);
+        mpq_sub(c[k].q, h.q, g.q);
+    }
+    for (int i = 0; i < 3; ++i) {
+        int j = (i + 1) % 3, k = (i + 2) % 3;
+        Q ai(a[i]), bj(b[j]), bk(b[k]);
+        mpq_mul(t.q, bj.q, c[k].q);
+        mpq_mul(u.q, bk.q, c[j].q);
+        mpq_sub(t.q, t.q, u.q);
+        mpq_mul(t.q, ai.q, t.q);
+        mpq_add(det.q, det.q, t.q);
+    }
+    return mpq_sgn(det.q);
+}
+
+} // namespace
+
+TEST_CASE("frame orientation is exact when products underflow inside a huge determinant") {
+    // The fuzzer's case: b.y (H.x - C.x) = 2^-1452 underflows to zero in doubles, and a.z =
+    // 2^954 makes it the determinant's largest term (2^-498). The double filter once believed
+    // the rest and called this frame left-handed.
+    Vec3 C{-0x1.2923192929292p-726, -0x1.2929292929292p-726, -0x1.2929292929292p-726};
+    Vec3 H{-0x1.5929292929292p-731, -0x1.2923192929292p-726, -0x1.2929292929292p-726};
+    Vec3 a{-0x1.2929292929292p-726, -0x1.592928e929292p-731, 0x1.2929292929292p+954};
+    Vec3 b{0x0.dbc8525646922p-1022, -0x1.2922c5d22616p-726, 0x1.27b9292929292p+659};
+    REQUIRE(det_sign_gmp(a, b, C, H) == 1);
+    CHECK(cone_det_sign_exact(a, b, C, H) == 1);
+
+    std::mt19937_64 rng(23);
+    for (int i = 0; i < 20000; ++i) {
+        int base_a = int(rng() % 1800) - 900, base_b = int(rng() % 1800) - 900,
+            base_c = int(rng() % 1800) - 900;
+        Vec3 a = spread_vector(rng, base_a), b = spread_vector(rng, base_b);
+        Vec3 c = spread_vector(rng, base_c), C = spread_vector(rng, base_c);
+        // H near C half the time, so that H - C cancels to a few bits as in the fuzzer's case.
+        Vec3 H = rng() % 2 ? C + ldexp(spread_vector(rng, base_c), -int(rng() % 60)) : c;
+        INFO(hex(a.x) << " " << hex(a.y) << " " << hex(a.z) << " / " << hex(b.x) << " " << hex(b.y)
+                      << " " << hex(b.z));
+        INFO("c " << hex(c.x) << " " << hex(c.y) << " " << hex(c.z));
+        INFO("C " << hex(C.x) << " " << hex(C.y) << " " << hex(C.z) << " H " << hex(H.x) << " "
+                  << hex(H.y) << " " << hex(H.z));
+        REQUIRE(det3_sign_exact(a, b, c) == det_sign_gmp(a, b, Vec3{}, c));
+        REQUIRE(cone_det_sign_exact(a, b, C, H) == det_sign_gmp(a, b, C, H));
     }
 }
 
