@@ -28,6 +28,9 @@ constexpr double u = 0x1p-53;
 inline double up(double e, bool may_have_rounded) {
     return e * (1 + 0x1p-49) + (e != 0 || may_have_rounded ? 0x1p-1060 : 0.0);
 }
+inline bool exact_zero(Bounded x) {
+    return x.v == 0 && x.e == 0;
+}
 } // namespace bounded_detail
 
 // For exact operands the rounding error itself is known exactly (two_sum, fma): exact results
@@ -54,7 +57,10 @@ inline Bounded operator*(Bounded a, Bounded b) {
     }
     double e =
         std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e + bounded_detail::u * std::fabs(p);
-    return {p, bounded_detail::up(e, a.v != 0 && b.v != 0)}; // 0 * x is exact; x * y may underflow
+    // Only an exact zero factor makes the product exact. Otherwise the bound's own products may
+    // underflow to zero (2^-392 times an error of 2^-881), and the floor must stay.
+    bool exact = bounded_detail::exact_zero(a) || bounded_detail::exact_zero(b);
+    return {p, bounded_detail::up(e, !exact)};
 }
 // |b| > b.e is required (the divisor's sign is certain); otherwise the bound is infinite.
 inline Bounded operator/(Bounded a, Bounded b) {
@@ -66,7 +72,7 @@ inline Bounded operator/(Bounded a, Bounded b) {
         return {q, r == 0 ? 0.0 : bounded_detail::up(std::fabs(r) / std::fabs(b.v), true)};
     }
     double e = (a.e + std::fabs(q) * b.e) / gap + bounded_detail::u * std::fabs(q);
-    return {q, bounded_detail::up(e, a.v != 0)};
+    return {q, bounded_detail::up(e, !bounded_detail::exact_zero(a))};
 }
 // For an argument whose exact value is known to be >= 0.
 inline Bounded sqrt(Bounded a) {
@@ -75,7 +81,7 @@ inline Bounded sqrt(Bounded a) {
     double low = std::sqrt(std::fmax(a.v - a.e, 0.0));
     double denom = r + low;
     double e = denom > 0 ? a.e / denom : std::sqrt(a.e); // |sqrt(x) - sqrt(y)| <= sqrt(|x - y|)
-    return {r, bounded_detail::up(e + bounded_detail::u * r, r != 0)};
+    return {r, bounded_detail::up(e + bounded_detail::u * r, !bounded_detail::exact_zero(a))};
 }
 
 } // namespace linequad
