@@ -18,6 +18,8 @@
 #include "linequad/line_quadratic.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace linequad {
 
@@ -40,6 +42,13 @@ inline double mag(const BoundedDD& x) {
 }
 inline double up(double e) {
     return e * (1 + 0x1p-50) + 0x1p-1060;
+}
+// +-2^k with |k| < 1000 (std::frexp would be a library call on the hot path).
+LINEQUAD_INLINE bool moderate_power_of_two(double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    int biased = int((bits >> 52) & 0x7ff);
+    return (bits & 0x000fffffffffffffu) == 0 && biased > 1023 - 1000 && biased < 1023 + 1000;
 }
 // A product of doubles whose low part is exact: neither factor is tiny enough to underflow.
 inline bool product_exact(double a, double b, double p) {
@@ -87,9 +96,8 @@ LINEQUAD_INLINE BoundedDD operator*(const BoundedDD& a, const BoundedDD& b) {
 // Infinite bound unless the divisor's sign is certain.
 LINEQUAD_INLINE BoundedDD operator/(const BoundedDD& a, const BoundedDD& b) {
     using dd_detail::mag;
-    int exponent;
-    if (a.e == 0 && b.e == 0 && b.lo == 0 && std::frexp(b.hi, &exponent) == 0.5 &&
-        exponent > -1000 && exponent < 1000) { // by a power of two: exact, far from underflow
+    if (a.e == 0 && b.e == 0 && b.lo == 0 && dd_detail::moderate_power_of_two(b.hi)) {
+        // by a power of two: exact, far from underflow
         double inv = 1 / b.hi;
         if ((a.hi == 0 || std::fabs(a.hi * inv) >= 0x1p-900) &&
             (a.lo == 0 || std::fabs(a.lo * inv) >= 0x1p-1000))
