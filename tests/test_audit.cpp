@@ -10,6 +10,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 #include <thread>
 
 using namespace linequad;
@@ -143,6 +144,29 @@ TEST_CASE("audit: grading a results file gives the in-process verdict", "[audit]
         require_same(graded.rows.at(key), row);
     }
     fs::remove_all(dir);
+}
+
+TEST_CASE("audit: the batch point is graded on every case as stable is", "[audit]") {
+    audit::Options o = small(60);
+    o.solvers = {"stable", audit::batch_name};
+    audit::Report r = audit::run(o);
+    REQUIRE(r.solvers == std::vector<std::string>{"stable", "batch"});
+    int rows = 0;
+    for (const auto& [key, row] : r.rows) {
+        if (key.size() < 6 || key.compare(key.size() - 6, 6, "/batch") != 0) continue;
+        std::string stable = key.substr(0, key.size() - 6) + "/stable";
+        INFO(key);
+        REQUIRE(r.rows.count(stable));
+        // Bit for bit the same results, so the same grades; and a time for every chunk.
+        require_same(row, r.rows.at(stable));
+        auto chunks = [](const audit::TimeHistogram& h) {
+            return std::accumulate(h.count.begin(), h.count.end(), std::uint64_t(0));
+        };
+        CHECK(chunks(row.ns) == chunks(r.rows.at(stable).ns));
+        CHECK(row.ns.median() > 0);
+        ++rows;
+    }
+    CHECK(rows == int(r.rows.size() / 2));
 }
 
 TEST_CASE("audit: unanswered cases count as refused and malformed files are named", "[audit]") {

@@ -301,7 +301,10 @@ void write_markdown(const Report& r, const std::string& dir) {
           "violated when |t - t_oracle| exceeds it by more than half an ulp (the oracle's "
           "rounding); "
           "bound/err is how loose the bound is. ns/solve: median over "
-          "chunks of 256 cases, this run, this machine.\n\n";
+          "chunks of 256 cases, this run, this machine. batch is stable's batch path (its "
+          "results equal stable's bit for bit): graded on every case, one line per call; its "
+          "ns is per line, each chunk's lines solved as one batch against four of the chunk's "
+          "shapes.\n\n";
 
     md << "## Headline: every family\n\n";
     md << "| solver | cases | mismatched | uncertain | bound violations | t max ulps | t p99 | t "

@@ -1,10 +1,12 @@
 // The campaign loop, the grading of results files, and report provenance.
 #include "linequad/audit.hpp"
 
+#include "linequad/batch.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/exact.hpp"
 #include "linequad/registry.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -132,6 +134,39 @@ std::vector<const Solver*> solvers_of(const Options& o) {
     return out;
 }
 
+bool batch_wanted(const Options& o) {
+    return o.solvers.empty() ||
+           std::find(o.solvers.begin(), o.solvers.end(), batch_name) != o.solvers.end();
+}
+
+// The batch point of the Pareto plot. Its error: every case through the batch path, one line
+// per call. Its time: the chunk's lines as one batch (they share the range) against the shapes
+// of up to four of the chunk's cases, per line, as a renderer's packet would use it.
+void run_batch(const std::vector<Case>& cases, std::vector<Result>& got, double* ns_per_line) {
+    std::vector<double> soa[6];
+    for (const Case& c : cases)
+        for (int k = 0; k < 3; ++k)
+            soa[k].push_back(c.line.L0[k]), soa[3 + k].push_back(c.line.v[k]);
+    auto solve = [](const Shape& shape, const LineArrays& lines, Result* out) {
+        std::visit([&](const auto& s) { stable::intersect(s, lines, Query{}, out); }, shape);
+    };
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        LineArrays one{&soa[0][i], &soa[1][i], &soa[2][i], &soa[3][i],
+                       &soa[4][i], &soa[5][i], 1,          cases[i].line.range};
+        solve(cases[i].shape, one, &got[i]);
+    }
+    LineArrays all{soa[0].data(), soa[1].data(), soa[2].data(), soa[3].data(),
+                   soa[4].data(), soa[5].data(), cases.size(),  cases[0].line.range};
+    std::vector<Result> packet(cases.size());
+    std::size_t shapes = std::min<std::size_t>(4, cases.size());
+    auto t0 = std::chrono::steady_clock::now();
+    for (std::size_t j = 0; j < shapes; ++j)
+        solve(cases[j].shape, all, packet.data());
+    auto t1 = std::chrono::steady_clock::now();
+    *ns_per_line =
+        std::chrono::duration<double, std::nano>(t1 - t0).count() / double(shapes * cases.size());
+}
+
 void finish(Report& rep, const Options& o, std::chrono::steady_clock::time_point start) {
     rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto& st = exact::rounding_stats();
@@ -221,6 +256,8 @@ Report run(const Options& o) {
     std::vector<const Solver*> solvers = solvers_of(o);
     for (const Solver* s : solvers)
         rep.solvers.emplace_back(s->name);
+    bool batch = batch_wanted(o);
+    if (batch) rep.solvers.emplace_back(batch_name);
     std::vector<Group> groups = groups_of(o);
     exact::rounding_stats() = {};
     stop_requested = false;
@@ -259,6 +296,16 @@ Report run(const Options& o) {
                 for (std::size_t i = 0; i < cases.size(); ++i)
                     grade(cases[i], std::string(s->name), got[i], oracle[i], row,
                           &curve[cases[i].k]);
+            }
+            if (batch) {
+                std::string family = family_name(grp.family);
+                Row& row = rep.rows[family + "/" + shape_label(grp.shape) + "/" + batch_name];
+                double ns = 0;
+                run_batch(cases, got, &ns);
+                row.ns.add(ns);
+                auto& curve = rep.curves[family + "/" + batch_name];
+                for (std::size_t i = 0; i < cases.size(); ++i)
+                    grade(cases[i], batch_name, got[i], oracle[i], row, &curve[cases[i].k]);
             }
             progress.advance(cases.size());
         }

@@ -165,7 +165,7 @@ std::string parse_campaign(int argc, char** argv, audit::Options& o, bool* check
                 std::string name = list.substr(start, comma - start);
                 start = comma + 1;
                 if (a == "--solvers") {
-                    if (!find_solver(name))
+                    if (!find_solver(name) && name != audit::batch_name)
                         return "no solver named '" + name + "' (see: linequad solvers)";
                     o.solvers.push_back(name);
                 } else {

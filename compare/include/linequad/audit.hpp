@@ -111,10 +111,14 @@ struct Report {
 void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
            Row& row, CurvePoint* curve, bool points = true);
 
+// The audit's name for stable's batch path (many lines against one shape): not a Solver, since
+// it takes lines in arrays. Graded like stable, whose results it equals bit for bit.
+inline constexpr const char* batch_name = "batch";
+
 struct Options {
     std::uint64_t seed = 1, cases_per_group = 100000;
     std::vector<Family> families;     // empty: all
-    std::vector<std::string> solvers; // empty: every fast solver
+    std::vector<std::string> solvers; // empty: every fast solver, and batch
     int shard = 0, shards = 1;
     std::string out_dir;                  // reports/<run>
     std::string results_file, cases_file; // grade someone else's answers
