@@ -159,7 +159,9 @@ std::string replay(const Worst& w, const std::string& solver) {
     std::string quoted;
     for (char c : w.case_line)
         quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return "echo '" + quoted + "' | linequad solve --solver " + solver + ",exact";
+    // `solve` takes one line at a time; batch's results are stable's, bit for bit.
+    std::string scalar = solver == batch_name ? "stable" : solver;
+    return "echo '" + quoted + "' | linequad solve --solver " + scalar + ",exact";
 }
 
 } // namespace
