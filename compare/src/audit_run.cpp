@@ -141,8 +141,9 @@ bool batch_wanted(const Options& o) {
 
 // The batch point of the Pareto plot. Its error: every case through the batch path, one line
 // per call. Its time: the chunk's lines as one batch (they share the range) against the shapes
-// of up to four of the chunk's cases, per line, as a renderer's packet would use it.
-void run_batch(const std::vector<Case>& cases, std::vector<Result>& got, double* ns_per_line) {
+// of up to four of the chunk's cases, per line, as a renderer's packet would use it. Returns
+// the ns per line; got[i] is case i's result.
+double run_batch(const std::vector<Case>& cases, std::vector<Result>& got) {
     std::vector<double> soa[6];
     for (const Case& c : cases)
         for (int k = 0; k < 3; ++k)
@@ -163,8 +164,8 @@ void run_batch(const std::vector<Case>& cases, std::vector<Result>& got, double*
     for (std::size_t j = 0; j < shapes; ++j)
         solve(cases[j].shape, all, packet.data());
     auto t1 = std::chrono::steady_clock::now();
-    *ns_per_line =
-        std::chrono::duration<double, std::nano>(t1 - t0).count() / double(shapes * cases.size());
+    return std::chrono::duration<double, std::nano>(t1 - t0).count() /
+           double(shapes * cases.size());
 }
 
 void finish(Report& rep, const Options& o, std::chrono::steady_clock::time_point start) {
@@ -300,9 +301,7 @@ Report run(const Options& o) {
             if (batch) {
                 std::string family = family_name(grp.family);
                 Row& row = rep.rows[family + "/" + shape_label(grp.shape) + "/" + batch_name];
-                double ns = 0;
-                run_batch(cases, got, &ns);
-                row.ns.add(ns);
+                row.ns.add(run_batch(cases, got));
                 auto& curve = rep.curves[family + "/" + batch_name];
                 for (std::size_t i = 0; i < cases.size(); ++i)
                     grade(cases[i], batch_name, got[i], oracle[i], row, &curve[cases[i].k]);
