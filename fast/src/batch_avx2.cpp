@@ -125,7 +125,7 @@ void cylinder_stable_x4(const Cylinder& s, double shape_extent, const double* co
                          scaled(ln.to_unit, ln.L0), scaled(ln.dir_to_unit, ln.v),
                          ln.to_unit * D4(s.r));
     D4 min_size(min_relative_size), tiny(tiny_decisive);
-    M4 generic = ln.ok & (k.r >= min_size) & (k.hn >= min_size) & (k.A >= tiny);
+    M4 generic = ln.ok & (k.r >= min_size) & (k.hh >= min_size * min_size) & (k.A >= tiny);
     k.discriminant();
     generic = generic & (fabs(k.D) >= tiny);
     auto z_of = [&](D4 t, D4 sm, M4 from_vieta) {

@@ -14,16 +14,18 @@
 // seed: seed 001 as written, with the unit axis h^ = h / |h| and a = v.v - (v.h^)^2 etc.
 //
 // stable: the cross-product form above, and
-//  - the discriminant in geometric form. With det = v . (w x h) (the triple product, which is
-//    |v x h| times the distance from the axis to the line, times |h|),
-//        D = B^2 - A C0 = (h.h) (r^2 A - det^2) = (h.h) (r sqrt(A) - |det|)(r sqrt(A) + |det|),
-//    so the sign of D is decided by a difference of two accurate numbers, not of two squares;
-//    det and v x h in double-double, with h = H - C exact (a line nearly along the axis makes
-//    both tiny differences);
+//  - the discriminant in geometric form. With det = (v x h) . w (the triple product: |v x h|
+//    times the line's distance from the axis, times |h|; any point of the line will do for w),
+//        D = B^2 - A C0 = (h.h) (r^2 A - det^2),
+//    a difference of two accurate numbers, with det^2 exact inside one fma, not of the two
+//    large squares B^2 and A C0. v x h from h = H - C exactly (hi + lo) by Kahan's fma
+//    difference of products: a line nearly along the axis makes it a tiny difference. det is a
+//    compensated dot product with the moved origin below, whose own rounding is what remains
+//    (a few ulps of |v x h| |w|, as for any rounded point of the line);
 //  - the origin moved to the line's point of closest approach to the middle of the axis before
 //    B and C0 are formed (never farther than the caller's origin; det does not change);
 //  - the stable root pair q / A, C0 / q, then t = t_c + s; a root that cancels there (near the
-//    caller's origin) from Vieta instead (t1 t2 = C0 / A, C0 = (|w x h| - r|h|)(|w x h| + r|h|));
+//    caller's origin) from Vieta instead (t1 t2 = C0 / A, with C0 = |w x h|^2 - r^2 (h.h));
 //  - A = 0 exactly when the line is parallel to the axis: no hit, or on the surface when
 //    C0 = 0, which only the certified computation may claim (rounded zeros are no proof);
 //  - the scene prescaled by powers of two (exact) so no product overflows or underflows.
@@ -69,7 +71,7 @@ Result stable::intersect(const Cylinder& s, const Line& l, Query q) {
     double extent = std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.H), s.r});
     Prescale ps = prescale_for(extent, l.v);
     CylinderStable<double> k(ps.pos(s.C), ps.pos(s.H), ps.pos(l.L0), ps.dir(l.v), ps.len(s.r));
-    if (k.r < min_relative_size || k.hn < min_relative_size)
+    if (k.r < min_relative_size || k.hh < min_relative_size * min_relative_size)
         return Result::failure(ErrorCode::out_of_range, "r,H-C");
     auto fragile = [&] { return fragile_scene(extent, {s.C, s.H, l.L0, {s.r, 0, 0}}, l.v); };
     Extent e = s.finite ? Extent{0, k.hh} : Extent{-inf, inf};

@@ -29,60 +29,58 @@ struct CylinderStable {
     // Prescaled inputs and what depends on the shape and the line's direction.
     Vec3TwoTermT<T> hx, w;
     Vec3T<T> h, v, vh;
-    T r, hh, hn, rh, A;
+    T r, hh, r2, r2hh, A, inv_vv, dz;
     // From the moved origin.
-    T tc, B, Cc, D;
+    T tc, B, Cc, D, zc;
     Vec3T<T> wc;
 
     CylinderStable(Vec3T<T> C, Vec3T<T> H, Vec3T<T> L0, Vec3T<T> v_, T r_) : v(v_), r(r_) {
-        using std::sqrt;
         // h = H - C exactly, as hi + lo: for a line nearly along the axis, v x h is a tiny
         // difference that the rounding of H - C alone would swamp.
         hx = difference_exact(H, C);
         h = hx.rounded();
         hh = dot(h, h);
-        hn = sqrt(hh);
         w = difference_exact(L0, C);
-        vh = cross_dd(v, hx).rounded();
+        vh = cross_accurate(v, hx);
         A = dot(vh, vh);
-        rh = r * hn;
+        r2 = r * r;
+        r2hh = r2 * hh;
+        inv_vv = T(1) / dot(v, v); // tc need not be a rounded quotient: any tc is an exact move
+        dz = dot(v, h);
     }
 
     // C0 at the caller's origin: for lines parallel to the axis, and for Vieta's product.
     T C0_at_origin() const {
-        T wn = norm(cross_dd(w.rounded(), hx).rounded());
-        return (wn - rh) * (wn + rh);
+        Vec3T<T> wh = cross_accurate(w.rounded(), hx);
+        return dot(wh, wh) - r2hh;
     }
 
     // The origin moved to the line's closest approach to the axis' midpoint: never farther
     // than the caller's origin, so every later product is as small as the geometry allows.
-    // Then B, Cc and the discriminant in geometric form (D = -1 when the line misses).
+    // Then B, Cc and the discriminant in geometric form. The rounded products of Cc and D are
+    // no less accurate than a factored (sqrt - r|h|)(sqrt + r|h|) form would be: their inputs
+    // are rounded already.
     void discriminant() {
-        using std::fabs;
-        using std::sqrt;
-        tc = -dot(v, w.rounded() - T(0.5) * h) / dot(v, v); // any tc is an exact move
+        using std::fma;
+        tc = -dot(v, w.rounded() - T(0.5) * h) * inv_vv;
         wc = moved_origin(w, tc, v);
-        Vec3TwoTermT<T> whc = cross_dd(wc, hx);
-        B = dot2(vh, whc.rounded());
-        T wn = norm(whc.rounded());
-        Cc = (wn - rh) * (wn + rh);
-        // det = v . (w x h): the line's distance to the axis times |v x h| |h|, a triple
-        // product in double-double (moving along the line does not change it).
-        T det = fabs(dot2(v, whc));
-        T rA = r * sqrt(A);
-        T gap = rA - det;
-        D = select(gap < T(0), T(-1), hh * gap * (rA + det));
+        Vec3T<T> whc = cross_accurate(wc, hx);
+        B = dot2(vh, whc);
+        zc = dot(wc, h);
+        Cc = dot(whc, whc) - r2hh;
+        T det = dot2(vh, wc);
+        D = hh * fma(-det, det, r2 * A);
     }
 
     // z = (P - C) . h at a root: from the moved origin, or from the caller's for a root that
     // came from Vieta's product (near the caller's origin); one fma either way.
     T z_moved(T s) const {
         using std::fma;
-        return fma(s, dot2(v, h), dot2(wc, h));
+        return fma(s, dz, zc);
     }
     T z_at_origin(T t) const {
         using std::fma;
-        return fma(t, dot2(v, h), dot2(w.rounded(), h));
+        return fma(t, dz, dot2(w.rounded(), h));
     }
 };
 

@@ -81,6 +81,17 @@ LINEQUAD_INLINE TwoTermT<T> difference_of_products_dd(T a, T b, T c, T d) {
     return fast_two_sum(s.hi, s.lo + (p.lo - q.lo));
 }
 
+// a*b - c*d within 2 ulps, by Kahan's algorithm with a fused multiply-add (the bound is
+// Jeannerod, Louvet and Muller's): a third of difference_of_products_dd's work, for a product
+// that is rounded to double anyway.
+template <class T>
+LINEQUAD_INLINE T difference_of_products(T a, T b, T c, T d) {
+    using std::fma;
+    T cd = c * d;
+    T err = fma(-c, d, cd); // cd - c*d, exactly
+    return fma(a, b, -cd) + err;
+}
+
 template <class T>
 struct Vec3TwoTermT {
     Vec3T<T> hi, lo;
@@ -110,6 +121,15 @@ LINEQUAD_INLINE Vec3TwoTermT<T> cross_dd(const Vec3TwoTermT<T>& a, Vec3T<T> b) {
     Vec3TwoTermT<T> r = cross_dd(a.hi, b);
     r.lo = r.lo + cross(a.lo, b);
     return r;
+}
+
+// a x (b_hi + b_lo), each component within a few ulps of the exact cross product.
+template <class T>
+LINEQUAD_INLINE Vec3T<T> cross_accurate(Vec3T<T> a, const Vec3TwoTermT<T>& b) {
+    Vec3T<T> r{difference_of_products(a.y, b.hi.z, a.z, b.hi.y),
+               difference_of_products(a.z, b.hi.x, a.x, b.hi.z),
+               difference_of_products(a.x, b.hi.y, a.y, b.hi.x)};
+    return r + cross(a, b.lo);
 }
 
 // u . (n_hi + n_lo), compensated: a triple product accurate even when it nearly vanishes.
