@@ -30,9 +30,10 @@
 //    C0 = 0, which only the certified computation may claim (rounded zeros are no proof);
 //  - the scene prescaled by powers of two (exact) so no product overflows or underflows.
 //
-// certified: the same quantities in Bounded arithmetic (value and rigorous error bound, see
-// bounded.hpp), with h = H - C exact (hi, bound |lo|) and the moved origin bounded; a sign is
-// used only when the bound excludes zero, so a certain classification is never wrong.
+// certified: the same quantities in bounded arithmetic (value and rigorous error bound, see
+// bounded.hpp: QuickBounded first, Bounded when that leaves anything uncertain), with
+// h = H - C exact (hi, bound |lo|) and the moved origin bounded; a sign is used only when the
+// bound excludes zero, so a certain classification is never wrong.
 #include "linequad/cylinder.hpp"
 
 #include "cylinder_stable.hpp"
@@ -91,24 +92,26 @@ Result certified::intersect(const Cylinder& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "v,H-C");
     Prescale ps = prescale_for(extent, l.v);
     Vec3 C = ps.pos(s.C), v = ps.dir(l.v);
-    BoundedVec3 h = difference_bounded(ps.pos(s.H), C), V = exact(v);
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), C);
-    // Any tc is an exact move of the origin; the closest approach to the axis' middle keeps
-    // the bounded quantities small.
-    // A line exactly parallel to the axis is not moved, so that its exact zeros stay exact.
-    Bounded R = Bounded::exact(ps.len(s.r)), hh = dot(h, h);
-    BoundedVec3 vxh = cross(V, h);
-    Bounded A = dot(vxh, vxh);
-    Vec3 hm{h.x.v, h.y.v, h.z.v};
-    double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * hm) / dot(v, v);
-    BoundedVec3 wc = moved_origin_bounded(w, tc, v), wxh = cross(wc, h);
-    Bounded det = dot(V, wxh);
-    BoundedQuadratic quad{A, dot(vxh, wxh), dot(wxh, wxh) - R * R * hh,
-                          hh * (R * R * A - det * det)};
-    CertifiedRoots cr = certified_roots(quad);
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
-    Bounded z0 = dot(wc, h) / hh, dz = dot(V, h) / hh; // z = (P - C) . h / h.h
-    return certified_result(cr, tc, z0, dz, ps.t_scale(), e, l, q);
+    return certified_solve([&](auto number) {
+        using B = decltype(number);
+        BoundedVec3<B> h = difference_bounded<B>(ps.pos(s.H), C), V = exact<B>(v);
+        // Any tc is an exact move of the origin; the closest approach to the axis' middle keeps
+        // the bounded quantities small.
+        // A line exactly parallel to the axis is not moved, so that its exact zeros stay exact.
+        B R = B::exact(ps.len(s.r)), hh = dot(h, h);
+        BoundedVec3<B> vxh = cross(V, h);
+        B A = dot(vxh, vxh);
+        Vec3 hm{h.x.v, h.y.v, h.z.v};
+        double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * hm) / dot(v, v);
+        BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), wxh = cross(wc, h);
+        B det = dot(V, wxh);
+        BoundedQuadratic<B> quad{A, dot(vxh, wxh), dot(wxh, wxh) - R * R * hh,
+                                 hh * (R * R * A - det * det)};
+        B z0 = dot(wc, h) / hh, dz = dot(V, h) / hh; // z = (P - C) . h / h.h
+        return certified_result(certified_roots(quad), tc, z0, dz, ps.t_scale(), e, l, q);
+    });
 }
 
 } // namespace linequad

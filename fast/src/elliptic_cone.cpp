@@ -25,8 +25,8 @@
 // Roots are the stable pair q / A, C0 / q, paired back as for the circular cylinder
 // (src/cylinder.cpp); a line on the surface only from the certified computation.
 //
-// certified: the same quantities in Bounded arithmetic, c = H - C exact (hi and bound); signs
-// used only when certain (see cylinder.cpp).
+// certified: the same quantities in bounded arithmetic (QuickBounded, then Bounded when needed),
+// c = H - C exact (hi and bound); signs used only when certain (see cylinder.cpp).
 #include "linequad/elliptic_cone.hpp"
 
 #include "elliptic_stable.hpp"
@@ -84,24 +84,25 @@ Result certified::intersect(const EllipticCone& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "v,a,b,H-C");
     Prescale ps = prescale_for(extent, l.v);
     Vec3 H = ps.pos(s.H), v = ps.dir(l.v);
-    BoundedVec3 a3 = exact(ps.pos(s.a)), b3 = exact(ps.pos(s.b)), V = exact(v);
-    BoundedVec3 c3 = difference_bounded(H, ps.pos(s.C)); // c = H - C exactly, as hi and bound
-    BoundedDualFrame frame(a3, b3, c3);
-    auto local = [&](const BoundedVec3& u) { return frame.local(u); };
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), H);
-    BoundedVec3 vl = local(V);
-    Bounded A = vl.x * vl.x + vl.y * vl.y - vl.z * vl.z;
-    // Closest approach to the apex; not moved along a generator, where exact zeros decide.
-    double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded()) / dot(v, v);
-    BoundedVec3 wc = moved_origin_bounded(w, tc, v), wl = local(wc);
-    BoundedVec3 vw = cross(V, wc);
-    BoundedVec3 u{dot(a3, vw) / frame.det, dot(b3, vw) / frame.det, dot(c3, vw) / frame.det};
-    BoundedQuadratic quad{A, vl.x * wl.x + vl.y * wl.y - vl.z * wl.z,
-                          wl.x * wl.x + wl.y * wl.y - wl.z * wl.z,
-                          u.x * u.x + u.y * u.y - u.z * u.z};
-    CertifiedRoots cr = certified_roots(quad);
     Extent e = s.finite ? Extent{-1, 0} : Extent{-inf, 0};
-    return certified_result(cr, tc, wl.z, vl.z, ps.t_scale(), e, l, q);
+    return certified_solve([&](auto number) {
+        using B = decltype(number);
+        BoundedVec3<B> a3 = exact<B>(ps.pos(s.a)), b3 = exact<B>(ps.pos(s.b)), V = exact<B>(v);
+        BoundedVec3<B> c3 = difference_bounded<B>(H, ps.pos(s.C)); // c = H - C exactly
+        BoundedDualFrame<B> frame(a3, b3, c3);
+        BoundedVec3<B> vl = frame.local(V);
+        B A = vl.x * vl.x + vl.y * vl.y - vl.z * vl.z;
+        // Closest approach to the apex; not moved along a generator, where exact zeros decide.
+        double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded()) / dot(v, v);
+        BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), wl = frame.local(wc);
+        BoundedVec3<B> vw = cross(V, wc);
+        BoundedVec3<B> u{dot(a3, vw) / frame.det, dot(b3, vw) / frame.det, dot(c3, vw) / frame.det};
+        BoundedQuadratic<B> quad{A, vl.x * wl.x + vl.y * wl.y - vl.z * wl.z,
+                                 wl.x * wl.x + wl.y * wl.y - wl.z * wl.z,
+                                 u.x * u.x + u.y * u.y - u.z * u.z};
+        return certified_result(certified_roots(quad), tc, wl.z, vl.z, ps.t_scale(), e, l, q);
+    });
 }
 
 } // namespace linequad

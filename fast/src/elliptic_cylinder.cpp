@@ -17,8 +17,9 @@
 // and the roots paired as for the circular cylinder (src/cylinder.cpp). A = 0 exactly when v'
 // is along the axis (on the surface only from the certified computation).
 //
-// certified: the same quantities in Bounded arithmetic, the dual frame as adjugate rows over a
-// bounded determinant; signs used only when certain (see cylinder.cpp).
+// certified: the same quantities in bounded arithmetic (QuickBounded, then Bounded when needed),
+// the dual frame as adjugate rows over a bounded determinant; signs used only when certain (see
+// cylinder.cpp).
 #include "linequad/elliptic_cylinder.hpp"
 
 #include "elliptic_stable.hpp"
@@ -78,20 +79,22 @@ Result certified::intersect(const EllipticCylinder& s, const Line& l, Query q) {
         return Result::failure(ErrorCode::out_of_range, "v,a,b,c");
     Prescale ps = prescale_for(extent, l.v);
     Vec3 c = ps.pos(s.c), v = ps.dir(l.v);
-    BoundedVec3 a3 = exact(ps.pos(s.a)), b3 = exact(ps.pos(s.b)), c3 = exact(c), V = exact(v);
-    BoundedDualFrame frame(a3, b3, c3);
-    auto local = [&](const BoundedVec3& u) { return frame.local(u); };
     Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
-    BoundedVec3 vl = local(V);
-    Bounded A = vl.x * vl.x + vl.y * vl.y;
-    double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * c) / dot(v, v);
-    BoundedVec3 wc = moved_origin_bounded(w, tc, v), wl = local(wc);
-    Bounded u = dot(c3, cross(V, wc)) / frame.det;
-    BoundedQuadratic quad{A, vl.x * wl.x + vl.y * wl.y,
-                          wl.x * wl.x + wl.y * wl.y - Bounded::exact(1), A - u * u};
-    CertifiedRoots cr = certified_roots(quad);
     Extent e = s.finite ? Extent{0, 1} : Extent{-inf, inf};
-    return certified_result(cr, tc, wl.z, vl.z, ps.t_scale(), e, l, q);
+    return certified_solve([&](auto number) {
+        using B = decltype(number);
+        BoundedVec3<B> a3 = exact<B>(ps.pos(s.a)), b3 = exact<B>(ps.pos(s.b)), c3 = exact<B>(c),
+                       V = exact<B>(v);
+        BoundedDualFrame<B> frame(a3, b3, c3);
+        BoundedVec3<B> vl = frame.local(V);
+        B A = vl.x * vl.x + vl.y * vl.y;
+        double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * c) / dot(v, v);
+        BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), wl = frame.local(wc);
+        B u = dot(c3, cross(V, wc)) / frame.det;
+        BoundedQuadratic<B> quad{A, vl.x * wl.x + vl.y * wl.y,
+                                 wl.x * wl.x + wl.y * wl.y - B::exact(1), A - u * u};
+        return certified_result(certified_roots(quad), tc, wl.z, vl.z, ps.t_scale(), e, l, q);
+    });
 }
 
 } // namespace linequad

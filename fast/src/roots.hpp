@@ -170,34 +170,41 @@ inline Result without_certification(Result r) {
 }
 
 // ---- The certified rung: the same quadratic with rigorous bounds on every quantity. ----
+// Each piece is a template over the bounded type BT: QuickBounded (the first try) or Bounded
+// (exact zeros kept exact; the degenerate cases), see bounded.hpp.
 
 // A s^2 + 2 B s + C = 0 in the moved parameter s, with D = B^2 - A C supplied in the shape's
 // geometric form; every term carries its bound.
+template <class BT>
 struct BoundedQuadratic {
-    Bounded A, B, C, D;
+    BT A, B, C, D;
 };
 
+template <class BT>
 struct CertifiedRoot {
-    Bounded s;
+    BT s;
     HitKind kind;
     bool certain; // existence and kind proven
 };
 
+template <class BT>
 struct CertifiedRoots {
     int count = 0;
-    CertifiedRoot root[2];
+    CertifiedRoot<BT> root[2];
     bool on_surface = false;
     bool certain = true; // the classification (count, kinds, interval) is proven
 };
 
-inline bool exactly_zero(Bounded x) {
+template <class BT>
+bool exactly_zero(BT x) {
     return x.v == 0 && x.e == 0;
 }
 
 // Each decision is taken only on a certain sign. Where one is not certain the result is marked
 // uncertain, and the roots it reports (if any) carry bounds that cover every possibility.
-inline CertifiedRoots certified_roots(const BoundedQuadratic& q) {
-    CertifiedRoots r;
+template <class BT>
+CertifiedRoots<BT> certified_roots(const BoundedQuadratic<BT>& q) {
+    CertifiedRoots<BT> r;
     if (exactly_zero(q.A)) { // linear or identically zero: A = 0 is exact here
         if (exactly_zero(q.B)) {
             r.on_surface = exactly_zero(q.C);
@@ -205,7 +212,7 @@ inline CertifiedRoots certified_roots(const BoundedQuadratic& q) {
             return r;
         }
         r.certain = q.B.certain_sign() != 0;
-        if (r.certain) r.root[r.count++] = {-q.C / (Bounded::exact(2) * q.B), HitKind::cross, true};
+        if (r.certain) r.root[r.count++] = {-q.C / (BT::exact(2) * q.B), HitKind::cross, true};
         return r;
     }
     if (q.A.certain_sign() == 0) { // nearly parallel: a root may be arbitrarily far
@@ -216,15 +223,15 @@ inline CertifiedRoots certified_roots(const BoundedQuadratic& q) {
     case -1:
         return r;
     case 1: {
-        Bounded sq = sqrt(q.D);
-        Bounded qq = -(q.B + (q.B.v < 0 ? -sq : sq));
+        BT sq = sqrt(q.D);
+        BT qq = -(q.B + (q.B.v < 0 ? -sq : sq));
         r.root[r.count++] = {qq / q.A, HitKind::cross, true};
         r.root[r.count++] = {q.C / qq, HitKind::cross, true};
         if (r.root[1].s.v < r.root[0].s.v) std::swap(r.root[0], r.root[1]);
         return r;
     }
     default: {
-        Bounded mid = -q.B / q.A;
+        BT mid = -q.B / q.A;
         if (exactly_zero(q.D)) {
             r.root[r.count++] = {mid, HitKind::tangent, true};
             return r;
@@ -232,8 +239,9 @@ inline CertifiedRoots certified_roots(const BoundedQuadratic& q) {
         // D's sign is unknown: no root, a double root, or two close ones. Report the double root
         // with a bound that covers the two roots there may be: |s - mid| <= sqrt(max D) / |A|.
         r.certain = false;
-        double spread = std::sqrt(std::fmax(q.D.v + q.D.e, 0.0)) / (std::fabs(q.A.v) - q.A.e);
-        mid.e = mid.e * (1 + 0x1p-49) + spread * (1 + 0x1p-49);
+        double spread =
+            std::sqrt(std::fmax(q.D.v + q.D.bound(), 0.0)) / (std::fabs(q.A.v) - q.A.bound());
+        mid.e = mid.bound() * (1 + 0x1p-49) + spread * (1 + 0x1p-49);
         r.root[r.count++] = {mid, HitKind::tangent, false};
         return r;
     }
@@ -241,42 +249,50 @@ inline CertifiedRoots certified_roots(const BoundedQuadratic& q) {
 }
 
 // The exact moved origin w + tc v (w = hi + lo exactly), with the bound of its two roundings.
-inline Bounded moved_origin_bounded(double hi, double lo, double tc, double v) {
+template <class BT>
+BT moved_origin_bounded(double hi, double lo, double tc, double v) {
     double x = std::fma(tc, v, hi), y = x + lo;
     return {y, (std::fabs(x) + std::fabs(y)) * 0x1p-53 * (1 + 0x1p-49) + 0x1p-1060};
 }
 
+template <class BT>
 struct BoundedVec3 {
-    Bounded x, y, z;
+    BT x, y, z;
 };
-inline BoundedVec3 exact(Vec3 a) {
-    return {Bounded::exact(a.x), Bounded::exact(a.y), Bounded::exact(a.z)};
+template <class BT>
+BoundedVec3<BT> exact(Vec3 a) {
+    return {BT::exact(a.x), BT::exact(a.y), BT::exact(a.z)};
 }
 // An exact difference p - q, as hi with the bound |lo|.
-inline BoundedVec3 difference_bounded(Vec3 p, Vec3 q) {
+template <class BT>
+BoundedVec3<BT> difference_bounded(Vec3 p, Vec3 q) {
     Vec3TwoTerm d = difference_exact(p, q);
     return {{d.hi.x, std::fabs(d.lo.x)}, {d.hi.y, std::fabs(d.lo.y)}, {d.hi.z, std::fabs(d.lo.z)}};
 }
-inline Bounded dot(const BoundedVec3& a, const BoundedVec3& b) {
+template <class BT>
+LINEQUAD_INLINE BT dot(const BoundedVec3<BT>& a, const BoundedVec3<BT>& b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
-inline BoundedVec3 cross(const BoundedVec3& a, const BoundedVec3& b) {
+template <class BT>
+LINEQUAD_INLINE BoundedVec3<BT> cross(const BoundedVec3<BT>& a, const BoundedVec3<BT>& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline BoundedVec3 moved_origin_bounded(const Vec3TwoTerm& w, double tc, Vec3 v) {
+template <class BT>
+BoundedVec3<BT> moved_origin_bounded(const Vec3TwoTerm& w, double tc, Vec3 v) {
     if (tc == 0) // not moved: w = hi + lo exactly, so hi is within |lo|
         return {
             {w.hi.x, std::fabs(w.lo.x)}, {w.hi.y, std::fabs(w.lo.y)}, {w.hi.z, std::fabs(w.lo.z)}};
-    return {moved_origin_bounded(w.hi.x, w.lo.x, tc, v.x),
-            moved_origin_bounded(w.hi.y, w.lo.y, tc, v.y),
-            moved_origin_bounded(w.hi.z, w.lo.z, tc, v.z)};
+    return {moved_origin_bounded<BT>(w.hi.x, w.lo.x, tc, v.x),
+            moved_origin_bounded<BT>(w.hi.y, w.lo.y, tc, v.y),
+            moved_origin_bounded<BT>(w.hi.z, w.lo.z, tc, v.z)};
 }
 
 // t = tc + s in the caller's units: exact scaling by a power of two, unless the result falls
 // below the normal range, where it rounds: then the bound grows by a subnormal ulp.
-inline Bounded caller_t(double tc, const Bounded& s, double t_scale) {
-    Bounded t = Bounded::exact(tc) + s;
-    double v = t.v * t_scale, e = t.e * t_scale;
+template <class BT>
+BT caller_t(double tc, const BT& s, double t_scale) {
+    BT t = BT::exact(tc) + s;
+    double v = t.v * t_scale, e = t.bound() * t_scale;
     if (std::fabs(v) < 0x1p-1020 && (t.v != 0 || t.e != 0)) e += 0x1p-1074;
     return {v, e};
 }
@@ -284,37 +300,50 @@ inline Bounded caller_t(double tc, const Bounded& s, double t_scale) {
 // Candidates (t in the caller's units, its axial coordinate) to a Result: a hit is kept when its
 // computed value is inside the extent and the range, and is certain when the root is and every
 // one of those signs is; the result is certain when every decision, kept or not, is.
+template <class BT>
 struct CertifiedCandidate {
-    Bounded t, z;
+    BT t, z;
     HitKind kind;
     bool certain;
 };
-Result finish_certified(CertifiedCandidate* c, int n, bool classification_certain, Extent e,
+template <class BT>
+Result finish_certified(CertifiedCandidate<BT>* c, int n, bool classification_certain, Extent e,
                         const Line& l, Query q);
 
 // The last step of every certified solve: the roots s (moved by tc), their axial coordinate
 // z0 + s dz, and the result; a line on the surface only from exact zeros (certified_roots).
-inline Result certified_result(const CertifiedRoots& cr, double tc, Bounded z0, Bounded dz,
-                               double t_scale, Extent e, const Line& l, Query q) {
+template <class BT>
+Result certified_result(const CertifiedRoots<BT>& cr, double tc, BT z0, BT dz, double t_scale,
+                        Extent e, const Line& l, Query q) {
     if (cr.on_surface) {
         Result r = finish_on_surface(z0.v - tc * dz.v, dz.v, t_scale, e, l);
         r.certainty = Certainty::certain;
         return r;
     }
-    CertifiedCandidate c[2];
+    CertifiedCandidate<BT> c[2];
     for (int i = 0; i < cr.count; ++i)
         c[i] = {caller_t(tc, cr.root[i].s, t_scale), z0 + cr.root[i].s * dz, cr.root[i].kind,
                 cr.root[i].certain};
     return finish_certified(c, cr.count, cr.certain, e, l, q);
 }
 
-// M^-1 of the elliptic shapes' frame in Bounded arithmetic: adjugate rows over the determinant.
+// The certified solve: solve(QuickBounded()) first; again in Bounded when that leaves anything
+// uncertain (or fails), so that exact zeros can decide. Both compute the same values.
+template <class Solve>
+Result certified_solve(Solve solve) {
+    Result r = solve(QuickBounded());
+    if (r.error.code != ErrorCode::none || r.certainty != Certainty::certain) r = solve(Bounded());
+    return r; // one named result: returned in place, not copied
+}
+
+// M^-1 of the elliptic shapes' frame in bounded arithmetic: adjugate rows over the determinant.
+template <class BT>
 struct BoundedDualFrame {
-    BoundedVec3 nx, ny, nz;
-    Bounded det;
-    BoundedDualFrame(const BoundedVec3& a, const BoundedVec3& b, const BoundedVec3& c)
+    BoundedVec3<BT> nx, ny, nz;
+    BT det;
+    BoundedDualFrame(const BoundedVec3<BT>& a, const BoundedVec3<BT>& b, const BoundedVec3<BT>& c)
         : nx(cross(b, c)), ny(cross(c, a)), nz(cross(a, b)), det(dot(a, nx)) {}
-    BoundedVec3 local(const BoundedVec3& u) const {
+    BoundedVec3<BT> local(const BoundedVec3<BT>& u) const {
         return {dot(nx, u) / det, dot(ny, u) / det, dot(nz, u) / det};
     }
 };

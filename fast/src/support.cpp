@@ -244,20 +244,25 @@ Result finish(Candidate* c, int n, Extent e, const Line& l, Query q) {
     return r;
 }
 
-Result finish_certified(CertifiedCandidate* c, int n, bool classification_certain, Extent e,
+template <class BT>
+Result finish_certified(CertifiedCandidate<BT>* c, int n, bool classification_certain, Extent e,
                         const Line& l, Query q) {
-    for (int i = 0; i < n; ++i)
-        if (!std::isfinite(c[i].t.v)) return Result::failure(ErrorCode::out_of_range, "t");
-    if (n == 2 && c[1].t.v < c[0].t.v) std::swap(c[0], c[1]);
+    // Every return is of r (so it is built in place): a failure replaces it.
     Result r;
+    for (int i = 0; i < n; ++i)
+        if (!std::isfinite(c[i].t.v)) {
+            r = Result::failure(ErrorCode::out_of_range, "t");
+            return r;
+        }
+    if (n == 2 && c[1].t.v < c[0].t.v) std::swap(c[0], c[1]);
     bool all_certain = classification_certain;
     for (int i = 0; i < n; ++i) {
         // Each test is a sign: certain when the bound excludes zero (or the value is exactly 0).
-        Bounded above_lo = std::isfinite(e.lo) ? c[i].z - Bounded::exact(e.lo) : Bounded{};
-        Bounded below_hi = std::isfinite(e.hi) ? Bounded::exact(e.hi) - c[i].z : Bounded{};
+        BT above_lo = std::isfinite(e.lo) ? c[i].z - BT::exact(e.lo) : BT{};
+        BT below_hi = std::isfinite(e.hi) ? BT::exact(e.hi) - c[i].z : BT{};
         bool certain = c[i].certain;
         bool inside = true;
-        auto test = [&](Bounded x, bool bounded) {
+        auto test = [&](BT x, bool bounded) {
             if (!bounded) return;
             inside = inside && x.v >= 0;
             certain = certain && (x.certain_sign() != 0 || exactly_zero(x));
@@ -265,24 +270,32 @@ Result finish_certified(CertifiedCandidate* c, int n, bool classification_certai
         test(above_lo, std::isfinite(e.lo));
         test(below_hi, std::isfinite(e.hi));
         test(c[i].t, l.range != Range::line);
-        test(Bounded::exact(1) - c[i].t, l.range == Range::segment);
+        test(BT::exact(1) - c[i].t, l.range == Range::segment);
         all_certain = all_certain && certain;
         if (!inside) continue;
         if (r.count > 0 && q.need != Need::all) continue;
         Hit& h = r.hits[r.count++];
         h.t = c[i].t.v;
-        h.bound = c[i].t.e;
+        h.bound = c[i].t.bound();
         h.kind = c[i].kind;
         h.certain = certain;
         if (q.points) {
             h.p = {std::fma(h.t, l.v.x, l.L0.x), std::fma(h.t, l.v.y, l.L0.y),
                    std::fma(h.t, l.v.z, l.L0.z)};
-            if (!is_finite(h.p)) return Result::failure(ErrorCode::out_of_range, "p");
+            if (!is_finite(h.p)) {
+                r = Result::failure(ErrorCode::out_of_range, "p");
+                return r;
+            }
         }
     }
     r.certainty = all_certain ? Certainty::certain : Certainty::uncertain;
     return r;
 }
+
+template Result finish_certified(CertifiedCandidate<QuickBounded>*, int, bool, Extent, const Line&,
+                                 Query);
+template Result finish_certified(CertifiedCandidate<Bounded>*, int, bool, Extent, const Line&,
+                                 Query);
 
 Result finish_on_surface(double z0, double dz, double t_scale, Extent e, const Line& l) {
     // dz != 0 on every surface line: it runs along the axis (cylinders) or a generator (cone).
@@ -331,14 +344,25 @@ int frame_orientation(const EllipticCone& s) {
 }
 
 bool fragile_scene(double extent, std::initializer_list<Vec3> positions, Vec3 v) {
+    // 0 < |x| < below, as one unsigned comparison of magnitude bits minus one (0 wraps to the
+    // largest): no branch per component, since this runs on every certified solve. The inputs
+    // are finite (validated).
     auto tiny = [](Vec3 u, double scale) {
-        for (int i = 0; i < 3; ++i)
-            if (u[i] != 0 && std::fabs(u[i]) < min_relative_size * scale) return true;
-        return false;
+        auto magnitude = [](double x) {
+            std::uint64_t bits;
+            std::memcpy(&bits, &x, sizeof bits);
+            return bits & 0x7fffffffffffffffu;
+        };
+        auto magnitude_less_one = [&](double x) { return magnitude(x) - 1; };
+        // A threshold that underflowed to 0 has nothing below it.
+        std::uint64_t b = magnitude(min_relative_size * scale), below = b == 0 ? 0 : b - 1;
+        return (magnitude_less_one(u.x) < below) | (magnitude_less_one(u.y) < below) |
+               (magnitude_less_one(u.z) < below);
     };
+    bool fragile = tiny(v, max_abs(v));
     for (Vec3 p : positions)
-        if (tiny(p, extent)) return true;
-    return tiny(v, max_abs(v));
+        fragile |= tiny(p, extent);
+    return fragile;
 }
 
 Prescale prescale_for(double max_position, Vec3 v) {

@@ -18,6 +18,8 @@ struct Bounded {
     static Bounded exact(double x) { return {x, 0}; }
     // The sign of the exact value when it is certain, else 0.
     int certain_sign() const { return v > e ? 1 : v < -e ? -1 : 0; }
+    // A bound on |v - exact| (e itself: every operation has inflated it already).
+    double bound() const { return e; }
 };
 
 namespace bounded_detail {
@@ -82,6 +84,65 @@ inline Bounded sqrt(Bounded a) {
     double denom = r + low;
     double e = denom > 0 ? a.e / denom : std::sqrt(a.e); // |sqrt(x) - sqrt(y)| <= sqrt(|x - y|)
     return {r, bounded_detail::up(e + bounded_detail::u * r, !bounded_detail::exact_zero(a))};
+}
+
+// Bounded without its two costs: no exact-zero tracking (so no branches) and no inflation per
+// operation. Each operation adds the same propagated terms and its own rounding, u |result|,
+// plus the underflow floor 2^-1060 always. The bound's own arithmetic rounds too: only upward
+// and downward by a relative u per step, on sums and products of non-negative terms, so a chain
+// of fewer than 2^12 steps is covered by inflating once, by (1 + 2^-40), where a bound is used
+// (bound(): a sign, a divisor's gap, a root's lower end, the final bound).
+//
+// Every bound is at least 2^-1060, so no zero is ever certain in it: the degenerate cases that
+// exact zeros decide (parallel, tangent, on the surface) come out uncertain. The certified
+// solvers try it first and solve again in Bounded whenever it leaves anything uncertain; the
+// values are the same in both (the same operations on v), only the bounds differ.
+struct QuickBounded {
+    double v = 0;
+    double e = 0; // |v - exact| <= bound()
+
+    static QuickBounded exact(double x) { return {x, 0}; }
+    double bound() const { return e * (1 + 0x1p-40); }
+    int certain_sign() const {
+        double b = bound();
+        return v > b ? 1 : v < -b ? -1 : 0;
+    }
+};
+
+namespace bounded_detail {
+constexpr double underflow_floor = 0x1p-1060;
+}
+
+inline QuickBounded operator+(QuickBounded a, QuickBounded b) {
+    double s = a.v + b.v;
+    return {s, a.e + b.e + bounded_detail::u * std::fabs(s) + bounded_detail::underflow_floor};
+}
+inline QuickBounded operator-(QuickBounded a) {
+    return {-a.v, a.e};
+}
+inline QuickBounded operator-(QuickBounded a, QuickBounded b) {
+    return a + QuickBounded{-b.v, b.e};
+}
+inline QuickBounded operator*(QuickBounded a, QuickBounded b) {
+    double p = a.v * b.v;
+    double e = std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e;
+    return {p, e + bounded_detail::u * std::fabs(p) + bounded_detail::underflow_floor};
+}
+// |b| > bound(b) is required; otherwise the bound is infinite.
+inline QuickBounded operator/(QuickBounded a, QuickBounded b) {
+    double q = a.v / b.v;
+    double gap = std::fabs(b.v) - b.bound();
+    if (!(gap > 0)) return {q, INFINITY};
+    double e = (a.e + std::fabs(q) * b.e) / gap;
+    return {q, e + bounded_detail::u * std::fabs(q) + bounded_detail::underflow_floor};
+}
+// For an argument whose exact value is known to be >= 0.
+inline QuickBounded sqrt(QuickBounded a) {
+    double r = std::sqrt(std::fmax(a.v, 0.0));
+    double ea = a.bound();
+    double denom = r + std::sqrt(std::fmax(a.v - ea, 0.0));
+    double e = denom > 0 ? ea / denom : std::sqrt(ea); // |sqrt(x) - sqrt(y)| <= sqrt(|x - y|)
+    return {r, e + bounded_detail::u * r + bounded_detail::underflow_floor};
 }
 
 } // namespace linequad
