@@ -123,13 +123,16 @@ LINEQUAD_INLINE Vec3TwoTermT<T> cross_dd(const Vec3TwoTermT<T>& a, Vec3T<T> b) {
     return r;
 }
 
+// a x b, each component within 2 ulps of the exact cross product (Kahan's, above).
+template <class T>
+LINEQUAD_INLINE Vec3T<T> cross_accurate(Vec3T<T> a, Vec3T<T> b) {
+    return {difference_of_products(a.y, b.z, a.z, b.y), difference_of_products(a.z, b.x, a.x, b.z),
+            difference_of_products(a.x, b.y, a.y, b.x)};
+}
 // a x (b_hi + b_lo), each component within a few ulps of the exact cross product.
 template <class T>
 LINEQUAD_INLINE Vec3T<T> cross_accurate(Vec3T<T> a, const Vec3TwoTermT<T>& b) {
-    Vec3T<T> r{difference_of_products(a.y, b.hi.z, a.z, b.hi.y),
-               difference_of_products(a.z, b.hi.x, a.x, b.hi.z),
-               difference_of_products(a.x, b.hi.y, a.y, b.hi.x)};
-    return r + cross(a, b.lo);
+    return cross_accurate(a, b.hi) + cross(a, b.lo);
 }
 
 // u . (n_hi + n_lo), compensated: a triple product accurate even when it nearly vanishes.
