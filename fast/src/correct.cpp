@@ -371,8 +371,9 @@ Result intersect(const Cylinder& s, const Line& l, Query q) {
 }
 
 Result intersect(const EllipticCylinder& s, const Line& l, Query q) {
-    if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
-    bool negative = detail::frame_orientation(s) < 0;
+    detail::ValidFrame valid = detail::validate_frame(s, l);
+    if (valid.error.code != ErrorCode::none) return Result::failure(valid.error);
+    bool negative = valid.orientation < 0;
     double extent =
         std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.a), max_abs(s.b), max_abs(s.c)});
     return ladder(
@@ -386,8 +387,9 @@ Result intersect(const EllipticCylinder& s, const Line& l, Query q) {
 }
 
 Result intersect(const EllipticCone& s, const Line& l, Query q) {
-    if (Error e = validate(s, l); e.code != ErrorCode::none) return Result::failure(e);
-    bool negative = detail::frame_orientation(s) < 0;
+    detail::ValidFrame valid = detail::validate_frame(s, l);
+    if (valid.error.code != ErrorCode::none) return Result::failure(valid.error);
+    bool negative = valid.orientation < 0;
     double extent =
         std::max({max_abs(l.L0), max_abs(s.C), max_abs(s.H), max_abs(s.a), max_abs(s.b)});
     return ladder(

@@ -336,13 +336,6 @@ int exponent_of(double m) {
 }
 } // namespace
 
-int frame_orientation(const EllipticCylinder& s) {
-    return det3_sign_exact(s.a, s.b, s.c);
-}
-int frame_orientation(const EllipticCone& s) {
-    return cone_det_sign_exact(s.a, s.b, s.C, s.H);
-}
-
 bool fragile_scene(double extent, std::initializer_list<Vec3> positions, Vec3 v) {
     // 0 < |x| < below, as one unsigned comparison of magnitude bits minus one (0 wraps to the
     // largest): no branch per component, since this runs on every certified solve. The inputs
@@ -388,20 +381,34 @@ Error validate(const Cylinder& s, const Line& l) {
     return {};
 }
 
-Error validate(const EllipticCylinder& s, const Line& l) {
+namespace detail {
+
+ValidFrame validate_frame(const EllipticCylinder& s, const Line& l) {
     Error e = check_all(l, {{s.C, "C"}, {s.a, "a"}, {s.b, "b"}, {s.c, "c"}});
-    if (e.code != ErrorCode::none) return e;
-    if (s.a == Vec3{} || s.b == Vec3{} || s.c == Vec3{} || det3_sign_exact(s.a, s.b, s.c) == 0)
-        return {ErrorCode::singular_frame, "a,b,c"};
-    return {};
+    if (e.code != ErrorCode::none) return {e};
+    int orientation =
+        s.a == Vec3{} || s.b == Vec3{} || s.c == Vec3{} ? 0 : det3_sign_exact(s.a, s.b, s.c);
+    if (orientation == 0) return {{ErrorCode::singular_frame, "a,b,c"}};
+    return {{}, orientation};
+}
+
+ValidFrame validate_frame(const EllipticCone& s, const Line& l) {
+    Error e = check_all(l, {{s.C, "C"}, {s.H, "H"}, {s.a, "a"}, {s.b, "b"}});
+    if (e.code != ErrorCode::none) return {e};
+    if (s.H == s.C) return {{ErrorCode::degenerate_axis, "H-C"}};
+    int orientation = cone_det_sign_exact(s.a, s.b, s.C, s.H);
+    if (orientation == 0) return {{ErrorCode::singular_frame, "a,b,H-C"}};
+    return {{}, orientation};
+}
+
+} // namespace detail
+
+Error validate(const EllipticCylinder& s, const Line& l) {
+    return detail::validate_frame(s, l).error;
 }
 
 Error validate(const EllipticCone& s, const Line& l) {
-    Error e = check_all(l, {{s.C, "C"}, {s.H, "H"}, {s.a, "a"}, {s.b, "b"}});
-    if (e.code != ErrorCode::none) return e;
-    if (s.H == s.C) return {ErrorCode::degenerate_axis, "H-C"};
-    if (cone_det_sign_exact(s.a, s.b, s.C, s.H) == 0) return {ErrorCode::singular_frame, "a,b,H-C"};
-    return {};
+    return detail::validate_frame(s, l).error;
 }
 
 Error validate(const Shape& s, const Line& l) {

@@ -83,9 +83,14 @@ inline bool underflow_zone(double x) {
     return x != 0 && std::fabs(x) < tiny_decisive;
 }
 
-// The sign of det[a b c] (of det[a b H-C] for the cone), exactly; 0 for a singular frame.
-int frame_orientation(const EllipticCylinder& s);
-int frame_orientation(const EllipticCone& s);
+// validate(), and the sign of det[a b c] (of det[a b H-C] for the cone) that it decided, exactly:
+// for the solvers that need the orientation too (the correct solver), so that it is found once.
+struct ValidFrame {
+    Error error;
+    int orientation = 0; // +-1 when error is none
+};
+ValidFrame validate_frame(const EllipticCylinder& s, const Line& l);
+ValidFrame validate_frame(const EllipticCone& s, const Line& l);
 
 // After prescaling, sizes below this (relative to the scene) would underflow when multiplied
 // four times; the stable solvers refuse them with out_of_range rather than guess.
