@@ -88,9 +88,9 @@ inline Bounded sqrt(Bounded a) {
 
 // Bounded without its two costs: no exact-zero tracking (so no branches) and no inflation per
 // operation. Each operation adds the same propagated terms and its own rounding, u |result|,
-// plus the underflow floor 2^-1060 always. The bound's own arithmetic rounds too: only upward
-// and downward by a relative u per step, on sums and products of non-negative terms, so a chain
-// of fewer than 2^12 steps is covered by inflating once, by (1 + 2^-40), where a bound is used
+// plus the underflow floor 2^-1060 always. The bound's own arithmetic rounds too, by at most a
+// relative u per step, since it only adds and multiplies non-negative terms: a chain of fewer
+// than 2^12 steps is covered by inflating once, by (1 + 2^-40), wherever a bound is used
 // (bound(): a sign, a divisor's gap, a root's lower end, the final bound).
 //
 // Every bound is at least 2^-1060, so no zero is ever certain in it: the degenerate cases that
