@@ -13,7 +13,8 @@
 // then in the plane of the unit circle, with u = v'x wy - v'y wx = c . (v x w) / det,
 //     D = B^2 - A C0 = A - u^2 = (sqrt(A) - |u|)(sqrt(A) + |u|)
 // (|u| / sqrt(A) is the distance from the axis to the line: D < 0 iff it exceeds 1), u as a
-// double-double triple product; the origin moved to the closest approach to the axis' midpoint,
+// double-double triple product; C0 = wx^2 + wy^2 - 1 with the squares exact inside fmas
+// (squares_difference); the origin moved to the closest approach to the axis' midpoint,
 // and the roots paired as for the circular cylinder (src/cylinder.cpp). A = 0 exactly when v'
 // is along the axis (on the surface only from the certified computation).
 //

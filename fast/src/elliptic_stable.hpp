@@ -33,7 +33,7 @@ struct EllipticStable {
     // C0 at the caller's origin: for lines along the axis, and for Vieta's product.
     T C0_at_origin() const {
         Vec3T<T> wl = f.local(w.rounded());
-        return circle_minus_square(wl.x, wl.y, T(1));
+        return squares_difference(wl.x, wl.y, T(1));
     }
     // Origin moved to the closest approach to the axis' midpoint (see cylinder.cpp); then, with
     // u = v'x w'y - v'y w'x = c . (v x w) / det, D = A - u^2 = (sqrt(A) - |u|)(sqrt(A) + |u|).
@@ -45,7 +45,7 @@ struct EllipticStable {
         Vec3T<T> wcl = f.local(wc);
         const T vxy[2] = {vl.x, vl.y}, wxy[2] = {wcl.x, wcl.y};
         B = dot2(vxy, wxy);
-        Cc = circle_minus_square(wcl.x, wcl.y, T(1));
+        Cc = squares_difference(wcl.x, wcl.y, T(1));
         T u = fabs(dot2(c, cross_dd(v, wc)) / f.det);
         T sA = sqrt(A);
         T gap = sA - u;
@@ -72,7 +72,7 @@ struct ConeStable {
     }
     T C0_at_origin() const {
         Vec3T<T> wl = f.local(w.rounded());
-        return circle_minus_square(wl.x, wl.y, wl.z);
+        return squares_difference(wl.x, wl.y, wl.z);
     }
     // Origin moved to the line's closest approach to the apex; D = ux^2 + uy^2 - uz^2 with
     // u = v' x w' = M^T (v x w) / det, each component a double-double triple product.
@@ -81,11 +81,11 @@ struct ConeStable {
         Vec3T<T> wcw = moved_origin(w, tc, v), wc = f.local(wcw);
         const T vm[3] = {vl.x, vl.y, -vl.z}, wm[3] = {wc.x, wc.y, wc.z};
         B = dot2(vm, wm);
-        Cc = circle_minus_square(wc.x, wc.y, wc.z);
+        Cc = squares_difference(wc.x, wc.y, wc.z);
         Vec3TwoTermT<T> vw = cross_dd(v, wcw);
         Vec3T<T> u{dot2(a, vw), dot2(b, vw), dot2(c.hi, vw) + dot(c.lo, vw.hi)};
         u = (T(1) / f.det) * u;
-        D = circle_minus_square(u.x, u.y, u.z);
+        D = squares_difference(u.x, u.y, u.z);
     }
     T z_at(T t) const { return f.local_z(moved_origin(w, t, v)); }
 };
