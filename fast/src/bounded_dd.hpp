@@ -128,15 +128,6 @@ LINEQUAD_INLINE BoundedDD sqrt(const BoundedDD& a) {
     return {z.hi, z.lo, dd_detail::up(prop + 4 * dd_detail::u2 * std::fabs(z.hi))};
 }
 
-// The derivations' vector algebra, inlined: out of line, each call passes six values through
-// memory, which cost more than the arithmetic.
-LINEQUAD_INLINE BoundedDD dot(const Vec3T<BoundedDD>& a, const Vec3T<BoundedDD>& b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-LINEQUAD_INLINE Vec3T<BoundedDD> cross(const Vec3T<BoundedDD>& a, const Vec3T<BoundedDD>& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
 } // namespace linequad
 
 // X + Y sqrt(D) evaluated, sqrt(D) once per quadratic: cheaper than squaring, and as decisive.

@@ -3,6 +3,7 @@
 
 #include "linequad/bounded.hpp"
 #include "linequad/eft.hpp"
+#include "linequad/line_quadratic.hpp"
 #include "support.hpp"
 
 #include <algorithm>
@@ -256,9 +257,7 @@ BT moved_origin_bounded(double hi, double lo, double tc, double v) {
 }
 
 template <class BT>
-struct BoundedVec3 {
-    BT x, y, z;
-};
+using BoundedVec3 = Vec3T<BT>;
 template <class BT>
 BoundedVec3<BT> exact(Vec3 a) {
     return {BT::exact(a.x), BT::exact(a.y), BT::exact(a.z)};
@@ -268,14 +267,6 @@ template <class BT>
 BoundedVec3<BT> difference_bounded(Vec3 p, Vec3 q) {
     Vec3TwoTerm d = difference_exact(p, q);
     return {{d.hi.x, std::fabs(d.lo.x)}, {d.hi.y, std::fabs(d.lo.y)}, {d.hi.z, std::fabs(d.lo.z)}};
-}
-template <class BT>
-LINEQUAD_INLINE BT dot(const BoundedVec3<BT>& a, const BoundedVec3<BT>& b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-template <class BT>
-LINEQUAD_INLINE BoundedVec3<BT> cross(const BoundedVec3<BT>& a, const BoundedVec3<BT>& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 template <class BT>
 BoundedVec3<BT> moved_origin_bounded(const Vec3TwoTerm& w, double tc, Vec3 v) {
@@ -336,15 +327,14 @@ Result certified_solve(Solve solve) {
     return r; // one named result: returned in place, not copied
 }
 
-// M^-1 of the elliptic shapes' frame in bounded arithmetic: adjugate rows over the determinant.
+// M^-1 of the elliptic shapes' frame in bounded arithmetic: the exact form's adjugate rows
+// (line_quadratic.hpp), over the determinant.
 template <class BT>
-struct BoundedDualFrame {
-    BoundedVec3<BT> nx, ny, nz;
-    BT det;
-    BoundedDualFrame(const BoundedVec3<BT>& a, const BoundedVec3<BT>& b, const BoundedVec3<BT>& c)
-        : nx(cross(b, c)), ny(cross(c, a)), nz(cross(a, b)), det(dot(a, nx)) {}
+struct BoundedDualFrame : exact_form::AdjugateFrame<BT> {
+    using exact_form::AdjugateFrame<BT>::AdjugateFrame;
     BoundedVec3<BT> local(const BoundedVec3<BT>& u) const {
-        return {dot(nx, u) / det, dot(ny, u) / det, dot(nz, u) / det};
+        BoundedVec3<BT> s = this->scaled_local(u);
+        return {s.x / this->det, s.y / this->det, s.z / this->det};
     }
 };
 

@@ -10,13 +10,7 @@
 
 #include "linequad/vec3.hpp"
 
-// These helpers are a handful of instructions each: inlined always, so that the batch solvers'
-// 4-lane values stay in registers (a call spills them through memory).
-#if defined(__GNUC__)
-#define LINEQUAD_INLINE inline __attribute__((always_inline))
-#else
-#define LINEQUAD_INLINE inline
-#endif
+// These helpers are a handful of instructions each: inlined always (LINEQUAD_INLINE, vec3.hpp).
 
 #include <cmath>
 
