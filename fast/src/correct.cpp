@@ -45,13 +45,14 @@ double half_ulp(double x) {
     return (std::nextafter(a, INFINITY) - a) / 2;
 }
 
-Result certain_result(Result r) {
+// Every answer of the ladder is certain, each t within half an ulp; and says which rung gave it.
+void mark_certain(Result& r, Rung rung) {
     r.certainty = Certainty::certain;
+    r.rung = rung;
     for (int i = 0; i < r.count; ++i) {
         r.hits[i].certain = true;
         r.hits[i].bound = half_ulp(r.hits[i].t);
     }
-    return r;
 }
 
 // ---- Rung 1: double-double ----
@@ -107,18 +108,17 @@ BoundedDD root_value(const SurdRoot<BoundedDD>& r, const BoundedDD& sqrt_D,
     return cancels ? q.C0 / (r.N + s) : (r.N - s) / r.Den;
 }
 
-std::optional<Result> double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u,
-                                         Query query) {
+// The answer in r, or false when the bounds do not settle it (r is then left partly written).
+bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query query, Result& r) {
     Classification<BoundedDD> c =
         exact_form::classify(q, u.line.range, query.need, BoundedDD(u.end));
-    Result r;
     switch (c.outcome) {
     case Outcome::undecided:
-        return std::nullopt;
+        return false;
     case Outcome::none:
-        return r;
+        return true;
     case Outcome::on_surface: // needs exact zeros of A, B and C0: only BigFloat has them
-        return std::nullopt;
+        return false;
     case Outcome::hits:
         break;
     }
@@ -126,7 +126,7 @@ std::optional<Result> double_double_rung(const LineQuadratic<BoundedDD>& q, cons
     for (int i = 0; i < c.count; ++i) {
         BoundedDD t = root_value(c.roots[i], sqrt_D, q);
         std::optional<double> rounded = round_proven(t, u.t_factor);
-        if (!rounded) return std::nullopt;
+        if (!rounded) return false;
         Hit& h = r.hits[r.count++];
         h.t = *rounded;
         h.kind = c.roots[i].kind;
@@ -134,11 +134,11 @@ std::optional<Result> double_double_rung(const LineQuadratic<BoundedDD>& q, cons
         for (int k = 0; k < 3; ++k) {
             BoundedDD p = BoundedDD(u.line.L0[k]) + BoundedDD(u.line.v[k]) * t;
             std::optional<double> pk = round_proven(p, u.pos_factor);
-            if (!pk) return std::nullopt;
+            if (!pk) return false;
             (k == 0 ? h.p.x : k == 1 ? h.p.y : h.p.z) = *pk;
         }
     }
-    return r;
+    return true;
 }
 
 // ---- Rung 2: exact ----
@@ -334,23 +334,22 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) 
 
 // ---- The ladder ----
 
-Result finish(Result r, Rung rung) {
-    r = certain_result(r);
-    r.rung = rung;
-    return r;
-}
-
 // The ladder for one shape. scaled(s, f): the shape with its positions times f (a power of
 // two). quadratic(NT(), s, l): the exact form of its derivation in the number type NT.
 template <class ShapeT, class Scaled, class Quadratic>
 Result ladder(const ShapeT& s, const Line& l, Query q, double extent,
               std::initializer_list<Vec3> positions, Scaled scaled, Quadratic quadratic) {
+    Result r; // the one result, returned in place
     if (std::optional<Unit> u = unit_scale(l, extent, positions)) {
         auto dd = quadratic(BoundedDD(), scaled(s, 1 / u->pos_factor), u->line);
-        if (std::optional<Result> r = double_double_rung(dd, *u, q))
-            return finish(*r, Rung::double_double);
+        if (double_double_rung(dd, *u, q, r)) {
+            mark_certain(r, Rung::double_double);
+            return r;
+        }
     }
-    return finish(exact_rung(quadratic(BigFloat(), s, l), l, q), Rung::exact);
+    r = exact_rung(quadratic(BigFloat(), s, l), l, q);
+    mark_certain(r, Rung::exact);
+    return r;
 }
 
 } // namespace
