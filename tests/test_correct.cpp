@@ -319,7 +319,7 @@ TEST_CASE("correct answers exactly where exact zeros decide: on the surface, at 
 
 TEST_CASE("correct equals the oracle bit for bit on every family, range and query") {
     const Query queries[] = {{Need::all, true}, {Need::nearest, false}, {Need::any, true}};
-    std::uint64_t by_rung[3] = {};
+    std::uint64_t by_rung[4] = {};
     for (Family f :
          {Family::generic, Family::near_tangent, Family::axis_parallel, Family::apex,
           Family::generator, Family::degenerate_frame, Family::scale, Family::extent_edge})
@@ -339,8 +339,9 @@ TEST_CASE("correct equals the oracle bit for bit on every family, range and quer
                     }
                 }
         }
-    // Both rungs are exercised, and only they answer.
+    // Every rung is exercised, and only they answer.
     CHECK(by_rung[std::size_t(Rung::none)] == 0);
+    CHECK(by_rung[std::size_t(Rung::newton)] > 0);
     CHECK(by_rung[std::size_t(Rung::double_double)] > 0);
     CHECK(by_rung[std::size_t(Rung::exact)] > 0);
 }

@@ -4,15 +4,21 @@
 //
 // It follows Ziv's strategy for correctly rounded functions, on the division-free form of the
 // derivations in linequad/line_quadratic.hpp (coefficients are polynomials in the inputs):
-//  1. double-double: the quadratic, its classification and the roots in BoundedDD, which
+//  1. Newton (newton_rung.cpp): each root estimated in double, then one Newton step from the
+//     estimate with the residual in double-double proves a root's existence, which root it is,
+//     and an enclosure about 2^-100 wide; the extent, the range, t and the points are decided
+//     on it. Every decision and every rounding must be proven; otherwise
+//  2. double-double: the quadratic, its classification and the roots in BoundedDD, which
 //     carries a proven error bound. Every sign must be certain and every output's interval must
 //     lie inside one rounding cell; otherwise
-//  2. exact: the same template in BigFloat (exact dyadic arithmetic, no GMP), every sign exact,
+//  3. exact: the same template in BigFloat (exact dyadic arithmetic, no GMP), every sign exact,
 //     and each output rounded by deciding, exactly, on which side of the midpoints between
 //     neighbouring doubles it lies.
 // Result::rung says which rung answered.
 #include "big_float.hpp"
 #include "bounded_dd.hpp"
+#include "ladder.hpp"
+#include "newton_rung.hpp"
 #include "support.hpp"
 
 #include "linequad/cylinder.hpp"
@@ -29,8 +35,24 @@
 
 namespace linequad {
 
+namespace detail {
+
+std::optional<Unit> unit_scale(const Line& l, double extent,
+                               std::initializer_list<Vec3> positions) {
+    if (detail::fragile_scene(extent, positions, l.v)) return std::nullopt;
+    detail::Prescale ps = detail::prescale_for(extent, l.v);
+    double pos_factor = 1 / ps.to_unit, end = ps.to_unit / ps.dir_to_unit;
+    if (!(ps.t_factor >= 0x1p-1000 && ps.t_factor <= 0x1p+1000)) return std::nullopt;
+    return Unit{pos_factor, ps.t_factor, end, Line{ps.pos(l.L0), ps.dir(l.v), l.range}};
+}
+
+} // namespace detail
+
 namespace {
 
+using detail::round_proven;
+using detail::Unit;
+using detail::unit_scale;
 using exact_form::Classification;
 using exact_form::LineQuadratic;
 using exact_form::Outcome;
@@ -55,47 +77,7 @@ void mark_certain(Result& r, Rung rung) {
     }
 }
 
-// ---- Rung 1: double-double ----
-
-// The double nearest x 2^k (scale = 2^k) when x's bound proves which it is.
-std::optional<double> round_proven(const BoundedDD& x, double scale) {
-    if (x.e == 0 && x.hi == 0) return 0.0; // an exact zero is +0
-    double hi = x.hi * scale, lo = x.lo * scale;
-    // Far from overflow and underflow, scaling is exact but for lo's last bits (2^-1070 covers).
-    double e = x.e * scale + (x.e == 0 && x.lo == 0 ? 0.0 : 0x1p-1070);
-    double a = std::fabs(hi);
-    if (!(a >= 0x1p-960 && a <= 0x1p+1000)) return std::nullopt; // NaN too
-    if (lo == 0 && e == 0) return hi;
-    // The exact value, within [hi + lo - e, hi + lo + e], must be inside hi's rounding cell:
-    // half an ulp each way, but only a quarter towards zero from a power of two.
-    std::uint64_t bits;
-    std::memcpy(&bits, &a, sizeof bits);
-    std::uint64_t ulp_bits = (bits & 0x7ff0000000000000u) - (std::uint64_t(52) << 52);
-    double half_away;
-    std::memcpy(&half_away, &ulp_bits, sizeof half_away); // ulp(hi): normal, |hi| >= 2^-960
-    half_away /= 2;
-    bool power_of_two = (bits & 0x000fffffffffffffu) == 0;
-    double half_toward = power_of_two ? half_away / 2 : half_away;
-    double away = (hi > 0 ? lo : -lo) + e, toward = e - (hi > 0 ? lo : -lo);
-    if (away * (1 + 0x1p-50) < half_away && toward * (1 + 0x1p-50) < half_toward) return hi;
-    return std::nullopt;
-}
-
-// The scene scaled by powers of two towards unit size (exactly), so that the double-double
-// rung stays far from overflow and underflow: t = t' 2^(k-j), points = p' 2^k.
-struct Unit {
-    double pos_factor, t_factor, end; // 2^k, 2^(k-j), and 2^(j-k) where a segment ends
-    Line line;
-};
-
-std::optional<Unit> unit_scale(const Line& l, double extent,
-                               std::initializer_list<Vec3> positions) {
-    if (detail::fragile_scene(extent, positions, l.v)) return std::nullopt;
-    detail::Prescale ps = detail::prescale_for(extent, l.v);
-    double pos_factor = 1 / ps.to_unit, end = ps.to_unit / ps.dir_to_unit;
-    if (!(ps.t_factor >= 0x1p-1000 && ps.t_factor <= 0x1p+1000)) return std::nullopt;
-    return Unit{pos_factor, ps.t_factor, end, Line{ps.pos(l.L0), ps.dir(l.v), l.range}};
-}
+// ---- Rung 2: double-double ----
 
 // t' = (N + S sqrt(D)) / Den without cancellation: when N and S sqrt(D) differ in sign (N = -B,
 // Den = A), the other root's form t' = C0 / (N - S sqrt(D)).
@@ -141,7 +123,7 @@ bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query 
     return true;
 }
 
-// ---- Rung 2: exact ----
+// ---- Rung 3: exact ----
 
 // Doubles in order, as integers: adjacent doubles have adjacent keys (+0 and -0 share 0).
 using Key = std::int64_t;
@@ -334,14 +316,38 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) 
 
 // ---- The ladder ----
 
+// Sizes of scene and direction at which no quantity the Newton rung forms (products of at most
+// twelve inputs) leaves double's normal range: 2^-64 to 2^64. Its bounds hold at any size; this
+// only spares such scenes the scaling, which the rung's arithmetic would not need.
+bool in_moderate_range(double x) {
+    return x >= 0x1p-64 && x <= 0x1p+64;
+}
+
 // The ladder for one shape. scaled(s, f): the shape with its positions times f (a power of
-// two). quadratic(NT(), s, l): the exact form of its derivation in the number type NT.
-template <class ShapeT, class Scaled, class Quadratic>
+// two). form(s, l): its line form for the Newton rung (newton_rung.hpp). quadratic(NT(), s, l):
+// the exact form of its derivation in the number type NT.
+template <class ShapeT, class Scaled, class Form, class Quadratic>
 Result ladder(const ShapeT& s, const Line& l, Query q, double extent,
-              std::initializer_list<Vec3> positions, Scaled scaled, Quadratic quadratic) {
+              std::initializer_list<Vec3> positions, Scaled scaled, Form form,
+              Quadratic quadratic) {
     Result r; // the one result, returned in place
+    // The Newton rung's bounds hold at any scale (underflow is in them, overflow makes them
+    // infinite), so a scene of moderate size is solved as given; others are scaled first, so
+    // that tiny or huge scenes are not left to the slower rungs.
+    bool moderate = in_moderate_range(extent) && in_moderate_range(max_abs(l.v));
+    if (moderate && detail::newton_rung(form(s, l), Unit{1, 1, 1, l}, l, q, r)) {
+        mark_certain(r, Rung::newton);
+        return r;
+    }
     if (std::optional<Unit> u = unit_scale(l, extent, positions)) {
-        auto dd = quadratic(BoundedDD(), scaled(s, 1 / u->pos_factor), u->line);
+        ShapeT unit = scaled(s, 1 / u->pos_factor);
+        r = Result();
+        if (!moderate && detail::newton_rung(form(unit, u->line), *u, l, q, r)) {
+            mark_certain(r, Rung::newton);
+            return r;
+        }
+        r = Result();
+        auto dd = quadratic(BoundedDD(), unit, u->line);
         if (double_double_rung(dd, *u, q, r)) {
             mark_certain(r, Rung::double_double);
             return r;
@@ -364,6 +370,7 @@ Result intersect(const Cylinder& s, const Line& l, Query q) {
         [](const Cylinder& x, double f) {
             return Cylinder{f * x.C, f * x.H, f * x.r, x.finite};
         },
+        [](const Cylinder& x, const Line& line) { return detail::line_form(x, line); },
         [](auto number, const Cylinder& x, const Line& line) {
             return exact_form::line_quadratic<decltype(number)>(x, line);
         });
@@ -380,6 +387,9 @@ Result intersect(const EllipticCylinder& s, const Line& l, Query q) {
         [](const EllipticCylinder& x, double f) {
             return EllipticCylinder{f * x.C, f * x.a, f * x.b, f * x.c, x.finite};
         },
+        [&](const EllipticCylinder& x, const Line& line) {
+            return detail::line_form(x, line, negative);
+        },
         [&](auto number, const EllipticCylinder& x, const Line& line) {
             return exact_form::line_quadratic<decltype(number)>(x, line, negative);
         });
@@ -395,6 +405,9 @@ Result intersect(const EllipticCone& s, const Line& l, Query q) {
         s, l, q, extent, {s.C, s.H, s.a, s.b, l.L0},
         [](const EllipticCone& x, double f) {
             return EllipticCone{f * x.C, f * x.H, f * x.a, f * x.b, x.finite};
+        },
+        [&](const EllipticCone& x, const Line& line) {
+            return detail::line_form(x, line, negative);
         },
         [&](auto number, const EllipticCone& x, const Line& line) {
             return exact_form::line_quadratic<decltype(number)>(x, line, negative);

@@ -75,7 +75,7 @@ struct Row {
     // prove correctly rounded (Ziv's first test).
     std::uint64_t bound_below_half_ulp = 0;
     // The correct solver: results by the rung that settled them (indexed by Rung).
-    std::array<std::uint64_t, 3> rungs{};
+    std::array<std::uint64_t, 4> rungs{};
     std::vector<Worst> worst; // at most keep_worst, worst first
     static constexpr std::size_t keep_worst = 3;
     void merge(const Row& o);

@@ -31,9 +31,11 @@ enum class Certainty : std::uint8_t {
     uncertain, // some decision could not be certified: the hits are best guesses
 };
 
-// Which rung of the correct solver's ladder gave a result (Ziv's strategy): the double-double
-// rung, whose error bounds proved every sign and every rounding, or the exact one.
-enum class Rung : std::uint8_t { none, double_double, exact };
+// Which rung of the correct solver's ladder gave a result (Ziv's strategy): the Newton rung (a
+// double estimate, one Newton step with a double-double residual, a proven enclosure), the
+// double-double rung (the exact form in bounded double-double), or the exact one. The first two
+// answer only when their error bounds prove every sign and every rounding.
+enum class Rung : std::uint8_t { none, newton, double_double, exact };
 
 // Why an input was refused. Never a hit, never undefined behaviour.
 enum class ErrorCode : std::uint8_t {

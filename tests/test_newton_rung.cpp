@@ -1,0 +1,362 @@
+// The correct solver's Newton rung: its arithmetic (CompensatedSum), the line forms it builds, and
+// its answers, run without scaling at sizes from 2^-600 to 2^600, against exact GMP rationals and
+// the oracle.
+#include "support.hpp"
+
+#include "compensated_sum.hpp"
+#include "newton_rung.hpp"
+
+#include "linequad/case_io.hpp"
+#include "linequad/exact.hpp"
+#include "linequad/families.hpp"
+#include "linequad/validate.hpp"
+
+#include <gmp.h>
+
+#include <cstring>
+#include <vector>
+
+using namespace linequad;
+using namespace linequad::test;
+
+namespace {
+
+// An exact rational that frees itself.
+struct Q {
+    mpq_t q;
+    Q() { mpq_init(q); }
+    explicit Q(double x) {
+        mpq_init(q);
+        mpq_set_d(q, x);
+    }
+    Q(const Q& o) {
+        mpq_init(q);
+        mpq_set(q, o.q);
+    }
+    Q& operator=(const Q& o) {
+        mpq_set(q, o.q);
+        return *this;
+    }
+    ~Q() { mpq_clear(q); }
+};
+Q operator+(const Q& a, const Q& b) {
+    Q r;
+    mpq_add(r.q, a.q, b.q);
+    return r;
+}
+Q operator-(const Q& a, const Q& b) {
+    Q r;
+    mpq_sub(r.q, a.q, b.q);
+    return r;
+}
+Q operator*(const Q& a, const Q& b) {
+    Q r;
+    mpq_mul(r.q, a.q, b.q);
+    return r;
+}
+
+struct QVec {
+    Q x, y, z;
+};
+QVec qvec(Vec3 a) {
+    return {Q(a.x), Q(a.y), Q(a.z)};
+}
+QVec operator-(const QVec& a, const QVec& b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+QVec cross(const QVec& a, const QVec& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+Q dot(const QVec& a, const QVec& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+const Q& at(const QVec& a, int k) {
+    return k == 0 ? a.x : k == 1 ? a.y : a.z;
+}
+
+// det[a b c] < 0, decided exactly (the frame's orientation, which validation gives the solver).
+bool negative_frame(Vec3 a, Vec3 b, const QVec& c) {
+    return mpq_sgn(dot(qvec(a), cross(qvec(b), c)).q) < 0;
+}
+bool negative_frame(const EllipticCylinder& s) {
+    return negative_frame(s.a, s.b, qvec(s.c));
+}
+bool negative_frame(const EllipticCone& s) {
+    return negative_frame(s.a, s.b, qvec(s.H) - qvec(s.C));
+}
+
+// |value - exact| <= bound, decided exactly.
+bool within(const Q& value, const Q& exact, double bound) {
+    Q d = value - exact;
+    mpq_abs(d.q, d.q);
+    return mpq_cmp(d.q, Q(bound).q) <= 0;
+}
+bool within(const BoundedDD& x, const Q& exact) {
+    return within(Q(x.hi) + Q(x.lo), exact, x.e);
+}
+bool within(double x, double e, const Q& exact) {
+    return within(Q(x), exact, e);
+}
+
+// Doubles with random mantissas and exponents around `e`, either sign.
+double around(std::mt19937_64& rng, int e, int spread) {
+    double m = std::uniform_real_distribution<double>(1, 2)(rng);
+    double x = std::ldexp(m, e + int(rng() % (2 * spread + 1)) - spread);
+    return rng() % 2 ? -x : x;
+}
+
+bool same_bits(double a, double b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+} // namespace
+
+TEST_CASE("CompensatedSum's bound holds for products and small terms at every magnitude") {
+    // Sums of up to 5 exact products, some made to cancel, and up to 6 small terms, each a product
+    // rounded once (as the rung forms them), at magnitudes from 2^-1070 to 2^900: the bound must
+    // cover the distance from hi + lo to the exact sum of the exact products, whether normalized,
+    // left unnormalized or rounded to one double.
+    std::mt19937_64 rng(5);
+    long checked = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        int e = int(rng() % 1900) - 1000; // the sum's magnitude
+        detail::CompensatedSum s;
+        Q exact;
+        int products = 1 + int(rng() % 5), smalls = int(rng() % 7);
+        double last = 0;
+        for (int i = 0; i < products; ++i) {
+            double a = around(rng, e / 2, 3), b = around(rng, e - e / 2, 3);
+            if (i > 0 && rng() % 2) b = -last / a; // cancels the previous product, but for rounding
+            last = a * b;
+            s.add_product(a, b);
+            exact = exact + Q(a) * Q(b);
+        }
+        for (int i = 0; i < smalls; ++i) {
+            double c = around(rng, e / 2 - 26, 3), d = around(rng, e - e / 2 - 27, 3);
+            s.add_small(c * d); // stands for the exact c d
+            exact = exact + Q(c) * Q(d);
+        }
+        BoundedDD normalized = s.result(), raw = s.unnormalized(), one = s.rounded();
+        INFO("trial " << trial << " magnitude 2^" << e);
+        REQUIRE(within(normalized, exact));
+        REQUIRE(within(raw, exact));
+        REQUIRE(one.lo == 0);
+        REQUIRE(within(one, exact));
+        CHECK(std::fabs(normalized.lo) <= std::fabs(normalized.hi) * 0x1p-53);
+        ++checked;
+    }
+    CHECK(checked == 20000);
+}
+
+TEST_CASE("certain_sign_of_difference decides only what the bounds prove") {
+    using detail::certain_sign_of_difference;
+    CHECK(certain_sign_of_difference(1, 0x1p-60, 0.5, 0x1p-60) == 1);
+    CHECK(certain_sign_of_difference(0.5, 0, 1, 0) == -1);
+    // within the bounds of each other: undecided
+    CHECK(certain_sign_of_difference(1 + 0x1p-40, 0x1p-40, 1, 0) == 0);
+    CHECK(certain_sign_of_difference(std::nan(""), 0, 1, 0) == 0);
+    // subnormal neighbours: the difference's rounding is covered below the normal range too
+    CHECK(certain_sign_of_difference(0x1p-1073, 0, 0x1p-1074, 0) == 0);
+}
+
+namespace {
+
+// The exact U0, U1, K, Z0, dZ and extent end of each shape's line form (newton_rung.hpp).
+struct ExactForm {
+    QVec U0, U1;
+    Q K, Z0, dZ, end; // end: h.h or |det|, the finite extent's nonzero end
+};
+
+ExactForm exact_form_of(const Cylinder& s, const Line& l) {
+    QVec h = qvec(s.H) - qvec(s.C), w = qvec(l.L0) - qvec(s.C), v = qvec(l.v);
+    Q hh = dot(h, h), r(s.r);
+    return {cross(w, h), cross(v, h), r * r * hh, dot(w, h), dot(v, h), hh};
+}
+
+// The elliptic shapes: U0 = adj(M) w, U1 = adj(M) v with the rows b x c, c x a, a x b.
+ExactForm exact_elliptic(const QVec& a, const QVec& b, const QVec& c, const QVec& w, const QVec& v,
+                         bool negative, bool cone) {
+    QVec nx = cross(b, c), ny = cross(c, a), nz = cross(a, b);
+    Q det = dot(a, nx), sign(negative ? -1.0 : 1.0);
+    ExactForm f{{dot(nx, w), dot(ny, w), dot(nz, w)},
+                {dot(nx, v), dot(ny, v), dot(nz, v)},
+                Q(),
+                Q(),
+                Q(),
+                sign * det};
+    f.K = cone ? Q() : det * det;
+    f.Z0 = sign * f.U0.z, f.dZ = sign * f.U1.z;
+    return f;
+}
+
+// line_form's every value within its bound of the exact one.
+void check_form(const detail::LineForm& f, const ExactForm& x, bool cone) {
+    for (int k = 0; k < 3; ++k) {
+        INFO("component " << k);
+        CHECK(within(f.U0[k], at(x.U0, k)));
+        CHECK(within(f.U1[k], at(x.U1, k)));
+    }
+    CHECK(within(f.K, x.K));
+    CHECK(within(f.Z0, f.e_Z0, x.Z0));
+    CHECK(within(f.dZ, f.e_dZ, x.dZ));
+    if (cone) // -|det| <= Z <= 0
+        CHECK(within(f.lo, f.e_lo, Q() - x.end));
+    else
+        CHECK(within(f.hi, f.e_hi, x.end));
+}
+
+} // namespace
+
+TEST_CASE("line_form's values are within their bounds of the exact ones, at every size") {
+    // Family cases (generic, near-tangent, thin and oblique frames, ...) moved to sizes 2^k,
+    // k from -150 to 150 (the forms' values, of degree up to 6, stay finite and their low parts
+    // reach the subnormal range): U0, U1, K, Z0, dZ and the extent against GMP rationals.
+    int checked = 0;
+    for (Family fam : {Family::generic, Family::near_tangent, Family::axis_parallel,
+                       Family::degenerate_frame, Family::generator})
+        for (int shape = 0; shape < 3; ++shape) {
+            if (!family_applies(fam, shape)) continue;
+            for (int i = 0; i < 40; ++i) {
+                Case c = make_case(fam, shape, Range::line, 9, std::uint64_t(i));
+                double f = std::ldexp(1.0, (i * 37) % 301 - 150);
+                Line l{f * c.line.L0, c.line.v, Range::line};
+                INFO(format_case(c) << "\nscaled by " << f);
+                if (const auto* p = std::get_if<Cylinder>(&c.shape)) {
+                    Cylinder s{f * p->C, f * p->H, f * p->r, true};
+                    check_form(detail::line_form(s, l), exact_form_of(s, l), false);
+                } else if (const auto* p = std::get_if<EllipticCylinder>(&c.shape)) {
+                    EllipticCylinder s{f * p->C, f * p->a, f * p->b, f * p->c, true};
+                    if (validate(s, l).code != ErrorCode::none) continue;
+                    bool negative = negative_frame(s);
+                    ExactForm x =
+                        exact_elliptic(qvec(s.a), qvec(s.b), qvec(s.c), qvec(l.L0) - qvec(s.C),
+                                       qvec(l.v), negative, false);
+                    check_form(detail::line_form(s, l, negative), x, false);
+                } else {
+                    const auto& q = std::get<EllipticCone>(c.shape);
+                    EllipticCone s{f * q.C, f * q.H, f * q.a, f * q.b, true};
+                    if (validate(s, l).code != ErrorCode::none) continue;
+                    bool negative = negative_frame(s);
+                    ExactForm x = exact_elliptic(qvec(s.a), qvec(s.b), qvec(s.H) - qvec(s.C),
+                                                 qvec(l.L0) - qvec(s.H), qvec(l.v), negative, true);
+                    check_form(detail::line_form(s, l, negative), x, true);
+                }
+                ++checked;
+            }
+        }
+    CHECK(checked > 500);
+}
+
+namespace {
+
+// The rung on one case as given (no scaling: the bounds must hold at any size), with the form
+// built as the ladder builds it; false when the case is invalid.
+bool run_rung(const Shape& shape, const Line& l, Query q, Result& r, bool& answered) {
+    if (validate(shape, l).code != ErrorCode::none) return false;
+    detail::LineForm form;
+    if (const auto* s = std::get_if<Cylinder>(&shape))
+        form = detail::line_form(*s, l);
+    else if (const auto* s = std::get_if<EllipticCylinder>(&shape))
+        form = detail::line_form(*s, l, negative_frame(*s));
+    else {
+        const auto& c = std::get<EllipticCone>(shape);
+        form = detail::line_form(c, l, negative_frame(c));
+    }
+    answered = detail::newton_rung(form, detail::Unit{1, 1, 1, l}, l, q, r);
+    return true;
+}
+
+Shape scaled_shape(const Shape& s, double f) {
+    if (const auto* p = std::get_if<Cylinder>(&s))
+        return Cylinder{f * p->C, f * p->H, f * p->r, p->finite};
+    if (const auto* p = std::get_if<EllipticCylinder>(&s))
+        return EllipticCylinder{f * p->C, f * p->a, f * p->b, f * p->c, p->finite};
+    const auto& p = std::get<EllipticCone>(s);
+    return EllipticCone{f * p.C, f * p.H, f * p.a, f * p.b, p.finite};
+}
+
+} // namespace
+
+TEST_CASE("the Newton rung, run as given at sizes 2^-600 to 2^600, answers only as the oracle") {
+    // Every family, shape and range; scenes scaled by 2^k and directions by 2^(-k/2) (so that
+    // t is far from 1 too). Where the rung answers, its classification, t and points must be the
+    // oracle's bit for bit; where it cannot prove them, it must not answer (the ladder goes on).
+    const Query queries[] = {{Need::all, true}, {Need::nearest, false}};
+    long answered = 0, generic_moderate = 0, generic_moderate_answered = 0;
+    for (int f = 0; f < family_count; ++f)
+        for (int shape = 0; shape < 3; ++shape) {
+            if (!family_applies(Family(f), shape)) continue;
+            for (Range range : {Range::line, Range::ray, Range::segment})
+                for (int i = 0; i < 120; ++i) {
+                    Case c = make_case(Family(f), shape, range, 17, std::uint64_t(i));
+                    int k = (i * 83) % 1201 - 600;
+                    double size = std::ldexp(1.0, k);
+                    Line l{size * c.line.L0, std::ldexp(1.0, -k / 2) * c.line.v, range};
+                    Shape s = scaled_shape(c.shape, size);
+                    for (Query q : queries) {
+                        Result r;
+                        bool ok = false;
+                        if (!run_rung(s, l, q, r, ok)) continue;
+                        bool moderate = std::abs(k) <= 64 && Family(f) == Family::generic;
+                        generic_moderate += moderate;
+                        if (!ok) continue;
+                        ++answered, generic_moderate_answered += moderate;
+                        Result want = exact::intersect(s, l, q);
+                        INFO(format_case(c) << "\nscaled by 2^" << k << "\nrung   " << describe(r)
+                                            << "\noracle " << describe(want));
+                        REQUIRE(want.ok());
+                        REQUIRE(!want.on_surface);
+                        REQUIRE(r.count == want.count);
+                        for (int h = 0; h < r.count; ++h) {
+                            CHECK(r.hits[h].kind == want.hits[h].kind);
+                            CHECK(same_bits(r.hits[h].t, want.hits[h].t));
+                            if (!q.points) continue;
+                            CHECK(same_bits(r.hits[h].p.x, want.hits[h].p.x));
+                            CHECK(same_bits(r.hits[h].p.y, want.hits[h].p.y));
+                            CHECK(same_bits(r.hits[h].p.z, want.hits[h].p.z));
+                        }
+                    }
+                }
+        }
+    // Not vacuous: the rung answers most generic cases of moderate size (all of them, in the
+    // audit), and many others.
+    INFO("answered " << answered << "; generic of moderate size " << generic_moderate_answered
+                     << " of " << generic_moderate);
+    CHECK(generic_moderate_answered * 10 >= generic_moderate * 9);
+    CHECK(answered > 2000);
+}
+
+TEST_CASE("the Newton rung proves a miss, and leaves tangency to the next rungs") {
+    Cylinder s{{0, 0, 0}, {0, 0, 4}, 1, true};
+    Result r;
+    bool answered = false;
+    SECTION("a line that passes at distance 2 from the axis: no hit, proven") {
+        Line l{{-3, 2, 1}, {1, 0, 0.25}, Range::line};
+        REQUIRE(run_rung(s, l, {}, r, answered));
+        CHECK(answered);
+        CHECK(r.count == 0);
+        CHECK(correct::intersect(s, l, {}).rung == Rung::newton);
+    }
+    SECTION("a tangent line: a double root, which only an exact zero can prove") {
+        Line l{{-3, 1, 1}, {1, 0, 0}, Range::line};
+        REQUIRE(run_rung(s, l, {}, r, answered));
+        CHECK(!answered);
+        Result c = correct::intersect(s, l, {});
+        CHECK(c.rung != Rung::newton);
+        REQUIRE(c.count == 1);
+        CHECK(c.hits[0].kind == HitKind::tangent);
+        CHECK(c.hits[0].t == 3);
+    }
+    SECTION("two crossings: t and points correctly rounded") {
+        Line l{{-3, 0.5, 1}, {1, 0, 0.1}, Range::line};
+        REQUIRE(run_rung(s, l, {}, r, answered));
+        CHECK(answered);
+        Result want = exact::intersect(s, l, {});
+        REQUIRE(r.count == 2);
+        REQUIRE(want.count == 2);
+        for (int h = 0; h < 2; ++h) {
+            CHECK(same_bits(r.hits[h].t, want.hits[h].t));
+            CHECK(same_bits(r.hits[h].p.z, want.hits[h].p.z));
+        }
+    }
+}
