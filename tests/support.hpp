@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <initializer_list>
 #include <random>
 #include <sstream>
@@ -22,6 +23,11 @@ inline Result run(const std::string& solver, const Shape& s, const Line& l, Quer
 
 inline std::string describe(const Result& r) {
     return format_result("0", "?", r);
+}
+
+// The same double, bit for bit (signed zeros and NaN payloads told apart).
+inline bool same_bits(double a, double b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
 // The solvers that must return exact answers where the arithmetic of a case is exact.

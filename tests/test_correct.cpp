@@ -1,5 +1,6 @@
 // The correct solver and the two number types of its ladder: BigFloat (exact) and BoundedDD
 // (double-double with a proven bound). References: GMP rationals and 4096-bit MPFR.
+#include "rational.hpp"
 #include "support.hpp"
 
 #include "big_float.hpp"
@@ -27,22 +28,6 @@ double wide_double(std::mt19937_64& rng) {
     int e = int(rng() % 2098) - 1074;
     double x = std::ldexp(m, e); // rounds to a subnormal below 2^-1022: still a double
     return rng() % 2 ? -x : x;
-}
-
-// An mpq_t that frees itself.
-struct Q {
-    mpq_t q;
-    Q() { mpq_init(q); }
-    explicit Q(double x) {
-        mpq_init(q);
-        mpq_set_d(q, x);
-    }
-    ~Q() { mpq_clear(q); }
-    Q(const Q&) = delete;
-};
-
-bool same_bits(double a, double b) {
-    return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
 // The correct solver's answer equals the oracle's bit for bit (signed zeros, infinities).

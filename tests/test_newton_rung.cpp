@@ -1,6 +1,7 @@
 // The correct solver's Newton rung: its arithmetic (CompensatedSum), the line forms it builds, and
 // its answers, run without scaling at sizes from 2^-600 to 2^600, against exact GMP rationals and
 // the oracle.
+#include "rational.hpp"
 #include "support.hpp"
 
 #include "compensated_sum.hpp"
@@ -11,49 +12,14 @@
 #include "linequad/families.hpp"
 #include "linequad/validate.hpp"
 
-#include <gmp.h>
+#include <mpfr.h>
 
-#include <cstring>
 #include <vector>
 
 using namespace linequad;
 using namespace linequad::test;
 
 namespace {
-
-// An exact rational that frees itself.
-struct Q {
-    mpq_t q;
-    Q() { mpq_init(q); }
-    explicit Q(double x) {
-        mpq_init(q);
-        mpq_set_d(q, x);
-    }
-    Q(const Q& o) {
-        mpq_init(q);
-        mpq_set(q, o.q);
-    }
-    Q& operator=(const Q& o) {
-        mpq_set(q, o.q);
-        return *this;
-    }
-    ~Q() { mpq_clear(q); }
-};
-Q operator+(const Q& a, const Q& b) {
-    Q r;
-    mpq_add(r.q, a.q, b.q);
-    return r;
-}
-Q operator-(const Q& a, const Q& b) {
-    Q r;
-    mpq_sub(r.q, a.q, b.q);
-    return r;
-}
-Q operator*(const Q& a, const Q& b) {
-    Q r;
-    mpq_mul(r.q, a.q, b.q);
-    return r;
-}
 
 struct QVec {
     Q x, y, z;
@@ -105,10 +71,6 @@ double around(std::mt19937_64& rng, int e, int spread) {
     return rng() % 2 ? -x : x;
 }
 
-bool same_bits(double a, double b) {
-    return std::memcmp(&a, &b, sizeof a) == 0;
-}
-
 } // namespace
 
 TEST_CASE("CompensatedSum's bound holds for products and small terms at every magnitude") {
@@ -146,6 +108,47 @@ TEST_CASE("CompensatedSum's bound holds for products and small terms at every ma
         ++checked;
     }
     CHECK(checked == 20000);
+}
+
+TEST_CASE("round_proven returns a double only when every value within the bound rounds to it") {
+    // hi + lo +- e times 2^k: lo anywhere up to an ulp either way (near and at the midpoints
+    // too), e from 0 to half an ulp, hi sometimes a power of two (whose cell is narrower below),
+    // scales that reach the subnormal range. Where round_proven answers v, both ends of the
+    // interval must round to v (then every value between does); 4096-bit MPFR is exact here.
+    std::mt19937_64 rng(3);
+    mpfr_t end;
+    mpfr_init2(end, 4096);
+    auto rounds_to = [&](double hi, double lo, double e, int k, double v) {
+        mpfr_set_d(end, hi, MPFR_RNDN);
+        mpfr_add_d(end, end, lo, MPFR_RNDN);
+        mpfr_add_d(end, end, e, MPFR_RNDN);
+        mpfr_mul_2si(end, end, k, MPFR_RNDN);
+        return same_bits(mpfr_get_d(end, MPFR_RNDN), v);
+    };
+    long answered = 0;
+    for (int i = 0; i < 200000; ++i) {
+        double hi = around(rng, int(rng() % 200) - 100, 0);
+        if (rng() % 8 == 0) hi = std::copysign(std::ldexp(1.0, std::ilogb(hi)), hi);
+        double ulp = std::ldexp(1.0, std::ilogb(hi) - 52);
+        double fraction[] = {0.5,
+                             0.25,
+                             -0.25,
+                             -0.5,
+                             0.5 - 0x1p-30,
+                             0.25 - 0x1p-30,
+                             std::uniform_real_distribution<double>(-1, 1)(rng)};
+        double lo = ulp * fraction[rng() % 7];
+        double e = rng() % 4 == 0 ? 0 : ulp * std::ldexp(1.0, -int(rng() % 60));
+        int k = int(rng() % 121) - 60 - (rng() % 16 == 0 ? 900 : 0);
+        std::optional<double> v = detail::round_proven({hi, lo, e}, std::ldexp(1.0, k));
+        if (!v) continue;
+        ++answered;
+        INFO("hi " << hi << " lo " << lo << " e " << e << " k " << k);
+        REQUIRE(rounds_to(hi, lo, -e, k, *v));
+        REQUIRE(rounds_to(hi, lo, e, k, *v));
+    }
+    mpfr_clear(end);
+    CHECK(answered > 50000);
 }
 
 TEST_CASE("certain_sign_of_difference decides only what the bounds prove") {

@@ -29,23 +29,23 @@ std::optional<Unit> unit_scale(const Line& l, double extent, std::initializer_li
 // every coordinate of every point of the first two rungs passes through it.
 inline std::optional<double> round_proven(const BoundedDD& x, double scale) {
     if (x.e == 0 && x.hi == 0) return 0.0; // an exact zero is +0
-    double hi = x.hi * scale, lo = x.lo * scale;
-    // Far from overflow and underflow, scaling is exact but for lo's last bits (2^-1070 covers).
-    double e = x.e * scale + (x.e == 0 && x.lo == 0 ? 0.0 : 0x1p-1070);
-    double a = std::fabs(hi);
+    double hi = x.hi * scale, a = std::fabs(hi);
     if (!(a >= 0x1p-960 && a <= 0x1p+1000)) return std::nullopt; // NaN too
-    if (lo == 0 && e == 0) return hi;
+    if (x.e == 0 && x.lo == 0) return hi;                        // exact
+    // Far from overflow and underflow, scaling is exact but for lo's last bits (2^-1070 covers).
+    double lo = x.lo * scale, e = x.e * scale + 0x1p-1070;
     // The exact value, within [hi + lo - e, hi + lo + e], must be inside hi's rounding cell:
-    // half an ulp each way, but only a quarter towards zero from a power of two.
+    // half an ulp each way, but only a quarter towards zero from a power of two. Half an ulp of
+    // a normal |hi| >= 2^-960 is 2^(E - 53) for its exponent E: its bits less 53 in the exponent.
     std::uint64_t bits;
     std::memcpy(&bits, &a, sizeof bits);
-    std::uint64_t ulp_bits = (bits & 0x7ff0000000000000u) - (std::uint64_t(52) << 52);
+    std::uint64_t half_bits = (bits & 0x7ff0000000000000u) - (std::uint64_t(53) << 52);
     double half_away;
-    std::memcpy(&half_away, &ulp_bits, sizeof half_away); // ulp(hi): normal, |hi| >= 2^-960
-    half_away /= 2;
+    std::memcpy(&half_away, &half_bits, sizeof half_away);
     bool power_of_two = (bits & 0x000fffffffffffffu) == 0;
-    double half_toward = power_of_two ? half_away / 2 : half_away;
-    double away = (hi > 0 ? lo : -lo) + e, toward = e - (hi > 0 ? lo : -lo);
+    double half_toward = power_of_two ? 0.5 * half_away : half_away;
+    double outward = std::copysign(1.0, hi) * lo; // lo's part away from zero
+    double away = outward + e, toward = e - outward;
     if (away * (1 + 0x1p-50) < half_away && toward * (1 + 0x1p-50) < half_toward) return hi;
     return std::nullopt;
 }

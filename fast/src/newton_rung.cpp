@@ -145,41 +145,57 @@ Leading leading(const LineForm& f) {
 }
 
 // g(c + x) = A x^2 + G' x + G: G = g(c) in double-double, read as a double with its bound, and
-// G' = 2 sum sigma_k u_k(c) U1_k in double.
+// G' = 2 sum sigma_k u_k(c) U1_k in double. For N points at once: their chains of dependent
+// operations are independent, so the processor overlaps them.
 struct Local {
     double G, e_G, Gp, e_Gp;
 };
-template <int SigmaZ>
-Local local_at(const LineForm& f, double c) {
-    CompensatedSum g;
-    double propagated = f.K.e, Gp = 0, products = 0, e_Gp = 0;
+template <int SigmaZ, int N>
+void local_at(const LineForm& f, const double (&c)[N], Local (&out)[N]) {
+    CompensatedSum g[N];
+    double propagated[N], Gp[N], products[N], e_Gp[N];
+    for (int n = 0; n < N; ++n)
+        propagated[n] = f.K.e, Gp[n] = products[n] = e_Gp[n] = 0;
 #pragma GCC unroll 3
     for (int k = 0; k < used_components<SigmaZ>; ++k) {
         const double sg = sigma<SigmaZ>(k); // +-1: multiplying by it is exact
         const BoundedDD &a = f.U0[k], &b = f.U1[k];
-        // u_k(c) = U0_k + c U1_k
-        CompensatedSum s;
-        s.add_product(c, b.hi);
-        s.add_exact(a.hi);
-        s.add_small(a.lo);
-        s.add_small(c * b.lo);
-        BoundedDD uk = s.unnormalized(a.e + std::fabs(c) * b.e);
-        // sigma u_k^2 = sigma (hi^2 + 2 hi lo + lo^2); |u^2 - u'^2| <= e (2 |u'| + e)
-        double sh = sg * uk.hi;
-        g.add_product(sh, uk.hi);
-        g.add_small(2 * sh * uk.lo);
-        g.add_small(sg * uk.lo * uk.lo);
-        propagated += uk.e * (2 * (std::fabs(uk.hi) + std::fabs(uk.lo)) + uk.e);
-        // G': gamma_3 sum |u_k U1_k| for the rounding (4u covers it), and the parts left out
-        Gp += sh * b.hi;
-        products += std::fabs(uk.hi * b.hi);
-        e_Gp += std::fabs(uk.hi) * bound_of_hi(b) +
-                (std::fabs(uk.lo) + uk.e) * (std::fabs(b.hi) + bound_of_hi(b));
+#pragma GCC unroll 2
+        for (int n = 0; n < N; ++n) {
+            // u_k(c) = U0_k + c U1_k
+            CompensatedSum s;
+            s.add_product(c[n], b.hi);
+            s.add_exact(a.hi);
+            s.add_small(a.lo);
+            s.add_small(c[n] * b.lo);
+            BoundedDD uk = s.unnormalized(a.e + std::fabs(c[n]) * b.e);
+            // sigma u_k^2 = sigma (hi^2 + 2 hi lo + lo^2); |u^2 - u'^2| <= e (2 |u'| + e)
+            double sh = sg * uk.hi;
+            g[n].add_product(sh, uk.hi);
+            g[n].add_small(2 * sh * uk.lo);
+            g[n].add_small(sg * uk.lo * uk.lo);
+            propagated[n] += uk.e * (2 * (std::fabs(uk.hi) + std::fabs(uk.lo)) + uk.e);
+            // G': gamma_3 sum |u_k U1_k| for the rounding (4u covers it), and the parts left out
+            Gp[n] += sh * b.hi;
+            products[n] += std::fabs(uk.hi * b.hi);
+            e_Gp[n] += std::fabs(uk.hi) * bound_of_hi(b) +
+                       (std::fabs(uk.lo) + uk.e) * (std::fabs(b.hi) + bound_of_hi(b));
+        }
     }
-    g.add_exact(-f.K.hi);
-    g.add_small(-f.K.lo);
-    BoundedDD G = g.rounded(propagated);
-    return {G.hi, G.e, 2 * Gp, 2 * (4 * u * products + e_Gp) * (1 + 0x1p-40) + 0x1p-1060};
+    for (int n = 0; n < N; ++n) {
+        g[n].add_exact(-f.K.hi);
+        g[n].add_small(-f.K.lo);
+        BoundedDD G = g[n].rounded(propagated[n]);
+        out[n] = {G.hi, G.e, 2 * Gp[n],
+                  2 * (4 * u * products[n] + e_Gp[n]) * (1 + 0x1p-40) + 0x1p-1060};
+    }
+}
+template <int SigmaZ>
+Local local_at(const LineForm& f, double c) {
+    const double at[1] = {c};
+    Local out[1];
+    local_at<SigmaZ>(f, at, out);
+    return out[0];
 }
 
 // An upper bound of x y for upper bounds x, y >= 0 of two quantities: each may have underflowed
@@ -201,9 +217,7 @@ struct Enclosure {
 // and |phi(y) - 1| = |y| / (1 + sqrt(1 - y))^2 <= 0.35 |y|. |-G/G' - x0| is at most
 // (e_G + |x0| e_G') / |G'| + u |x0| (the perturbed quotient and its rounding). The other root is
 // at -G'/A - x*, on the side of -sgn(G' A): |2 x*| < |G'/A| when |y| <= 1/2.
-template <int SigmaZ>
-std::optional<Enclosure> root_near(const LineForm& f, const Leading& A, double c) {
-    Local L = local_at<SigmaZ>(f, c);
+std::optional<Enclosure> root_near(const Local& L, const Leading& A, double c) {
     double P = (std::fabs(L.Gp) - L.e_Gp) * (1 - 0x1p-50);        // |G'| >= P
     if (!(P >= 0x1p-1000 && P <= 0x1p+1000)) return std::nullopt; // NaN too
     // Bounds from 1/P (normal, so each rounding is relative: 1 + 2^-48 covers a dozen). y is
@@ -368,8 +382,12 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
     double q = -(B + std::copysign(std::sqrt(D), B));
     double estimate[2] = {q / A.A, C0 / q};
     if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
+    // Both roots at once when both are needed; otherwise the second only if the first is not kept.
+    Local local[2];
+    if (query.need == Need::all) local_at<SigmaZ>(f, estimate, local);
     for (int i = 0; i < 2; ++i) {
-        std::optional<Enclosure> en = root_near<SigmaZ>(f, A, estimate[i]);
+        if (query.need != Need::all) local[i] = local_at<SigmaZ>(f, estimate[i]);
+        std::optional<Enclosure> en = root_near(local[i], A, estimate[i]);
         if (!en || en->smaller != (i == 0)) return false;
         int inside = kept(f, unit, *en);
         if (inside < 0) return false;
