@@ -56,35 +56,41 @@ struct EllipticStable {
     T z_at(T t) const { return f.local_z(moved_origin(w, t, v)); }
 };
 
+// The cone's equation x^2 + y^2 = z^2 is homogeneous: its roots do not change when every local
+// coordinate is scaled by one factor. So the local coordinates here are M^-1 u times sigma =
+// s det, s a power of two near 1 / |det| (frame.hpp): A, B and C0 carry sigma^2, D sigma^4, and
+// no division by det is needed but in z itself (z_at), which the extent test needs as it is.
 template <class T>
 struct ConeStable {
     DualFrameT<T> f;
     Vec3TwoTermT<T> w, c;
     Vec3T<T> a, b, v, vl;
-    T A, tc, B, Cc, D;
+    T s, A, tc, B, Cc, D;
 
     // Prescaled a, b, H, C, L0 and v; c = H - C exactly (it is not a double).
     ConeStable(Vec3T<T> a_, Vec3T<T> b_, Vec3T<T> H, Vec3T<T> C, Vec3T<T> L0, Vec3T<T> v_)
         : f(a_, b_, difference_exact(H, C)), w(difference_exact(L0, H)), c(difference_exact(H, C)),
           a(a_), b(b_), v(v_) {
-        vl = f.local(v);
+        s = power_of_two_inverse(f.det);
+        vl = f.scaled_local(v, s);
         A = circle_minus_square(vl.x, vl.y, vl.z);
     }
     T C0_at_origin() const {
-        Vec3T<T> wl = f.local(w.rounded());
+        Vec3T<T> wl = f.scaled_local(w.rounded(), s);
         return squares_difference(wl.x, wl.y, wl.z);
     }
     // Origin moved to the line's closest approach to the apex; D = ux^2 + uy^2 - uz^2 with
-    // u = v' x w' = M^T (v x w) / det, each component a double-double triple product.
+    // u = v' x w' = M^T (v x w) / det, each component a double-double triple product; here
+    // sigma^2 u = s (s det) M^T (v x w), a product by an exact power-of-two multiple of det.
     void discriminant() {
         tc = -dot(v, w.rounded()) / dot(v, v); // any tc is an exact move
-        Vec3T<T> wcw = moved_origin(w, tc, v), wc = f.local(wcw);
+        Vec3T<T> wcw = moved_origin(w, tc, v), wc = f.scaled_local(wcw, s);
         const T vm[3] = {vl.x, vl.y, -vl.z}, wm[3] = {wc.x, wc.y, wc.z};
         B = dot2(vm, wm);
         Cc = squares_difference(wc.x, wc.y, wc.z);
         Vec3TwoTermT<T> vw = cross_dd(v, wcw);
         Vec3T<T> u{dot2(a, vw), dot2(b, vw), dot2(c.hi, vw) + dot(c.lo, vw.hi)};
-        u = (T(1) / f.det) * u;
+        u = (s * (s * f.det)) * u;
         D = squares_difference(u.x, u.y, u.z);
     }
     T z_at(T t) const { return f.local_z(moved_origin(w, t, v)); }

@@ -5,6 +5,9 @@
 
 #include <Eigen/Dense>
 
+#include <cstdint>
+#include <cstring>
+
 namespace linequad::detail {
 
 // Seed 000/002's construction, kept literally for the seed solvers: M = T R S with R built from
@@ -45,8 +48,25 @@ struct DualFrameT {
     Vec3T<T> local(Vec3T<T> u) const {
         return {dot2(u, nx) / det, dot2(u, ny) / det, dot2(u, nz) / det};
     }
+    // M^-1 u times s det, for s a power of two near 1 / |det| (power_of_two_inverse): for a
+    // homogeneous equation, whose roots do not change when every local coordinate is scaled. No
+    // division, one rounding per coordinate, and |s det| in [1, 2) keeps the magnitudes of M^-1 u.
+    Vec3T<T> scaled_local(Vec3T<T> u, T s) const {
+        return {s * dot2(u, nx), s * dot2(u, ny), s * dot2(u, nz)};
+    }
     T local_z(Vec3T<T> u) const { return dot2(u, nz) / det; }
 };
 using DualFrame = DualFrameT<double>;
+
+// 2^-E for |x| in [2^E, 2^(E+1)), exactly; 1 when x is zero or subnormal (no power of two of that
+// size is safe to scale by; the solvers' underflow guards then refuse what they cannot decide).
+inline double power_of_two_inverse(double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    bits &= 0x7ff0000000000000u; // 2^E, or 0
+    double p;
+    std::memcpy(&p, &bits, sizeof p);
+    return p == 0 ? 1.0 : 1 / p;
+}
 
 } // namespace linequad::detail

@@ -73,5 +73,11 @@ inline D4 select(M4 m, D4 a, D4 b) {
 inline int bits(M4 m) {
     return _mm256_movemask_pd(m.m);
 }
+// power_of_two_inverse (frame.hpp) in each lane: the same operations, so the same bits.
+inline D4 power_of_two_inverse(D4 x) {
+    __m256d p = _mm256_and_pd(x.v, _mm256_castsi256_pd(_mm256_set1_epi64x(0x7ff0000000000000)));
+    __m256d zero = _mm256_cmp_pd(p, _mm256_setzero_pd(), _CMP_EQ_OQ);
+    return D4(_mm256_blendv_pd(_mm256_div_pd(_mm256_set1_pd(1.0), p), _mm256_set1_pd(1.0), zero));
+}
 
 } // namespace linequad::detail
