@@ -162,7 +162,7 @@ void elliptic_cone_stable_x4(const EllipticCone& s, double shape_extent, const d
     M4 generic = ln.ok & (max_abs4(a) >= min_size) & (max_abs4(b) >= min_size) &
                  (max_abs4(k.c.hi) >= min_size) & (fabs(k.A) >= tiny);
     k.discriminant();
-    generic = generic & (fabs(k.D) >= tiny);
+    generic = generic & !k.near_tangent & (fabs(k.D) >= tiny);
     auto z_of = [&](D4 t, D4, M4) { return k.z_at(t); };
     finish_lanes(k, generic, ln, D4(s.finite ? -1.0 : -inf), D4(0.0), range, z_of, out);
 }

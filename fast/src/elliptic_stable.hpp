@@ -5,6 +5,8 @@
 #include "cylinder_stable.hpp"
 #include "frame.hpp"
 
+#include <type_traits>
+
 namespace linequad::detail {
 
 // A s^2 + 2 B s + Cc = 0 where D > 0: the stable pair, smaller first (stable_roots' two roots).
@@ -62,10 +64,12 @@ struct EllipticStable {
 // no division by det is needed but in z itself (z_at), which the extent test needs as it is.
 template <class T>
 struct ConeStable {
+    using Mask = decltype(T() < T());
     DualFrameT<T> f;
     Vec3TwoTermT<T> w, c;
     Vec3T<T> a, b, v, vl;
     T s, A, tc, B, Cc, D;
+    Mask near_tangent; // D came from the double-double triple products (the scalar solver)
 
     // Prescaled a, b, H, C, L0 and v; c = H - C exactly (it is not a double).
     ConeStable(Vec3T<T> a_, Vec3T<T> b_, Vec3T<T> H, Vec3T<T> C, Vec3T<T> L0, Vec3T<T> v_)
@@ -80,18 +84,34 @@ struct ConeStable {
         return squares_difference(wl.x, wl.y, wl.z);
     }
     // Origin moved to the line's closest approach to the apex; D = ux^2 + uy^2 - uz^2 with
-    // u = v' x w' = M^T (v x w) / det, each component a double-double triple product; here
-    // sigma^2 u = s (s det) M^T (v x w), a product by an exact power-of-two multiple of det.
+    // u = v' x w' (sigma^2 u in the scaled coordinates), by Kahan's cross product of the rounded
+    // local v' and w'. Its error is a few u of the products u came from, which is small beside D
+    // but near tangency: where |D| < 1/8 of them, D comes from accurate_discriminant instead (in
+    // the batch: the lane goes to the scalar solver, which does that).
     void discriminant() {
+        using std::fabs;
         tc = -dot(v, w.rounded()) / dot(v, v); // any tc is an exact move
         Vec3T<T> wcw = moved_origin(w, tc, v), wc = f.scaled_local(wcw, s);
         const T vm[3] = {vl.x, vl.y, -vl.z}, wm[3] = {wc.x, wc.y, wc.z};
         B = dot2(vm, wm);
         Cc = squares_difference(wc.x, wc.y, wc.z);
+        Vec3T<T> u = cross_accurate(vl, wc);
+        D = squares_difference(u.x, u.y, u.z);
+        T size = fabs(u.x) * (fabs(vl.y * wc.z) + fabs(vl.z * wc.y)) +
+                 fabs(u.y) * (fabs(vl.z * wc.x) + fabs(vl.x * wc.z)) +
+                 fabs(u.z) * (fabs(vl.x * wc.y) + fabs(vl.y * wc.x));
+        near_tangent = fabs(D) <= T(0.125) * size; // and where u, and D with it, came out 0
+        if constexpr (std::is_same_v<T, double>)
+            if (near_tangent) D = accurate_discriminant(wcw);
+    }
+    // u = M^T (v x w) / det with each component a double-double triple product, which stays
+    // accurate when D nearly vanishes; sigma^2 u = s (s det) M^T (v x w), a product by an exact
+    // power-of-two multiple of det.
+    T accurate_discriminant(Vec3T<T> wcw) const {
         Vec3TwoTermT<T> vw = cross_dd(v, wcw);
         Vec3T<T> u{dot2(a, vw), dot2(b, vw), dot2(c.hi, vw) + dot(c.lo, vw.hi)};
         u = (s * (s * f.det)) * u;
-        D = squares_difference(u.x, u.y, u.z);
+        return squares_difference(u.x, u.y, u.z);
     }
     T z_at(T t) const { return f.local_z(moved_origin(w, t, v)); }
 };
