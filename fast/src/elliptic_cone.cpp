@@ -18,12 +18,14 @@
 //
 // stable: the dual frame in double-double; local coordinates times s det (s a power of two near
 // 1 / |det|) instead of divided by det, since the equation is homogeneous (elliptic_stable.hpp);
-// the origin moved to the line's closest approach to the apex; each form x^2 + y^2 - z^2 with x^2
-// and y^2 exact inside fmas (squares_difference), except A, whose geometric form (rho - |z|)(rho +
-// |z|), rho = sqrt(x^2 + y^2), decides lines along a generator better; B as a compensated dot
-// product; and the discriminant in geometric form: with u = v' x w = M^T (v x w) / det
-// (double-double triple products), Lagrange's identity in the metric diag(1, 1, -1) gives
-//     D = B^2 - A C0 = ux^2 + uy^2 - uz^2.
+// the origin moved to the line's closest approach to the apex; each form x^2 + y^2 - z^2 with
+// x^2 and y^2 exact inside fmas (squares_difference), except A, whose geometric form
+// (rho - |z|)(rho + |z|), rho = sqrt(x^2 + y^2), decides lines along a generator better; B as a
+// compensated dot product; and the discriminant in geometric form: with u = v' x w' =
+// M^T (v x w) / det, Lagrange's identity in the metric diag(1, 1, -1) gives
+//     D = B^2 - A C0 = ux^2 + uy^2 - uz^2,
+// u by Kahan's cross product of the rounded v' and w', or, near tangency (|D| small beside the
+// products u came from), from double-double triple products.
 // Roots are the stable pair q / A, C0 / q, paired back as for the circular cylinder
 // (src/cylinder.cpp); a line on the surface only from the certified computation.
 //
