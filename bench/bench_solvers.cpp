@@ -1,5 +1,7 @@
-// ns per solve for shape x solver, on generic cases. Run:
-//   build/bench/linequad_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// ns per solve for shape x solver, on generic cases. Run (interleaved, so that a drift of the
+// machine's speed during the run does not bias the ratios between solvers):
+//   build/bench/linequad_bench --benchmark_repetitions=10 --benchmark_enable_random_interleaving=true
+//       --benchmark_report_aggregates_only=true --benchmark_min_time=0.2
 #include "generic_cases.hpp"
 
 #include "linequad/batch.hpp"
