@@ -75,11 +75,10 @@ double around(std::mt19937_64& rng, int e, int spread) {
 
 TEST_CASE("CompensatedSum's bound holds for products and small terms at every magnitude") {
     // Sums of up to 5 exact products, some made to cancel, and up to 6 small terms, each a product
-    // rounded once (as the rung forms them), at magnitudes from 2^-1070 to 2^900: the bound must
-    // cover the distance from hi + lo to the exact sum of the exact products, whether normalized,
-    // left unnormalized or rounded to one double.
+    // rounded once (as the rung forms them), at magnitudes from 2^-1000 to 2^900 (small terms down
+    // to the subnormal range): the bound must cover the distance from hi + lo to the exact sum of
+    // the exact products, whether normalized, left unnormalized or rounded to one double.
     std::mt19937_64 rng(5);
-    long checked = 0;
     for (int trial = 0; trial < 20000; ++trial) {
         int e = int(rng() % 1900) - 1000; // the sum's magnitude
         detail::CompensatedSum s;
@@ -105,9 +104,7 @@ TEST_CASE("CompensatedSum's bound holds for products and small terms at every ma
         REQUIRE(one.lo == 0);
         REQUIRE(within(one, exact));
         CHECK(std::fabs(normalized.lo) <= std::fabs(normalized.hi) * 0x1p-53);
-        ++checked;
     }
-    CHECK(checked == 20000);
 }
 
 TEST_CASE("round_proven returns a double only when every value within the bound rounds to it") {

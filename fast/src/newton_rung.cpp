@@ -1,6 +1,6 @@
-// The Newton rung of the correct solver (see newton_rung.hpp for the method). Every value here
-// is in the scene scaled to unit size; every bound is rigorous, and every decision is taken
-// only when a bound proves it.
+// The Newton rung of the correct solver (see newton_rung.hpp for the method). Every bound is
+// rigorous at any size of the scene (underflow enters as an absolute floor; overflow makes a bound
+// infinite, which proves nothing), and every decision is taken only when a bound proves it.
 #include "newton_rung.hpp"
 
 #include "compensated_sum.hpp"

@@ -37,8 +37,8 @@ struct LineForm {
     bool lo_bounded, hi_bounded;
 };
 
-// Each for a scene already scaled to unit size (ladder.hpp). negative_det: det(M) < 0, decided
-// exactly by validation.
+// Each for the scene the ladder gives (correct.cpp): as given when of moderate size, else scaled
+// to unit size (ladder.hpp). negative_det: det(M) < 0, decided exactly by validation.
 LineForm line_form(const Cylinder& s, const Line& l);
 LineForm line_form(const EllipticCylinder& s, const Line& l, bool negative_det);
 LineForm line_form(const EllipticCone& s, const Line& l, bool negative_det);
