@@ -331,22 +331,23 @@ Result ladder(const ShapeT& s, const Line& l, Query q, double extent,
               std::initializer_list<Vec3> positions, Scaled scaled, Form form,
               Quadratic quadratic) {
     Result r; // the one result, returned in place
+    // The Newton rung on the scene as `unit` has it; r is left empty when the rung declines.
+    auto newton = [&](const ShapeT& shape, const Unit& unit) {
+        if (detail::newton_rung(form(shape, unit.line), unit, l, q, r)) {
+            mark_certain(r, Rung::newton);
+            return true;
+        }
+        r = Result();
+        return false;
+    };
     // The Newton rung's bounds hold at any scale (underflow is in them, overflow makes them
     // infinite), so a scene of moderate size is solved as given; others are scaled first, so
     // that tiny or huge scenes are not left to the slower rungs.
     bool moderate = in_moderate_range(extent) && in_moderate_range(max_abs(l.v));
-    if (moderate && detail::newton_rung(form(s, l), Unit{1, 1, 1, l}, l, q, r)) {
-        mark_certain(r, Rung::newton);
-        return r;
-    }
+    if (moderate && newton(s, Unit{1, 1, 1, l})) return r;
     if (std::optional<Unit> u = unit_scale(l, extent, positions)) {
         ShapeT unit = scaled(s, 1 / u->pos_factor);
-        r = Result();
-        if (!moderate && detail::newton_rung(form(unit, u->line), *u, l, q, r)) {
-            mark_certain(r, Rung::newton);
-            return r;
-        }
-        r = Result();
+        if (!moderate && newton(unit, *u)) return r;
         auto dd = quadratic(BoundedDD(), unit, u->line);
         if (double_double_rung(dd, *u, q, r)) {
             mark_certain(r, Rung::double_double);

@@ -86,7 +86,7 @@ struct ConeStable {
     // Origin moved to the line's closest approach to the apex; D = ux^2 + uy^2 - uz^2 with
     // u = v' x w' (sigma^2 u in the scaled coordinates), by Kahan's cross product of the rounded
     // local v' and w'. Its error is a few u of the products u came from, which is small beside D
-    // but near tangency: where |D| < 1/8 of them, D comes from accurate_discriminant instead (in
+    // but near tangency: where |D| is at most 1/8 of them, D comes from accurate_discriminant (in
     // the batch: the lane goes to the scalar solver, which does that).
     void discriminant() {
         using std::fabs;
