@@ -1,12 +1,12 @@
 // ns per solve for shape x solver, on generic cases. Run (interleaved, so that a drift of the
 // machine's speed during the run does not bias the ratios between solvers):
-//   build/bench/linequad_bench --benchmark_repetitions=10 --benchmark_enable_random_interleaving=true
+//   build/bench/linequad_bench --benchmark_repetitions=10
+//   --benchmark_enable_random_interleaving=true
 //       --benchmark_report_aggregates_only=true --benchmark_min_time=0.2
 #include "generic_cases.hpp"
 
-#include "linequad/batch.hpp"
 #include "linequad/exact.hpp"
-#include "linequad/solvers.hpp"
+#include "linequad/linequad.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -14,7 +14,10 @@ namespace {
 
 using namespace linequad;
 
-const char* const shape_names[] = {"cylinder", "elliptic_cylinder", "elliptic_cone"};
+const std::size_t shape_count = std::variant_size_v<Shape>;
+std::string name_of(int shape) {
+    return shape_name(bench::generic_cases(shape, 1)[0].shape);
+}
 
 void solve(benchmark::State& state, const Solver* solver, int shape, Query q) {
     auto cases = bench::generic_cases(shape, 1024);
@@ -80,8 +83,8 @@ void stable_batch(benchmark::State& state, int shape) {
 }
 
 int register_all() {
-    for (int shape = 0; shape < 3; ++shape) {
-        std::string name = std::string(shape_names[shape]) + "/stable/1024_lines/";
+    for (int shape = 0; shape < int(shape_count); ++shape) {
+        std::string name = name_of(shape) + "/stable/1024_lines/";
         benchmark::RegisterBenchmark((name + "scalar_loop").c_str(), stable_scalar_loop, shape);
         benchmark::RegisterBenchmark((name + "batch").c_str(), stable_batch, shape);
     }
@@ -89,9 +92,9 @@ int register_all() {
     for (const Solver& s : fast_solvers())
         solvers.push_back(&s);
     solvers.push_back(&exact::solver());
-    for (int shape = 0; shape < 3; ++shape)
+    for (int shape = 0; shape < int(shape_count); ++shape)
         for (const Solver* s : solvers) {
-            std::string name = std::string(shape_names[shape]) + "/" + std::string(s->name);
+            std::string name = name_of(shape) + "/" + std::string(s->name);
             benchmark::RegisterBenchmark((name + "/points").c_str(), solve, s, shape,
                                          Query{Need::all, true});
             benchmark::RegisterBenchmark((name + "/no_points").c_str(), solve, s, shape,

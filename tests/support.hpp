@@ -87,6 +87,25 @@ inline void check_through_two_points(const Shape& shape, Vec3 p, Vec3 q,
     }
 }
 
+// The same answer bit for bit (signed zeros, infinities): the classification, t, points and
+// interval ends; bounds and certainty aside (the oracle gives none).
+inline void check_same_answer(const Result& got, const Result& want) {
+    INFO("got  " << describe(got) << "\nwant " << describe(want));
+    REQUIRE(got.error_code == want.error_code);
+    REQUIRE(got.count == want.count);
+    REQUIRE(got.on_surface == want.on_surface);
+    if (want.on_surface) {
+        CHECK(same_bits(got.s0, want.s0));
+        CHECK(same_bits(got.s1, want.s1));
+    }
+    for (int i = 0; i < want.count; ++i) {
+        CHECK(got.hits[i].kind == want.hits[i].kind);
+        CHECK(same_bits(got.hits[i].t, want.hits[i].t));
+        for (int k = 0; k < 3; ++k)
+            CHECK(same_bits(got.hits[i].p[k], want.hits[i].p[k]));
+    }
+}
+
 // Uniform doubles and vectors from a fixed seed (full 53-bit mantissas: exact inputs).
 struct RandomReals {
     std::mt19937_64 rng;

@@ -4,7 +4,6 @@
 
 #include "linequad/audit.hpp"
 #include "linequad/exact.hpp"
-#include "linequad/validate.hpp"
 
 #include <chrono>
 #include <csignal>

@@ -1,6 +1,8 @@
 // The case and result formats: exact round trips, and errors that name the line's field.
 #include "support.hpp"
 
+#include <limits>
+
 #include <cstring>
 #include <random>
 
@@ -58,8 +60,9 @@ TEST_CASE("case format: every double round-trips exactly", "[case_io]") {
 TEST_CASE("result format round trip", "[case_io]") {
     Result r;
     r.count = 2;
-    r.hits[0] = {-0x1.23456789abcdep-3, HitKind::tangent, {1, 2, 0x1p-1074}};
-    r.hits[1] = {1e300, HitKind::cross, {-0.0, 4, 5}};
+    const double no_bound = std::numeric_limits<double>::quiet_NaN();
+    r.hits[0] = {-0x1.23456789abcdep-3, {1, 2, 0x1p-1074}, no_bound, HitKind::tangent, false};
+    r.hits[1] = {1e300, {-0.0, 4, 5}, no_bound, HitKind::cross, false};
     std::string line = format_result("\"x\"", "stable", r), why;
     ParsedResult back;
     REQUIRE(parse_result(line, &back, &why));

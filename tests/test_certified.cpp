@@ -2,8 +2,9 @@
 // against their definitions.
 #include "support.hpp"
 
-#include "linequad/bounded.hpp"
-#include "roots.hpp"
+#include "numeric/bounded.hpp"
+#include "solve/certified.hpp"
+#include "solve/prescale.hpp"
 
 #include <mpfr.h>
 
@@ -128,8 +129,9 @@ TEST_CASE("certified settles with Bounded what QuickBounded leaves uncertain") {
 }
 
 TEST_CASE("fragile_scene finds exactly the components below 2^-240 of their scale") {
-    // Against its definition: some component x != 0 with |x| < 2^-240 scale, for positions
-    // against the extent and for v against its own largest component.
+    // Against its definition: some component x != 0 with |x| < 2^-240 scale, for positions (the
+    // shape's, given by its smallest nonzero component, and L0) against the extent and for v
+    // against its own largest component.
     std::mt19937_64 rng(5);
     auto component = [&] {
         switch (rng() % 5) {
@@ -151,13 +153,13 @@ TEST_CASE("fragile_scene finds exactly the components below 2^-240 of their scal
         return false;
     };
     for (int i = 0; i < 20000; ++i) {
-        Vec3 p = vec(), q = vec(), v = vec();
+        Vec3 p = vec(), L0 = vec(), v = vec();
         if (v == Vec3{}) v.x = 1;
         // Extents from 1 down to where 2^-240 extent underflows to 0 (nothing is below it).
         double extent = std::ldexp(1.0, -int(rng() % 1100));
         double v_scale = max_abs(v);
-        bool want = tiny(p, extent) || tiny(q, extent) || tiny(v, v_scale);
+        bool want = tiny(p, extent) || tiny(L0, extent) || tiny(v, v_scale);
         INFO("extent " << extent);
-        REQUIRE(detail::fragile_scene(extent, {p, q}, v) == want);
+        REQUIRE(detail::fragile_scene(extent, detail::min_nonzero(p), L0, v) == want);
     }
 }

@@ -3,11 +3,11 @@
 #include "rational.hpp"
 #include "support.hpp"
 
-#include "big_float.hpp"
-#include "bounded_dd.hpp"
+#include "numeric/big_float.hpp"
+#include "numeric/bounded_dd.hpp"
+#include "shapes/frame.hpp"
 
 #include "linequad/exact.hpp"
-#include "linequad/expansion.hpp"
 #include "linequad/families.hpp"
 
 #include <gmp.h>
@@ -28,24 +28,6 @@ double wide_double(std::mt19937_64& rng) {
     int e = int(rng() % 2098) - 1074;
     double x = std::ldexp(m, e); // rounds to a subnormal below 2^-1022: still a double
     return rng() % 2 ? -x : x;
-}
-
-// The correct solver's answer equals the oracle's bit for bit (signed zeros, infinities).
-void check_equal(const Result& got, const Result& want) {
-    INFO("correct " << describe(got) << "\noracle  " << describe(want));
-    REQUIRE(got.error.code == want.error.code);
-    REQUIRE(got.count == want.count);
-    REQUIRE(got.on_surface == want.on_surface);
-    if (want.on_surface) {
-        CHECK(same_bits(got.s0, want.s0));
-        CHECK(same_bits(got.s1, want.s1));
-    }
-    for (int i = 0; i < want.count; ++i) {
-        CHECK(got.hits[i].kind == want.hits[i].kind);
-        CHECK(same_bits(got.hits[i].t, want.hits[i].t));
-        for (int k = 0; k < 3; ++k)
-            CHECK(same_bits(got.hits[i].p[k], want.hits[i].p[k]));
-    }
 }
 
 Result correct_solve(const Shape& s, const Line& l, Query q = {}) {
@@ -246,7 +228,7 @@ TEST_CASE("correct rounds ties to even, as the oracle does") {
         CHECK(r.hits[1].t == 1.0); // 1 + 2^-53 is halfway to 1 + 2^-52
         CHECK(r.hits[0].p.x == -0x1p-53);
         CHECK(r.hits[1].p.x == 0x1p-53);
-        check_equal(r, exact::intersect(s, l));
+        check_same_answer(r, exact::intersect(s, l));
     }
     SECTION("-1 +- 2^-54: both roots round to -1") {
         auto [s, l] = line_across(1, 0x1p-54);
@@ -254,7 +236,7 @@ TEST_CASE("correct rounds ties to even, as the oracle does") {
         REQUIRE(r.count == 2);
         CHECK(r.hits[0].t == -1.0);
         CHECK(r.hits[1].t == -1.0); // -1 + 2^-54 is halfway to -(1 - 2^-53): even is -1
-        check_equal(r, exact::intersect(s, l));
+        check_same_answer(r, exact::intersect(s, l));
     }
 }
 
@@ -267,7 +249,7 @@ TEST_CASE("correct rounds beyond double's range to infinity, and into subnormals
         REQUIRE(r.count == 2);
         CHECK(std::isinf(r.hits[0].t));
         CHECK(r.rung == Rung::exact); // the double-double rung cannot scale there
-        check_equal(r, exact::intersect(s, l));
+        check_same_answer(r, exact::intersect(s, l));
     }
     SECTION("roots in the subnormal range") {
         Cylinder s{{0, 0, -1}, {0, 0, 1}, 0x1p-1060, true};
@@ -276,7 +258,7 @@ TEST_CASE("correct rounds beyond double's range to infinity, and into subnormals
         REQUIRE(r.count == 2);
         CHECK(r.hits[0].t < 0);
         CHECK(std::fabs(r.hits[1].t) < 0x1p-1022);
-        check_equal(r, exact::intersect(s, l));
+        check_same_answer(r, exact::intersect(s, l));
     }
 }
 
@@ -289,13 +271,13 @@ TEST_CASE("correct answers exactly where exact zeros decide: on the surface, at 
         CHECK(r.s0 == 0.5);
         CHECK(r.s1 == 1.0);
         CHECK(r.rung == Rung::exact);
-        check_equal(r, exact::intersect(s, l));
+        check_same_answer(r, exact::intersect(s, l));
     }
     SECTION("a line through the cone's apex") {
         EllipticCone s{{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, true};
         Line l{{-0.25, 0, 2}, {0.25, 0, -1}, Range::line}; // through the apex at t = 1
         Result r = correct_solve(s, l);
-        check_equal(r, exact::intersect(s, l));
+        check_same_answer(r, exact::intersect(s, l));
         REQUIRE(r.count >= 1);
         CHECK(r.hits[0].t == 1.0);
         CHECK(r.hits[0].kind == HitKind::tangent);
@@ -316,7 +298,7 @@ TEST_CASE("correct equals the oracle bit for bit on every family, range and quer
                     for (Query q : queries) {
                         Result got = correct_solve(c.shape, c.line, q);
                         INFO(format_case(c));
-                        check_equal(got, exact::intersect(c.shape, c.line, q));
+                        check_same_answer(got, exact::intersect(c.shape, c.line, q));
                         if (got.ok()) {
                             ++by_rung[std::size_t(got.rung)];
                             CHECK(got.certainty == Certainty::certain);

@@ -4,13 +4,13 @@
 #include "rational.hpp"
 #include "support.hpp"
 
-#include "compensated_sum.hpp"
-#include "newton_rung.hpp"
+#include "correct/newton_rung.hpp"
+#include "numeric/compensated_sum.hpp"
+#include "shapes/all.hpp"
 
 #include "linequad/case_io.hpp"
 #include "linequad/exact.hpp"
 #include "linequad/families.hpp"
-#include "linequad/validate.hpp"
 
 #include <mpfr.h>
 
@@ -221,9 +221,12 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
                 double f = std::ldexp(1.0, (i * 37) % 301 - 150);
                 Line l{f * c.line.L0, c.line.v, Range::line};
                 INFO(format_case(c) << "\nscaled by " << f);
+                using detail::AsGiven;
+                using detail::ShapeTraits;
                 if (const auto* p = std::get_if<Cylinder>(&c.shape)) {
                     Cylinder s{f * p->C, f * p->H, f * p->r, true};
-                    check_form(detail::line_form(s, l), exact_form_of(s, l), false);
+                    check_form(ShapeTraits<Cylinder>::line_form(AsGiven<Cylinder>{s}, l, 0),
+                               exact_form_of(s, l), false);
                 } else if (const auto* p = std::get_if<EllipticCylinder>(&c.shape)) {
                     EllipticCylinder s{f * p->C, f * p->a, f * p->b, f * p->c, true};
                     if (validate(s, l).code != ErrorCode::none) continue;
@@ -231,7 +234,9 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
                     ExactForm x =
                         exact_elliptic(qvec(s.a), qvec(s.b), qvec(s.c), qvec(l.L0) - qvec(s.C),
                                        qvec(l.v), negative, false);
-                    check_form(detail::line_form(s, l, negative), x, false);
+                    check_form(ShapeTraits<EllipticCylinder>::line_form(
+                                   AsGiven<EllipticCylinder>{s}, l, negative ? -1 : 1),
+                               x, false);
                 } else {
                     const auto& q = std::get<EllipticCone>(c.shape);
                     EllipticCone s{f * q.C, f * q.H, f * q.a, f * q.b, true};
@@ -239,7 +244,9 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
                     bool negative = negative_frame(s);
                     ExactForm x = exact_elliptic(qvec(s.a), qvec(s.b), qvec(s.H) - qvec(s.C),
                                                  qvec(l.L0) - qvec(s.H), qvec(l.v), negative, true);
-                    check_form(detail::line_form(s, l, negative), x, true);
+                    check_form(ShapeTraits<EllipticCone>::line_form(AsGiven<EllipticCone>{s}, l,
+                                                                    negative ? -1 : 1),
+                               x, true);
                 }
                 ++checked;
             }
@@ -253,26 +260,20 @@ namespace {
 // built as the ladder builds it; false when the case is invalid.
 bool run_rung(const Shape& shape, const Line& l, Query q, Result& r, bool& answered) {
     if (validate(shape, l).code != ErrorCode::none) return false;
-    detail::LineForm form;
-    if (const auto* s = std::get_if<Cylinder>(&shape))
-        form = detail::line_form(*s, l);
-    else if (const auto* s = std::get_if<EllipticCylinder>(&shape))
-        form = detail::line_form(*s, l, negative_frame(*s));
-    else {
-        const auto& c = std::get<EllipticCone>(shape);
-        form = detail::line_form(c, l, negative_frame(c));
-    }
-    answered = detail::newton_rung(form, detail::Unit{1, 1, 1, l}, l, q, r);
+    // The orientation as the ladder has it: what validation decided.
+    detail::LineForm form = std::visit(
+        [&](const auto& s) {
+            using S = std::decay_t<decltype(s)>;
+            detail::Validity valid = detail::validity_of(s);
+            return detail::ShapeTraits<S>::line_form(detail::AsGiven<S>{s}, l, valid.orientation);
+        },
+        shape);
+    answered = detail::newton_rung(form, detail::Unit{1, 1, l}, l, q, r);
     return true;
 }
 
 Shape scaled_shape(const Shape& s, double f) {
-    if (const auto* p = std::get_if<Cylinder>(&s))
-        return Cylinder{f * p->C, f * p->H, f * p->r, p->finite};
-    if (const auto* p = std::get_if<EllipticCylinder>(&s))
-        return EllipticCylinder{f * p->C, f * p->a, f * p->b, f * p->c, p->finite};
-    const auto& p = std::get<EllipticCone>(s);
-    return EllipticCone{f * p.C, f * p.H, f * p.a, f * p.b, p.finite};
+    return std::visit([&](const auto& shape) { return Shape(detail::scaled(shape, f)); }, s);
 }
 
 } // namespace

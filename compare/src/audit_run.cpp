@@ -1,6 +1,8 @@
 // The campaign loop, the grading of results files, and report provenance.
 #include "linequad/audit.hpp"
 
+#include "shape_types.hpp"
+
 #include "linequad/batch.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/exact.hpp"
@@ -110,16 +112,11 @@ std::vector<Group> groups_of(const Options& o) {
             families.push_back(Family(f));
     std::vector<Group> out;
     for (Family f : families)
-        for (int shape = 0; shape < 3; ++shape)
+        for (int shape = 0; shape < int(shape_count); ++shape)
             if (family_applies(f, shape))
                 for (Range r : {Range::line, Range::ray, Range::segment})
                     out.push_back({f, shape, r});
     return out;
-}
-
-const char* shape_label(int shape) {
-    static const char* const n[3] = {"cylinder", "elliptic_cylinder", "elliptic_cone"};
-    return n[shape];
 }
 
 std::vector<const Solver*> solvers_of(const Options& o) {
@@ -233,7 +230,8 @@ Report grade_results(const Options& o) {
             if (!answered.count(id + "/" + solver)) {
                 std::string family = c.family.empty() ? "cases" : c.family;
                 Row& row = rep.rows[family + "/" + shape_name(c.shape) + "/" + solver];
-                Result missing = Result::failure(ErrorCode::unknown_solver, "no answer");
+                // A refusal the oracle never makes (see parse_result).
+                Result missing = Result::failure(ErrorCode::out_of_range, "no answer");
                 grade(c, solver, missing, exact::intersect(c.shape, c.line), row, nullptr, false);
             }
     finish(rep, o, start);
@@ -284,8 +282,9 @@ Report run(const Options& o) {
             for (std::size_t i = 0; i < cases.size(); ++i)
                 oracle[i] = exact::intersect(cases[i].shape, cases[i].line);
             for (const Solver* s : solvers) {
-                Row& row = rep.rows[std::string(family_name(grp.family)) + "/" +
-                                    shape_label(grp.shape) + "/" + std::string(s->name)];
+                Row& row =
+                    rep.rows[std::string(family_name(grp.family)) + "/" +
+                             shape_name_at(std::size_t(grp.shape)) + "/" + std::string(s->name)];
                 auto t0 = std::chrono::steady_clock::now();
                 for (std::size_t i = 0; i < cases.size(); ++i)
                     got[i] = (*s)(cases[i].shape, cases[i].line);
@@ -300,7 +299,8 @@ Report run(const Options& o) {
             }
             if (batch) {
                 std::string family = family_name(grp.family);
-                Row& row = rep.rows[family + "/" + shape_label(grp.shape) + "/" + batch_name];
+                Row& row = rep.rows[family + "/" + shape_name_at(std::size_t(grp.shape)) + "/" +
+                                    batch_name];
                 row.ns.add(run_batch(cases, got));
                 auto& curve = rep.curves[family + "/" + batch_name];
                 for (std::size_t i = 0; i < cases.size(); ++i)

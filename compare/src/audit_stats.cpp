@@ -3,6 +3,8 @@
 
 #include "linequad/case_io.hpp"
 
+#include "numeric/format.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -12,14 +14,7 @@ namespace linequad::audit {
 
 std::uint64_t ulps_between(double a, double b) {
     if (std::isnan(a) || std::isnan(b)) return std::numeric_limits<std::uint64_t>::max();
-    auto ordinal = [](double x) {
-        std::int64_t i;
-        std::memcpy(&i, &x, sizeof i);
-        // Monotonic map of doubles to integers; -0 and +0 both map to 0.
-        return i < 0 ? -(i & 0x7fffffffffffffff) : i;
-    };
-    std::int64_t x = ordinal(a), y = ordinal(b);
-    return x > y ? std::uint64_t(x) - std::uint64_t(y) : std::uint64_t(y) - std::uint64_t(x);
+    return detail::Binary64::ulps_between(a, b);
 }
 
 int Histogram::bucket(std::uint64_t u) {
@@ -150,7 +145,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
     if (got.ok() && got.rung != Rung::none) ++row.rungs[std::size_t(got.rung)];
     std::uint64_t case_max = 0;
     if (!oracle.ok() || !got.ok()) {
-        if (oracle.ok() != got.ok() || oracle.error.code != got.error.code) flags[refused] = true;
+        if (oracle.ok() != got.ok() || oracle.error_code != got.error_code) flags[refused] = true;
     } else if (!finite_result(got) && finite_result(oracle)) {
         flags[nonfinite] = true;
     } else if (oracle.on_surface != got.on_surface) {

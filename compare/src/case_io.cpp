@@ -1,5 +1,7 @@
 #include "linequad/case_io.hpp"
 
+#include "shape_types.hpp"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -66,32 +68,89 @@ struct Reader {
     }
 };
 
-const char* const shape_fields[3][5] = {
-    {"C", "H", "r", nullptr, nullptr},
-    {"C", "a", "b", "c", nullptr},
-    {"C", "H", "a", "b", nullptr},
-};
-const char* const shape_names[3] = {"cylinder", "elliptic_cylinder", "elliptic_cone"};
-const char* const common_fields[] = {"id",     "shape",  "L0", "v",   "range",
-                                     "finite", "family", "k",  "note"};
+// Fields every case may have, whatever its shape.
+const char* const common_fields[] = {"id", "shape",  "L0",     "v", "range", "t0",
+                                     "t1", "finite", "family", "k", "note"};
 
-bool known_field(const std::string& key, int shape) {
+template <class S>
+bool known_field(const std::string& key) {
     for (const char* f : common_fields)
         if (key == f) return true;
-    for (const char* f : shape_fields[shape])
-        if (f && key == f) return true;
-    return false;
+    bool known = false;
+    detail::for_each_field<S>([&](const auto& f) { known = known || key == f.name; });
+    return known;
 }
 
-void put_vec(std::string& out, const char* name, Vec3 p) {
+// "cylinder, elliptic_cylinder or elliptic_cone"
+std::string shape_names() {
+    std::string out;
+    for (std::size_t i = 0; i < shape_count; ++i)
+        out += std::string(i == 0 ? "" : i + 1 == shape_count ? " or " : ", ") + shape_name_at(i);
+    return out;
+}
+
+bool read_field(Reader& r, const char* name, Vec3* out) {
+    return r.vec(name, out);
+}
+bool read_field(Reader& r, const char* name, double* out) {
+    return r.number(name, out);
+}
+
+// The shape's own fields, from its table.
+template <class S>
+bool read_shape(Reader& r, bool finite, Shape* out) {
+    S s;
+    bool ok = true;
+    detail::for_each_field<S>(
+        [&](const auto& f) { ok = ok && read_field(r, f.name, &(s.*f.member)); });
+    s.finite = finite;
+    *out = s;
+    return ok;
+}
+
+// The range: a shorthand ("range"), or its ends ("t0", "t1"; either may be left out, or be
+// "inf" or "-inf"), not both.
+bool read_range(Reader& r, const Value& obj, Interval* out) {
+    const Value *range = obj.find("range"), *t0 = obj.find("t0"), *t1 = obj.find("t1");
+    if (range && (t0 || t1)) return r.fail(t0 ? "t0" : "t1", "give either range or t0, t1");
+    if (range) {
+        if (range->type != Value::Type::string) return r.fail("range", "expected a string");
+        if (range->text == "line")
+            *out = Range::line;
+        else if (range->text == "ray")
+            *out = Range::ray;
+        else if (range->text == "segment")
+            *out = Range::segment;
+        else
+            return r.fail("range", "expected line, ray or segment");
+        return true;
+    }
+    Interval i;
+    if (t0 && !r.number("t0", &i.t0)) return false;
+    if (t1 && !r.number("t1", &i.t1)) return false;
+    *out = i;
+    return true;
+}
+
+void put_field(std::string& out, const char* name, Vec3 p);
+void put_field(std::string& out, const char* name, double x);
+
+void put_field(std::string& out, const char* name, Vec3 p) {
     out += ",\"";
     out += name;
     out += "\":[\"" + hex(p.x) + "\",\"" + hex(p.y) + "\",\"" + hex(p.z) + "\"]";
 }
-void put_num(std::string& out, const char* name, double x) {
+void put_field(std::string& out, const char* name, double x) {
     out += ",\"";
     out += name;
     out += "\":\"" + hex(x) + "\"";
+}
+
+// The shorthand an interval is, if any.
+bool shorthand(Interval i, Range* r) {
+    for (Range x : {Range::line, Range::ray, Range::segment})
+        if (i == Interval(x)) return *r = x, true;
+    return false;
 }
 
 } // namespace
@@ -115,26 +174,18 @@ bool parse_case(std::string_view line, Case* c, std::string* why) {
     Reader r{obj, why};
     const Value* shape = r.need("shape");
     if (!shape) return false;
-    int kind = -1;
-    for (int i = 0; i < 3; ++i)
-        if (shape->type == Value::Type::string && shape->text == shape_names[i]) kind = i;
-    if (kind < 0) return r.fail("shape", "expected cylinder, elliptic_cylinder or elliptic_cone");
-    for (const auto& m : obj.members)
-        if (!known_field(m.first, kind))
-            return r.fail(m.first, std::string("not a field of a ") + shape_names[kind] + " case");
+    std::size_t kind = shape->type == Value::Type::string ? shape_index(shape->text) : shape_count;
+    if (kind == shape_count) return r.fail("shape", "expected " + shape_names());
+    for (const auto& m : obj.members) {
+        bool known = with_shape_type(
+            kind, [&](auto tag) { return known_field<typename decltype(tag)::type>(m.first); });
+        if (!known)
+            return r.fail(m.first,
+                          std::string("not a field of a ") + shape_name_at(kind) + " case");
+    }
 
     if (!r.vec("L0", &c->line.L0) || !r.vec("v", &c->line.v)) return false;
-    if (const Value* range = obj.find("range")) {
-        if (range->type != Value::Type::string) return r.fail("range", "expected a string");
-        if (range->text == "line")
-            c->line.range = Range::line;
-        else if (range->text == "ray")
-            c->line.range = Range::ray;
-        else if (range->text == "segment")
-            c->line.range = Range::segment;
-        else
-            return r.fail("range", "expected line, ray or segment");
-    }
+    if (!read_range(r, obj, &c->line.range)) return false;
     bool finite = true;
     if (const Value* f = obj.find("finite")) {
         if (f->type != Value::Type::boolean) return r.fail("finite", "expected true or false");
@@ -150,52 +201,29 @@ bool parse_case(std::string_view line, Case* c, std::string* why) {
             return r.fail("k", "expected an integer");
         c->k = int(x);
     }
-    switch (kind) {
-    case 0: {
-        Cylinder s;
-        if (!r.vec("C", &s.C) || !r.vec("H", &s.H) || !r.number("r", &s.r)) return false;
-        s.finite = finite;
-        c->shape = s;
-        break;
-    }
-    case 1: {
-        EllipticCylinder s;
-        if (!r.vec("C", &s.C) || !r.vec("a", &s.a) || !r.vec("b", &s.b) || !r.vec("c", &s.c))
-            return false;
-        s.finite = finite;
-        c->shape = s;
-        break;
-    }
-    default: {
-        EllipticCone s;
-        if (!r.vec("C", &s.C) || !r.vec("H", &s.H) || !r.vec("a", &s.a) || !r.vec("b", &s.b))
-            return false;
-        s.finite = finite;
-        c->shape = s;
-        break;
-    }
-    }
-    return true;
+    return with_shape_type(kind, [&](auto tag) {
+        return read_shape<typename decltype(tag)::type>(r, finite, &c->shape);
+    });
 }
 
 std::string format_case(const Case& c) {
     std::string out = "{\"id\":" + c.id + ",\"shape\":\"" + shape_name(c.shape) + "\"";
-    bool finite = true;
-    if (auto* s = std::get_if<Cylinder>(&c.shape)) {
-        put_vec(out, "C", s->C), put_vec(out, "H", s->H), put_num(out, "r", s->r);
-        finite = s->finite;
-    } else if (auto* s = std::get_if<EllipticCylinder>(&c.shape)) {
-        put_vec(out, "C", s->C), put_vec(out, "a", s->a), put_vec(out, "b", s->b);
-        put_vec(out, "c", s->c);
-        finite = s->finite;
-    } else if (auto* s = std::get_if<EllipticCone>(&c.shape)) {
-        put_vec(out, "C", s->C), put_vec(out, "H", s->H), put_vec(out, "a", s->a);
-        put_vec(out, "b", s->b);
-        finite = s->finite;
+    bool finite = std::visit(
+        [&](const auto& s) {
+            using S = std::decay_t<decltype(s)>;
+            detail::for_each_field<S>([&](const auto& f) { put_field(out, f.name, s.*f.member); });
+            return s.finite;
+        },
+        c.shape);
+    put_field(out, "L0", c.line.L0);
+    put_field(out, "v", c.line.v);
+    Range range;
+    if (shorthand(c.line.range, &range)) {
+        out += ",\"range\":\"" + std::string(range_name(range)) + "\"";
+    } else {
+        if (c.line.range.has_t0()) put_field(out, "t0", c.line.range.t0);
+        if (c.line.range.has_t1()) put_field(out, "t1", c.line.range.t1);
     }
-    put_vec(out, "L0", c.line.L0);
-    put_vec(out, "v", c.line.v);
-    out += ",\"range\":\"" + std::string(range_name(c.line.range)) + "\"";
     out += finite ? ",\"finite\":true" : ",\"finite\":false";
     if (!c.family.empty()) {
         out += ",\"family\":";
@@ -208,7 +236,7 @@ std::string format_case(const Case& c) {
 
 std::string format_result(const std::string& id, std::string_view solver, const Result& r,
                           bool points) {
-    if (!r.ok()) return format_failure(id, solver, code_name(r.error.code), message(r.error));
+    if (!r.ok()) return format_failure(id, solver, code_name(r.error_code), message(r.error()));
     std::string out = "{\"id\":" + id + ",\"solver\":";
     json::write_string(out, solver);
     out += ",\"hits\":[";
@@ -217,9 +245,9 @@ std::string format_result(const std::string& id, std::string_view solver, const 
         if (i) out += ",";
         out += "{\"t\":\"" + hex(h.t) + "\",\"kind\":\"";
         out += h.kind == HitKind::tangent ? "tangent\"" : "cross\"";
-        if (points) put_vec(out, "p", h.p);
+        if (points) put_field(out, "p", h.p);
         if (!std::isnan(h.bound)) {
-            put_num(out, "bound", h.bound);
+            put_field(out, "bound", h.bound);
             out += h.certain ? ",\"certain\":true" : ",\"certain\":false";
         }
         out += "}";
@@ -268,10 +296,12 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
         pr->error_message = e->type == Value::Type::string ? e->text : "error";
         const Value* code = obj.find("code");
         pr->error_code = code && code->type == Value::Type::string ? code->text : "error";
-        // The code names the kind of refusal; an unknown or malformed one stays "refused".
-        pr->result.error.code = ErrorCode::unknown_solver;
-        for (int c = int(ErrorCode::not_a_number); c <= int(ErrorCode::unknown_solver); ++c)
-            if (pr->error_code == code_name(ErrorCode(c))) pr->result.error.code = ErrorCode(c);
+        // The code names the kind of refusal. One that no solver of linequad's gives stands as
+        // out_of_range, a refusal the oracle never makes: it is graded as refused.
+        pr->result.error_code = ErrorCode::out_of_range;
+        for (int c = int(ErrorCode::not_a_number); c <= int(ErrorCode::out_of_range); ++c)
+            if (pr->error_code == code_name(ErrorCode(c))) pr->result.error_code = ErrorCode(c);
+        pr->result.error_field = "";
         return true;
     }
     const Value* hits = r.need("hits");
@@ -281,6 +311,7 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
     for (const Value& h : hits->items) {
         Reader hr{h, why};
         Hit& out = pr->result.hits[pr->result.count++];
+        out = Hit{0, {}, std::numeric_limits<double>::quiet_NaN(), HitKind::cross, false};
         if (h.type != Value::Type::object || !hr.number("t", &out.t))
             return r.fail("hits", "each hit needs t");
         const Value* kind = h.find("kind");

@@ -4,6 +4,8 @@
 // decides what the resulting doubles really are.
 #include "linequad/families.hpp"
 
+#include "shape_types.hpp"
+
 #include <cmath>
 #include <random>
 
@@ -86,8 +88,37 @@ Frame circular_from(Vec3 O, Vec3 c, double radius) {
     return {O, a, b, c};
 }
 
-Frame frame_for(Rng& r, int shape, bool integer) {
-    if (shape == 0) {
+// What the families need to know of each shape: whether its cross-section is round (its frame
+// then has orthogonal a, b of one length, the radius) and whether it is a cone (its local extent
+// is -1 <= z <= 0, its radius there |z|, and it has an apex and generators); and how to build it
+// on a frame.
+template <class S>
+struct Sampling;
+template <>
+struct Sampling<Cylinder> {
+    static constexpr bool circular = true, conical = false;
+    static Cylinder make(const Frame& f, bool finite) {
+        return Cylinder{f.O, f.O + f.c, norm(f.a), finite};
+    }
+};
+template <>
+struct Sampling<EllipticCylinder> {
+    static constexpr bool circular = false, conical = false;
+    static EllipticCylinder make(const Frame& f, bool finite) {
+        return EllipticCylinder{f.O, f.a, f.b, f.c, finite};
+    }
+};
+template <>
+struct Sampling<EllipticCone> {
+    static constexpr bool circular = false, conical = true;
+    static EllipticCone make(const Frame& f, bool finite) {
+        return EllipticCone{f.O - f.c, f.O, f.a, f.b, finite}; // apex at O, base at O - c
+    }
+};
+
+template <class S>
+Frame frame_for(Rng& r, bool integer) {
+    if constexpr (Sampling<S>::circular) {
         if (integer) return integer_circular_frame(r);
         Vec3 c = r.vec(4);
         while (norm(c) < 0.5)
@@ -97,15 +128,9 @@ Frame frame_for(Rng& r, int shape, bool integer) {
     return integer ? integer_frame(r) : random_frame(r);
 }
 
-Shape shape_from(const Frame& f, int shape, bool finite = true) {
-    switch (shape) {
-    case 0:
-        return Cylinder{f.O, f.O + f.c, norm(f.a), finite};
-    case 1:
-        return EllipticCylinder{f.O, f.a, f.b, f.c, finite};
-    default:
-        return EllipticCone{f.O - f.c, f.O, f.a, f.b, finite}; // apex at O, base at O - c
-    }
+template <class S>
+Shape shape_from(const Frame& f, bool finite = true) {
+    return Sampling<S>::make(f, finite);
 }
 
 // The cylinder's radius must be a double: integer frames have integer radii, random frames
@@ -120,32 +145,36 @@ Vec3 world_vec(const Frame& f, double x, double y, double z) {
 }
 
 // The local extent: cylinders z in [0, 1], the cone z in [-1, 0].
-double z_inside(Rng& r, int shape) {
-    return shape == 2 ? -r.real(0.1, 0.9) : r.real(0.1, 0.9);
+template <class S>
+double z_inside(Rng& r) {
+    return Sampling<S>::conical ? -r.real(0.1, 0.9) : r.real(0.1, 0.9);
 }
-double z_dyadic(Rng& r, int shape) {
+template <class S>
+double z_dyadic(Rng& r) {
     double z = 0.125 + 0.75 * r.dyadic(6);
-    return shape == 2 ? -z : z;
+    return Sampling<S>::conical ? -z : z;
 }
 // Radius of the surface at local height z: 1 for cylinders, |z| for the cone.
-double radius_at(int shape, double z) {
-    return shape == 2 ? std::fabs(z) : 1.0;
+template <class S>
+double radius_at(double z) {
+    return Sampling<S>::conical ? std::fabs(z) : 1.0;
 }
 
-Line generic_line(Rng& r, const Frame& f, int shape) {
-    double z = z_inside(r, shape);
-    Vec3 target =
-        world(f, r.real(-1, 1) * radius_at(shape, z), r.real(-1, 1) * radius_at(shape, z), z);
+template <class S>
+Line generic_line(Rng& r, const Frame& f) {
+    double z = z_inside<S>(r);
+    Vec3 target = world(f, r.real(-1, 1) * radius_at<S>(z), r.real(-1, 1) * radius_at<S>(z), z);
     Vec3 from = target + r.vec(8);
     if (r.integer(0, 4) == 0) return {from, r.vec(2)}; // a fifth aim anywhere
     return {from, target - from};
 }
 
-Case near_tangent(Rng& r, int shape, int k) {
+template <class S>
+Case near_tangent(Rng& r, int k) {
     bool exact = k == 0;
-    Frame f = frame_for(r, shape, exact);
-    double z = exact ? z_dyadic(r, shape) : z_inside(r, shape);
-    double rho = radius_at(shape, z);
+    Frame f = frame_for<S>(r, exact);
+    double z = exact ? z_dyadic<S>(r) : z_inside<S>(r);
+    double rho = radius_at<S>(z);
     // Touch at local (rho, 0, z) (exact) or at angle theta; the tangent direction lies in the
     // tangent plane: along the circle, plus some of the generator (or the axis).
     double theta = exact ? 0.5 * M_PI * r.integer(0, 3) : r.real(0, 2 * M_PI);
@@ -155,51 +184,54 @@ Case near_tangent(Rng& r, int shape, int k) {
     double side = k == 0 ? 1 : 1 + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k);
     Vec3 P = world(f, side * rho * cs, side * rho * sn, z);
     Vec3 d = world_vec(f, -sn, cs, 0);
-    if (shape == 2)
+    if (Sampling<S>::conical)
         d = d + mu * world_vec(f, cs, sn, z < 0 ? -1 : 1); // generator through P
     else
         d = d + mu * f.c;
     Case c;
-    c.shape = shape_from(f, shape);
+    c.shape = shape_from<S>(f);
     double back = exact ? 2 : r.real(0.5, 3);
     c.line = {P - back * d, d};
     c.k = k;
     return c;
 }
 
-Case axis_parallel(Rng& r, int shape, int k) {
+template <class S>
+Case axis_parallel(Rng& r, int k) {
     bool on_surface = k == 0 && r.coin();
-    Frame f = frame_for(r, shape, on_surface || k == 0);
-    double z = k == 0 ? z_dyadic(r, shape) : z_inside(r, shape);
+    Frame f = frame_for<S>(r, on_surface || k == 0);
+    double z = k == 0 ? z_dyadic<S>(r) : z_inside<S>(r);
     // k = 0: exactly parallel, inside (radius 1/2), outside (2) or on the surface (1).
     double radius = on_surface ? 1 : (r.coin() ? 0.5 : 2);
-    if (shape == 2) radius *= std::fabs(z);
+    if (Sampling<S>::conical) radius *= std::fabs(z);
     Vec3 P = world(f, radius, 0, z);
     Vec3 d = f.c;
     if (k > 0) d = d + std::ldexp(1.0, -k) * world_vec(f, r.real(-1, 1), r.real(-1, 1), 0);
     Case c;
-    c.shape = shape_from(f, shape, r.integer(0, 3) != 0);
+    c.shape = shape_from<S>(f, r.integer(0, 3) != 0);
     c.line = {P - (on_surface ? 1.0 : r.real(0.5, 2)) * d, d};
     c.k = k;
     return c;
 }
 
+template <class S>
 Case apex(Rng& r, int k) {
     bool exact = k == 0;
-    Frame f = frame_for(r, 2, exact);
+    Frame f = frame_for<S>(r, exact);
     Vec3 d = exact ? world_vec(f, r.integer(-3, 3) * 0.25, r.integer(-3, 3) * 0.25, -1)
                    : world_vec(f, r.real(-2, 2), r.real(-2, 2), -1);
     Vec3 P = f.O;
     if (!exact) P = P + std::ldexp(1.0, -k) * cross(d, r.vec(1)); // 2^-k from the apex
     Case c;
-    c.shape = shape_from(f, 2, r.integer(0, 3) != 0);
+    c.shape = shape_from<S>(f, r.integer(0, 3) != 0);
     c.line = {P - d, d};
     c.k = k;
     return c;
 }
 
+template <class S>
 Case generator(Rng& r, int k) {
-    Frame f = frame_for(r, 2, k == 0);
+    Frame f = frame_for<S>(r, k == 0);
     // (3/8, 1/2, -5/8) and its sign/axis variants: x^2 + y^2 = z^2 exactly.
     double x = 0.375, y = 0.5;
     if (r.coin()) std::swap(x, y);
@@ -211,17 +243,18 @@ Case generator(Rng& r, int k) {
     Vec3 from =
         world(f, r.real(-0.5, 0.5), r.real(-0.5, 0.5), -r.real(0.2, 0.8)) - r.real(0, 2) * d;
     Case c;
-    c.shape = shape_from(f, 2, r.integer(0, 3) != 0);
+    c.shape = shape_from<S>(f, r.integer(0, 3) != 0);
     c.line = {from, d};
     c.k = k;
     return c;
 }
 
-Case degenerate_frame(Rng& r, int shape, int k) {
-    Frame f = frame_for(r, shape, false);
+template <class S>
+Case degenerate_frame(Rng& r, int k) {
+    Frame f = frame_for<S>(r, false);
     double e = std::ldexp(1.0, -k);
     int kind = r.integer(0, 3);
-    if (shape == 0) kind = kind % 2 + 2; // only thin and flat for the circular cylinder
+    if (Sampling<S>::circular) kind = kind % 2 + 2; // only thin and flat for a round section
     switch (kind) {
     case 0:
         f.c = f.a + f.b + (e / norm(f.a)) * cross(f.a, f.b);
@@ -236,19 +269,20 @@ Case degenerate_frame(Rng& r, int shape, int k) {
         f.c = e * f.c, f.O = e * f.O;
         break; // very flat, near the origin so H - C survives
     }
-    if (shape == 0) f = circular_from(f.O, f.c, norm(f.a));
+    if (Sampling<S>::circular) f = circular_from(f.O, f.c, norm(f.a));
     Case c;
-    c.shape = shape_from(f, shape);
-    c.line = generic_line(r, f, shape);
+    c.shape = shape_from<S>(f);
+    c.line = generic_line<S>(r, f);
     c.k = k;
     return c;
 }
 
-Case scale(Rng& r, int shape, int k) {
-    Frame f = frame_for(r, shape, false);
+template <class S>
+Case scale(Rng& r, int k) {
+    Frame f = frame_for<S>(r, false);
     int exponent = r.coin() ? k : -k;
     double s = std::ldexp(1.0, exponent);
-    Line l = generic_line(r, f, shape);
+    Line l = generic_line<S>(r, f);
     // Half of the cases: the whole scene scaled by 2^+-k (exact). The other half: a unit
     // shape moved up to 2^50 from the origin, the line's origin with it.
     if (r.coin()) {
@@ -260,28 +294,58 @@ Case scale(Rng& r, int shape, int k) {
         l.L0 = l.L0 + far;
     }
     Case c;
-    c.shape = shape_from(f, shape);
+    c.shape = shape_from<S>(f);
     c.line = l;
     c.k = k;
     return c;
 }
 
-Case extent_edge(Rng& r, int shape, int k) {
-    Frame f = frame_for(r, shape, true);
+template <class S>
+Case extent_edge(Rng& r, int k) {
+    Frame f = frame_for<S>(r, true);
     // A line through a point exactly on the rim (z = 0 or 1, -1 or 0 for the cone's base
     // and... the apex rim is a point) and another surface point, then moved by 2^-k along the
     // axis (k = 0: not moved).
-    double z_end = shape == 2 ? -1 : (r.coin() ? 0 : 1);
+    double z_end = Sampling<S>::conical ? -1 : (r.coin() ? 0 : 1);
     Vec3 P = world(f, 1, 0, z_end);
-    double z2 = z_dyadic(r, shape);
-    Vec3 Q = world(f, 0, radius_at(shape, z2), z2);
+    double z2 = z_dyadic<S>(r);
+    Vec3 Q = world(f, 0, radius_at<S>(z2), z2);
     Vec3 d = Q - P;
     if (k > 0) P = P + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k) * f.c;
     Case c;
-    c.shape = shape_from(f, shape);
+    c.shape = shape_from<S>(f);
     c.line = {P - 0.5 * d, d};
     c.k = k;
     return c;
+}
+
+template <class S>
+Case make(Family fam, Rng& r, std::uint64_t index) {
+    switch (fam) {
+    case Family::generic: {
+        bool integer = r.integer(0, 9) == 0;
+        Frame f = frame_for<S>(r, integer);
+        Case c;
+        c.shape = shape_from<S>(f, r.integer(0, 4) != 0);
+        c.line = generic_line<S>(r, f);
+        return c;
+    }
+    case Family::near_tangent:
+        return near_tangent<S>(r, int(index % 61));
+    case Family::axis_parallel:
+        return axis_parallel<S>(r, int(index % 61));
+    case Family::apex:
+        return apex<S>(r, int(index % 61));
+    case Family::generator:
+        return generator<S>(r, int(index % 61));
+    case Family::degenerate_frame:
+        return degenerate_frame<S>(r, 1 + int(index % 60));
+    case Family::scale:
+        return scale<S>(r, int(index % 64) * 8);
+    case Family::extent_edge:
+        return extent_edge<S>(r, index % 3 == 0 ? 0 : 40 + int(index % 14));
+    }
+    return {};
 }
 
 } // namespace
@@ -297,7 +361,10 @@ bool parse_family(std::string_view name, Family* f) {
 }
 
 bool family_applies(Family f, int shape) {
-    return (f != Family::apex && f != Family::generator) || shape == 2;
+    bool conical = with_shape_type(std::size_t(shape), [](auto tag) {
+        return Sampling<typename decltype(tag)::type>::conical;
+    });
+    return (f != Family::apex && f != Family::generator) || conical;
 }
 
 Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint64_t index) {
@@ -305,37 +372,9 @@ Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint
         splitmix(seed) ^
         splitmix(std::uint64_t(fam) * 1000003 + std::uint64_t(shape) * 101 + std::uint64_t(range));
     Rng r{std::mt19937_64(splitmix(key ^ splitmix(index)))};
-    Case c;
-    switch (fam) {
-    case Family::generic: {
-        bool integer = r.integer(0, 9) == 0;
-        Frame f = frame_for(r, shape, integer);
-        c.shape = shape_from(f, shape, r.integer(0, 4) != 0);
-        c.line = generic_line(r, f, shape);
-        break;
-    }
-    case Family::near_tangent:
-        c = near_tangent(r, shape, int(index % 61));
-        break;
-    case Family::axis_parallel:
-        c = axis_parallel(r, shape, int(index % 61));
-        break;
-    case Family::apex:
-        c = apex(r, int(index % 61));
-        break;
-    case Family::generator:
-        c = generator(r, int(index % 61));
-        break;
-    case Family::degenerate_frame:
-        c = degenerate_frame(r, shape, 1 + int(index % 60));
-        break;
-    case Family::scale:
-        c = scale(r, shape, int(index % 64) * 8);
-        break;
-    case Family::extent_edge:
-        c = extent_edge(r, shape, index % 3 == 0 ? 0 : 40 + int(index % 14));
-        break;
-    }
+    Case c = with_shape_type(std::size_t(shape), [&](auto tag) {
+        return make<typename decltype(tag)::type>(fam, r, index);
+    });
     c.line.range = range;
     c.family = family_name(fam);
     c.id = "\"" + std::string(family_name(fam)) + "/" + std::to_string(shape) + "/" +

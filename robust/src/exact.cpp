@@ -1,15 +1,15 @@
-// The oracle: the exact form of fast/'s line_quadratic.hpp (derivation and classification) in
+// The oracle: each shape's exact form (fast/src/shapes/: derivation and classification) in
 // CGAL::Mpzf, every decision exact; then each output rounded to the nearest double by MPFR.
 #include "linequad/exact.hpp"
 
-#include "linequad/line_quadratic.hpp"
-#include "linequad/validate.hpp"
 #include "rounding.hpp"
+#include "shapes/all.hpp"
 
 #include <CGAL/Gmpq.h>
 #include <CGAL/Mpzf.h>
 #include <CGAL/number_utils.h>
 
+#include <limits>
 #include <stdexcept>
 
 namespace linequad::exact {
@@ -87,23 +87,18 @@ Result round_on_surface(const exact_form::Classification<NT>& c) {
     return r;
 }
 
-template <class NT>
-exact_form::LineQuadratic<NT> line_quadratic(const Cylinder& s, const Line& l) {
-    return exact_form::line_quadratic<NT>(s, l);
-}
-// The elliptic shapes fold the frame's handedness into their extent.
-template <class NT, class ShapeT>
-exact_form::LineQuadratic<NT> line_quadratic(const ShapeT& s, const Line& l) {
-    return exact_form::line_quadratic<NT>(s, l, sgn(exact_form::frame_determinant<NT>(s)) < 0);
-}
-
 template <class NT, class ShapeT>
 Result solve(const ShapeT& shape, const Line& l, Query query) {
-    if (Error e = validate(shape, l); e.code != ErrorCode::none) return Result::failure(e);
+    if (Error e = validate(shape, l); !e.ok()) return Result::failure(e);
+    // The frame's orientation folds into the extent; the oracle decides it in NT itself.
+    using Traits = detail::ShapeTraits<ShapeT>;
+    int orientation = Traits::template exact_orientation<NT>(shape);
     exact_form::Classification<NT> c =
-        exact_form::classify(line_quadratic<NT>(shape, l), l.range, query.need);
+        exact_form::classify(Traits::template exact_quadratic<NT>(shape, l, orientation),
+                             exact_form::parameter_range<NT>(l.range), query.need);
     if (c.outcome == exact_form::Outcome::on_surface) return round_on_surface(c);
     if (c.outcome != exact_form::Outcome::hits) return Result{}; // exact: never undecided
+    bool points = query.points && query.need != Need::any;       // a hit test computes no point
 
     // Round t and, if asked, each coordinate of L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den.
     SurdRounder& rd = rounder();
@@ -113,7 +108,7 @@ Result solve(const ShapeT& shape, const Line& l, Query query) {
         const exact_form::SurdRoot<NT>& rt = c.roots[j];
         NT S(rt.S);
         queue(rd, rt.N, S, rt.Den, c.D);
-        if (!query.points) continue;
+        if (!points) continue;
         for (int k = 0; k < 3; ++k) {
             NT L0(l.L0[k]), v(l.v[k]);
             queue(rd, NT(L0 * rt.Den + v * rt.N), NT(v * S), rt.Den, c.D);
@@ -121,28 +116,27 @@ Result solve(const ShapeT& shape, const Line& l, Query query) {
     }
     rd.run();
     Result r;
-    std::size_t per_root = query.points ? 4 : 1;
+    std::size_t per_root = points ? 4 : 1;
     for (int j = 0; j < c.count; ++j) {
         Hit& h = r.hits[r.count++];
         h.kind = c.roots[j].kind;
         h.t = rd.result(j * per_root);
-        if (query.points)
-            h.p = {rd.result(j * per_root + 1), rd.result(j * per_root + 2),
-                   rd.result(j * per_root + 3)};
+        h.p = points ? Vec3{rd.result(j * per_root + 1), rd.result(j * per_root + 2),
+                            rd.result(j * per_root + 3)}
+                     : Vec3{};
+        h.bound = std::numeric_limits<double>::quiet_NaN(), h.certain = false;
     }
     return r;
 }
 
 } // namespace
 
-Result intersect(const Cylinder& s, const Line& l, Query q) {
-    return solve<CGAL::Mpzf>(s, l, q);
-}
-Result intersect(const EllipticCylinder& s, const Line& l, Query q) {
-    return solve<CGAL::Mpzf>(s, l, q);
-}
-Result intersect(const EllipticCone& s, const Line& l, Query q) {
-    return solve<CGAL::Mpzf>(s, l, q);
+template <class S, if_solvable<S>>
+Result intersect(const S& shape, const Line& l, Query q) {
+    if constexpr (detail::is_prepared<S>::value)
+        return solve<CGAL::Mpzf>(shape.shape(), l, q);
+    else
+        return solve<CGAL::Mpzf>(shape, l, q);
 }
 Result intersect(const Shape& s, const Line& l, Query q) {
     return std::visit([&](const auto& shape) { return solve<CGAL::Mpzf>(shape, l, q); }, s);
@@ -150,6 +144,11 @@ Result intersect(const Shape& s, const Line& l, Query q) {
 Result intersect_gmpq(const Shape& s, const Line& l, Query q) {
     return std::visit([&](const auto& shape) { return solve<CGAL::Gmpq>(shape, l, q); }, s);
 }
+
+#define LINEQUAD_INSTANTIATE_EXACT(S)                                                              \
+    template Result intersect(const S&, const Line&, Query);                                       \
+    template Result intersect(const Prepared<S>&, const Line&, Query);
+LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_INSTANTIATE_EXACT)
 
 double round_surd(const char* X, const char* Y, const char* D, const char* Den) {
     CGAL::Gmpq x(X), y(Y), d(D), den(Den);
@@ -164,9 +163,7 @@ double round_surd(const char* X, const char* Y, const char* D, const char* Den) 
 const Solver& solver() {
     static const Solver exact_solver = {
         "exact", "exact rational oracle (CGAL kernel over Mpzf), correctly rounded t and points",
-        [](const Cylinder& s, const Line& l, Query q) { return intersect(s, l, q); },
-        [](const EllipticCylinder& s, const Line& l, Query q) { return intersect(s, l, q); },
-        [](const EllipticCone& s, const Line& l, Query q) { return intersect(s, l, q); }};
+        [](const Shape& s, const Line& l, Query q) { return intersect(s, l, q); }};
     return exact_solver;
 }
 

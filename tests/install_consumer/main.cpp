@@ -1,4 +1,4 @@
-#include <linequad/cylinder.hpp>
+#include <linequad/linequad.hpp>
 
 #include <cstdio>
 

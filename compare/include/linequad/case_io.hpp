@@ -1,8 +1,9 @@
 // The one case format (JSON Lines) that the CLI, the exact oracle and the audit read and write.
 //
 // A case: {"id": ..., "shape": "cylinder"|"elliptic_cylinder"|"elliptic_cone", the shape's
-// fields (C, H, r | C, a, b, c | C, H, a, b), "L0": [x,y,z], "v": [x,y,z],
-// "range": "line"|"ray"|"segment" (default line), "finite": true|false (default true)}.
+// fields (C, H, r | C, a, b, c | C, H, a, b: each shape's table, fast/src/shapes/),
+// "L0": [x,y,z], "v": [x,y,z], the range as "range": "line"|"ray"|"segment" (default line) or
+// as its ends "t0", "t1" (each optional: -inf and inf), "finite": true|false (default true)}.
 // Optional: "family" and "k" (what the audit generated it as), "note".
 // A number is a C99 hex-float string ("0x1.8p+1"), a decimal (JSON number or string), or one of
 // the strings "inf", "-inf", "nan" (so that bad input can be written down). Output numbers are
@@ -10,8 +11,7 @@
 #pragma once
 
 #include "linequad/json.hpp"
-#include "linequad/result.hpp"
-#include "linequad/shapes.hpp"
+#include "linequad/solvers.hpp"
 
 #include <string>
 #include <string_view>

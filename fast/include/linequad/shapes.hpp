@@ -1,19 +1,45 @@
-// The inputs every solver shares: a line over a range, and the three shapes of the seeds.
+// The inputs every solver shares: a line over an interval of its parameter, and the shapes.
 #pragma once
 
 #include "linequad/vec3.hpp"
 
+#include <cstdint>
+#include <limits>
 #include <variant>
 
 namespace linequad {
 
-// Which part of L(t) = L0 + t v is asked about.
-enum class Range { line, ray, segment }; // all t; t >= 0; 0 <= t <= 1
+// The usual ranges, as shorthands for an Interval.
+enum class Range : std::uint8_t { line, ray, segment }; // all t; t >= 0; 0 <= t <= 1
 
+// The part of the line asked about: t0 <= t <= t1, either end possibly infinite. A renderer
+// passes its [tMin, tMax] here as they are, without rescaling v.
+struct Interval {
+    double t0 = -std::numeric_limits<double>::infinity();
+    double t1 = std::numeric_limits<double>::infinity();
+
+    constexpr Interval() = default;
+    constexpr Interval(double lo, double hi) : t0(lo), t1(hi) {}
+    constexpr Interval(Range r) // NOLINT: Line{L0, v, Range::ray} reads as it should
+        : t0(r == Range::line ? -std::numeric_limits<double>::infinity() : 0.0),
+          t1(r == Range::segment ? 1.0 : std::numeric_limits<double>::infinity()) {}
+
+    bool contains(double t) const { return t >= t0 && t <= t1; }
+    bool has_t0() const { return t0 > -std::numeric_limits<double>::infinity(); }
+    bool has_t1() const { return t1 < std::numeric_limits<double>::infinity(); }
+};
+inline bool operator==(Interval a, Interval b) {
+    return a.t0 == b.t0 && a.t1 == b.t1;
+}
+inline bool operator!=(Interval a, Interval b) {
+    return !(a == b);
+}
+
+// L(t) = L0 + t v for t in range; v need not have unit length.
 struct Line {
     Vec3 L0;
     Vec3 v;
-    Range range = Range::line;
+    Interval range = Range::line;
 };
 
 // Seed 001: the right circular cylinder of radius r around the axis from C to H.
@@ -39,9 +65,14 @@ struct EllipticCone {
     Vec3 c() const { return H - C; }
 };
 
+// Every shape. The solvers, the case format, the families and the benchmarks take their list
+// of shapes from here (and each shape's derivation from fast/src/shapes/).
 using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone>;
 
+// "cylinder", "elliptic_cylinder", "elliptic_cone".
 const char* shape_name(const Shape& s);
+template <class S>
+const char* shape_name();
 const char* range_name(Range r);
 
 } // namespace linequad

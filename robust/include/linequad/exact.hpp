@@ -1,29 +1,26 @@
 // The exact oracle: every case classified exactly, every t and hit point correctly rounded.
 //
-// Inputs are taken as the exact rationals their doubles denote. The derivation and the
-// classification (fast/'s line_quadratic.hpp) run in CGAL::Mpzf (exact ring arithmetic on
-// dyadic numbers: no rounding, no gcd); roots stay in the form (N + S sqrt(D)) / Den and every
-// decision (discriminant, extent, range, order) is the exact sign of such a number. Only the
-// outputs are rounded, each to the nearest double (ties to even) by an MPFR enclosure whose
-// precision doubles until both ends round to the same double.
+// Inputs are taken as the exact rationals their doubles denote. Each shape's derivation in its
+// exact, division-free form and the classification (fast/'s exact form) run in CGAL::Mpzf (exact
+// ring arithmetic on dyadic numbers: no rounding, no gcd); roots stay in the form
+// (N + S sqrt(D)) / Den and every decision (discriminant, extent, range, order) is the exact sign
+// of such a number. Only the outputs are rounded, each to the nearest double (ties to even) by an
+// MPFR enclosure whose precision doubles until both ends round to the same double.
 #pragma once
 
-#include "linequad/result.hpp"
-#include "linequad/shapes.hpp"
 #include "linequad/solvers.hpp"
 
 #include <cstdint>
 
 namespace linequad::exact {
 
-Result intersect(const Cylinder& s, const Line& l, Query q = {});
-Result intersect(const EllipticCylinder& s, const Line& l, Query q = {});
-Result intersect(const EllipticCone& s, const Line& l, Query q = {});
-Result intersect(const Shape& s, const Line& l, Query q = {});
+template <class S, if_solvable<S> = 0>
+Result intersect(const S& shape, const Line& line, Query query = {});
+Result intersect(const Shape& shape, const Line& line, Query query = {});
 
 // The same derivation and classification in CGAL::Gmpq: a slower,
 // independent number type, used to cross-check the oracle.
-Result intersect_gmpq(const Shape& s, const Line& l, Query q = {});
+Result intersect_gmpq(const Shape& shape, const Line& line, Query query = {});
 
 // The oracle as a named solver ("exact") for the CLI and the audit.
 const Solver& solver();

@@ -1,0 +1,107 @@
+// Solves N pre-built generic cases with one solver, for counting instructions under callgrind:
+// bench/instructions.sh runs it with N solves and with none, and divides the difference by N.
+//   linequad_instructions SOLVER SHAPE NEED POINTS HOW N
+// SOLVER: floor | seed | stable | certified | correct; SHAPE: cylinder | elliptic_cylinder |
+// elliptic_cone; NEED: any | nearest | all; POINTS: points | no_points; HOW: direct | prepared
+// (each case's shape prepared before the solves, which are what is counted).
+// floor: the textbook cylinder quadratic (bench/floor.hpp), the unit the ratios are quoted in.
+#include "floor.hpp"
+#include "generic_cases.hpp"
+
+#include "linequad/linequad.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+namespace {
+
+using namespace linequad;
+
+volatile double sink;
+
+// Each case's shape as given, or prepared before the solves (which are what is counted).
+template <class ShapeT, class Solve>
+void run(int shape_index, long n, Query q, bool prepared, Solve solve) {
+    auto cases = bench::generic_cases(shape_index, 1024);
+    std::vector<ShapeT> shapes;
+    std::vector<Prepared<ShapeT>> ready;
+    std::vector<Line> lines;
+    for (const auto& c : cases) {
+        shapes.push_back(std::get<ShapeT>(c.shape)), lines.push_back(c.line);
+        if (prepared) ready.push_back(prepare(shapes.back()));
+    }
+    double acc = 0;
+    for (long i = 0; i < n; ++i) {
+        std::size_t k = std::size_t(i) & 1023;
+        Result r = prepared ? solve(ready[k], lines[k], q) : solve(shapes[k], lines[k], q);
+        acc += r.count > 0 ? r.hits[0].t : 0;
+    }
+    sink = acc;
+}
+
+template <class ShapeT>
+bool run_solver(const std::string& solver, int shape_index, long n, Query q, bool prepared) {
+    auto with = [&](auto solve) { return run<ShapeT>(shape_index, n, q, prepared, solve), true; };
+    if (solver == "seed")
+        return with(
+            [](const auto& s, const Line& l, Query qq) { return seed::intersect(s, l, qq); });
+    if (solver == "stable")
+        return with(
+            [](const auto& s, const Line& l, Query qq) { return stable::intersect(s, l, qq); });
+    if (solver == "certified")
+        return with(
+            [](const auto& s, const Line& l, Query qq) { return certified::intersect(s, l, qq); });
+    if (solver == "correct")
+        return with(
+            [](const auto& s, const Line& l, Query qq) { return correct::intersect(s, l, qq); });
+    return false;
+}
+
+// The shape named `name`, by its index in Shape.
+template <std::size_t I = 0>
+bool run_shape(const std::string& name, const std::string& solver, long n, Query q, bool prepared) {
+    if constexpr (I < std::variant_size_v<Shape>) {
+        using S = std::variant_alternative_t<I, Shape>;
+        if (name == shape_name<S>()) return run_solver<S>(solver, int(I), n, q, prepared);
+        return run_shape<I + 1>(name, solver, n, q, prepared);
+    }
+    return false;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 7) {
+        std::fprintf(stderr,
+                     "usage: %s SOLVER SHAPE any|nearest|all points|no_points direct|prepared N\n",
+                     argv[0]);
+        return 2;
+    }
+    std::string solver = argv[1], shape = argv[2], need = argv[3];
+    Query q{need == "any"       ? Need::any
+            : need == "nearest" ? Need::nearest
+                                : Need::all,
+            std::strcmp(argv[4], "points") == 0};
+    long n = std::atol(argv[6]);
+    if (solver == "floor") {
+        auto cases = bench::generic_cases(0, 1024);
+        std::vector<bench::FloorCase> fc;
+        for (const auto& c : cases) {
+            const Cylinder& s = std::get<Cylinder>(c.shape);
+            fc.push_back({s.C, s.H, s.r, c.line.L0, c.line.v});
+        }
+        double acc = 0;
+        for (long i = 0; i < n; ++i)
+            acc += bench::textbook_cylinder(fc[std::size_t(i) & 1023]).t[0];
+        sink = acc;
+        return 0;
+    }
+    bool prepared = std::strcmp(argv[5], "prepared") == 0;
+    if (!run_shape(shape, solver, n, q, prepared)) {
+        std::fprintf(stderr, "unknown solver or shape\n");
+        return 2;
+    }
+    return 0;
+}

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Instructions per solve under callgrind, repeatable on a loaded machine: for each row, the
+# solver runs over the same pre-built generic cases (bench/generic_cases.hpp) once with N solves
+# and once with none, and (Ir(N) - Ir(0)) / N is printed, with its ratio to the floor (the
+# textbook cylinder quadratic, bench/floor.hpp).
+#   bash bench/instructions.sh [BUILD_DIR] [N]     (defaults: build, 2048)
+# ROWS="solver:shape:need:points:prepared ..." chooses the rows (default: the issue's table).
+set -euo pipefail
+build="${1:-build}"
+n="${2:-2048}"
+exe="$build/bench/linequad_instructions"
+[ -x "$exe" ] || { echo "no $exe: build first (bash scripts/build.sh)" >&2; exit 2; }
+command -v valgrind >/dev/null || { echo "valgrind is not installed" >&2; exit 2; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+ir() { # instructions of one run
+  valgrind --tool=callgrind --callgrind-out-file="$tmp/out" "$exe" "$@" >/dev/null 2>&1
+  awk '/^(summary|totals):/ { print $2; exit }' "$tmp/out"
+}
+per_solve() {
+  local base full
+  base=$(ir "$@" 0)
+  full=$(ir "$@" "$n")
+  echo $(( (full - base) / n ))
+}
+
+floor=$(per_solve floor cylinder all points direct)
+printf '%-10s %-18s %-8s %-10s %-9s %8s %7s\n' solver shape need points shape instr ratio
+printf '%-10s %-18s %-8s %-10s %-9s %8d %7s\n' floor cylinder all points - "$floor" 1.00
+rows=${ROWS:-}
+if [ -z "$rows" ]; then
+  for shape in cylinder elliptic_cylinder elliptic_cone; do
+    for solver in seed stable certified correct; do
+      rows="$rows $solver:$shape:all:points:direct $solver:$shape:all:points:prepared"
+    done
+    rows="$rows correct:$shape:any:no_points:direct correct:$shape:any:no_points:prepared"
+  done
+fi
+for row in $rows; do
+  IFS=: read -r solver shape need points prepared <<<"$row"
+  count=$(per_solve "$solver" "$shape" "$need" "$points" "$prepared")
+  printf '%-10s %-18s %-8s %-10s %-9s %8d %7.2f\n' "$solver" "$shape" "$need" "$points" \
+    "$prepared" "$count" "$(echo "$count / $floor" | bc -l)"
+done

@@ -1,0 +1,64 @@
+// What the correct solver's rungs share: the scene scaled to unit size, and the rounding of a
+// value whose error bound proves which double is nearest.
+#pragma once
+
+#include "numeric/bounded_dd.hpp"
+#include "numeric/format.hpp"
+#include "solve/prescale.hpp"
+
+#include "linequad/result.hpp"
+#include "linequad/shapes.hpp"
+
+#include <cmath>
+#include <optional>
+
+namespace linequad::detail {
+
+// The scene scaled by powers of two towards unit size (exactly), so that the rungs in doubles
+// stay far from overflow and underflow: t = t' 2^(k-j), points = p' 2^k. The line's range is
+// scaled with t (its ends stay exact, or there is no Unit).
+struct Unit {
+    double pos_factor, t_factor; // 2^k, 2^(k-j)
+    Line line;
+};
+
+// No value when scaling could lose bits (a component tiny beside the scene: fragile_scene; a
+// range end that would leave the normal range) or leave t's scale out of range; the exact rung,
+// which needs no scaling, answers those.
+template <class Src>
+std::optional<Unit> unit_scale(const Src& src, double extent, const Line& l) {
+    using F = Binary64;
+    if (fragile_scene(src, extent, l)) return std::nullopt;
+    Prescale ps = prescale_for(extent, l.v);
+    if (!(ps.t_factor >= F::pow2(-F::moderate_exponent) &&
+          ps.t_factor <= F::pow2(F::moderate_exponent)))
+        return std::nullopt;
+    double end = ps.to_unit / ps.dir_to_unit; // 1 / t_factor, exactly
+    Interval range{l.range.t0 * end, l.range.t1 * end};
+    auto exact = [&](double scaled, double t) { return scaled * ps.t_factor == t; };
+    if (!exact(range.t0, l.range.t0) || !exact(range.t1, l.range.t1)) return std::nullopt;
+    return Unit{1 / ps.to_unit, ps.t_factor, Line{ps.pos(l.L0), ps.dir(l.v), range}};
+}
+
+// The double nearest x 2^k (scale = 2^k) when x's bound proves which it is. Inline: every t and
+// every coordinate of every point of the first two rungs passes through it.
+inline std::optional<double> round_proven(const BoundedDD& x, double scale) {
+    using F = Binary64;
+    if (x.e == 0 && x.hi == 0) return 0.0; // an exact zero is +0
+    double hi = x.hi * scale, a = std::fabs(hi);
+    if (!(a >= 0x1p-960 && a <= 0x1p+1000)) return std::nullopt; // NaN too
+    if (x.e == 0 && x.lo == 0) return hi;                        // exact
+    // Far from overflow and underflow, scaling is exact but for lo's last bits (the slack
+    // covers them).
+    double lo = x.lo * scale, e = x.e * scale + F::subnormal_slack;
+    // The exact value, within [hi + lo - e, hi + lo + e], must be inside hi's rounding cell:
+    // half an ulp each way, but only a quarter towards zero from a power of two.
+    double half_away = F::half_ulp_of_normal(a);
+    double half_toward = F::is_power_of_two(a) ? 0.5 * half_away : half_away;
+    double outward = std::copysign(1.0, hi) * lo; // lo's part away from zero
+    double away = outward + e, toward = e - outward;
+    if (away * F::cover(8) < half_away && toward * F::cover(8) < half_toward) return hi;
+    return std::nullopt;
+}
+
+} // namespace linequad::detail

@@ -1,0 +1,163 @@
+// The Newton rung's view of each shape (see newton_rung.hpp): its quadratic written as
+//     g(t) = sum_k sigma_k (U0_k + t U1_k)^2 - K,
+// with U0, U1 and K in double-double, each a compensated sum with one a-priori bound
+// (numeric/compensated_sum.hpp), and the axial coordinate Z(t) = Z0 + t dZ with its extent.
+// Each shape's line_form() (shapes/*.hpp) builds one from the pieces here.
+#pragma once
+
+#include "numeric/bounded_dd.hpp"
+#include "numeric/compensated_sum.hpp"
+#include "numeric/eft.hpp"
+
+#include "linequad/prepared.hpp"
+
+#include <cmath>
+#include <type_traits>
+
+namespace linequad::detail {
+
+// g(t) = sum_k sigma_k (U0_k + t U1_k)^2 - K, and the axial coordinate Z(t) = Z0 + t dZ that the
+// extent lo <= Z <= hi bounds (the exact form's Z0, dZ, lo, hi). Every value carries a bound:
+// the BoundedDD ones in e, the doubles in the e_ fields.
+struct LineForm {
+    BoundedDD U0[3], U1[3], K;
+    int sigma_z; // sigma = (1, 1, sigma_z)
+    double Z0, e_Z0, dZ, e_dZ;
+    double lo, e_lo, hi, e_hi;
+    bool lo_bounded, hi_bounded;
+};
+
+// Vectors enter as doubles (Vec3) or as exact two-term values (Vec3TwoTerm, a difference of two
+// points); the low parts only add small terms.
+template <class V>
+constexpr bool has_low_part = std::is_same_v<V, Vec3TwoTerm>;
+inline Vec3 high(const Vec3& a) {
+    return a;
+}
+inline Vec3 high(const Vec3TwoTerm& a) {
+    return a.hi;
+}
+inline Vec3 magnitudes(Vec3 a) {
+    return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)};
+}
+
+// (a x b)_k = a_i b_j - a_j b_i with (i, j) = (k + 1, k + 2) mod 3.
+template <class P, class Q>
+LINEQUAD_INLINE BoundedDD cross_component(const P& a, const Q& b, int k) {
+    int i = (k + 1) % 3, j = (k + 2) % 3;
+    Vec3 ah = high(a), bh = high(b);
+    CompensatedSum s;
+    s.add_product(ah[i], bh[j]);
+    s.add_product(-ah[j], bh[i]);
+    if constexpr (has_low_part<Q>) {
+        s.add_small(ah[i] * b.lo[j]);
+        s.add_small(-ah[j] * b.lo[i]);
+    }
+    if constexpr (has_low_part<P>) {
+        s.add_small(a.lo[i] * bh[j]);
+        s.add_small(-a.lo[j] * bh[i]);
+    }
+    if constexpr (has_low_part<P> && has_low_part<Q>) {
+        s.add_small(a.lo[i] * b.lo[j]);
+        s.add_small(-a.lo[j] * b.lo[i]);
+    }
+    return s.result();
+}
+
+// n . w for a row n of bounded values: their bounds propagate by |w|.
+template <class Q>
+LINEQUAD_INLINE BoundedDD dot_row(const BoundedDD (&n)[3], const Q& w) {
+    Vec3 wh = high(w);
+    CompensatedSum s;
+    double propagated = 0;
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) {
+        s.add_product(n[k].hi, wh[k]);
+        s.add_small(n[k].lo * wh[k]);
+        double size = std::fabs(wh[k]);
+        if constexpr (has_low_part<Q>) {
+            s.add_small(n[k].hi * w.lo[k]);
+            s.add_small(n[k].lo * w.lo[k]);
+            size += std::fabs(w.lo[k]);
+        }
+        propagated += n[k].e * size;
+    }
+    return s.result(propagated);
+}
+
+// a b, from a and b within their bounds: a'b' - ab = a' eb + b' ea + ea eb.
+inline BoundedDD product(const BoundedDD& a, const BoundedDD& b) {
+    CompensatedSum s;
+    s.add_product(a.hi, b.hi);
+    s.add_small(a.hi * b.lo);
+    s.add_small(a.lo * b.hi);
+    s.add_small(a.lo * b.lo);
+    double propagated = a.e * (std::fabs(b.hi) + std::fabs(b.lo)) +
+                        b.e * (std::fabs(a.hi) + std::fabs(a.lo)) + a.e * b.e;
+    return s.result(propagated);
+}
+
+// The rows of adj(M), M = [a b c] (b x c, c x a, a x b), and det M = a . (b x c), each in
+// bounded double-double: what the elliptic shapes' forms share, and what prepare() keeps.
+// c is a double for the elliptic cylinder, the exact difference H - C for the cone.
+struct AdjugateRowsDD {
+    BoundedDD n[3][3];
+    BoundedDD det;
+};
+template <class CVec>
+AdjugateRowsDD adjugate_rows_dd(Vec3 a, Vec3 b, const CVec& c) {
+    AdjugateRowsDD r;
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) {
+        r.n[0][k] = cross_component(b, c, k);
+        r.n[1][k] = cross_component(c, a, k);
+        r.n[2][k] = cross_component(a, b, k);
+    }
+    r.det = dot_row(r.n[0], a);
+    return r;
+}
+
+// The elliptic shapes: U0 = adj(M) w and U1 = adj(M) v (the exact form's W and V), and
+// Z = U_z with det's sign folded in, so that the extent is in units of |det|.
+inline LineForm elliptic_form(const AdjugateRowsDD& rows, const Vec3TwoTerm& w, Vec3 v,
+                              bool negative_det) {
+    LineForm f;
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) {
+        f.U0[k] = dot_row(rows.n[k], w);
+        f.U1[k] = dot_row(rows.n[k], v);
+    }
+    double sign = negative_det ? -1 : 1;
+    f.Z0 = sign * f.U0[2].hi, f.e_Z0 = bound_of_hi(f.U0[2]);
+    f.dZ = sign * f.U1[2].hi, f.e_dZ = bound_of_hi(f.U1[2]);
+    return f;
+}
+// |det| = sign det, exactly.
+inline BoundedDD absolute_det(const AdjugateRowsDD& rows, bool negative_det) {
+    double sign = negative_det ? -1 : 1;
+    return {rows.det.hi * sign, rows.det.lo * sign, rows.det.e};
+}
+
+// BoundedDD as prepare() keeps it: value, low part, bound.
+inline BoundedDD bounded_dd(const double (&x)[3]) {
+    return {x[0], x[1], x[2]};
+}
+inline void store(const BoundedDD& x, double (&out)[3]) {
+    out[0] = x.hi, out[1] = x.lo, out[2] = x.e;
+}
+inline AdjugateRowsDD adjugate_rows_dd(const FrameFacts& f) {
+    AdjugateRowsDD r;
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k)
+            r.n[i][k] = bounded_dd(f.rows[i][k]);
+    r.det = bounded_dd(f.det);
+    return r;
+}
+inline void store(const AdjugateRowsDD& r, FrameFacts& f) {
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k)
+            store(r.n[i][k], f.rows[i][k]);
+    store(r.det, f.det);
+}
+
+} // namespace linequad::detail

@@ -1,0 +1,262 @@
+// The Newton rung of the correct solver (see newton_rung.hpp for the method). Every bound is
+// rigorous at any size of the scene (underflow enters as an absolute floor; overflow makes a bound
+// infinite, which proves nothing), and every decision is taken only when a bound proves it.
+#include "correct/newton_rung.hpp"
+
+#include "numeric/compensated_sum.hpp"
+#include "numeric/eft.hpp"
+
+#include <cmath>
+#include <optional>
+#include <type_traits>
+#include <utility>
+
+namespace linequad::detail {
+
+namespace {
+
+using F = Binary64;
+constexpr double u = F::u;
+
+// ---- g near a point ----
+
+// The components k of u that g uses: x and y always, z unless sigma_z = 0.
+template <int SigmaZ>
+constexpr int used_components = SigmaZ == 0 ? 2 : 3;
+template <int SigmaZ>
+constexpr double sigma(int k) {
+    return k < 2 ? 1.0 : double(SigmaZ);
+}
+
+// A = sum sigma_k U1_k^2, g's leading coefficient, in double: three products and two sums err
+// by at most gamma_3 sum U1_k^2 (4u covers it), and U1's own bounds move each square by
+// d (2 |U1_k| + d), d = |U1_k - hi|.
+struct Leading {
+    double A, e;
+};
+template <int SigmaZ>
+Leading leading(const LineForm& f) {
+    double A = 0, squares = 0, propagated = 0;
+#pragma GCC unroll 3
+    for (int k = 0; k < used_components<SigmaZ>; ++k) {
+        double h = f.U1[k].hi, d = bound_of_hi(f.U1[k]);
+        A += sigma<SigmaZ>(k) * (h * h);
+        squares += h * h;
+        propagated += d * (2 * std::fabs(h) + d);
+    }
+    return {A, (4 * u * squares + propagated) * F::cover(8192) + F::underflow_floor};
+}
+
+// g(c + x) = A x^2 + G' x + G: G = g(c) in double-double, read as a double with its bound, and
+// G' = 2 sum sigma_k u_k(c) U1_k in double. For N points at once: their chains of dependent
+// operations are independent, so the processor overlaps them.
+struct Local {
+    double G, e_G, Gp, e_Gp;
+};
+template <int SigmaZ, int N>
+void local_at(const LineForm& f, const double (&c)[N], Local (&out)[N]) {
+    CompensatedSum g[N];
+    double propagated[N], Gp[N], products[N], e_Gp[N];
+    for (int n = 0; n < N; ++n)
+        propagated[n] = f.K.e, Gp[n] = products[n] = e_Gp[n] = 0;
+#pragma GCC unroll 3
+    for (int k = 0; k < used_components<SigmaZ>; ++k) {
+        const double sg = sigma<SigmaZ>(k); // +-1: multiplying by it is exact
+        const BoundedDD &a = f.U0[k], &b = f.U1[k];
+#pragma GCC unroll 2
+        for (int n = 0; n < N; ++n) {
+            // u_k(c) = U0_k + c U1_k
+            CompensatedSum s;
+            s.add_product(c[n], b.hi);
+            s.add_exact(a.hi);
+            s.add_small(a.lo);
+            s.add_small(c[n] * b.lo);
+            BoundedDD uk = s.unnormalized(a.e + std::fabs(c[n]) * b.e);
+            // sigma u_k^2 = sigma (hi^2 + 2 hi lo + lo^2); |u^2 - u'^2| <= e (2 |u'| + e)
+            double sh = sg * uk.hi;
+            g[n].add_product(sh, uk.hi);
+            g[n].add_small(2 * sh * uk.lo);
+            g[n].add_small(sg * uk.lo * uk.lo);
+            propagated[n] += uk.e * (2 * (std::fabs(uk.hi) + std::fabs(uk.lo)) + uk.e);
+            // G': gamma_3 sum |u_k U1_k| for the rounding (4u covers it), and the parts left out
+            Gp[n] += sh * b.hi;
+            products[n] += std::fabs(uk.hi * b.hi);
+            e_Gp[n] += std::fabs(uk.hi) * bound_of_hi(b) +
+                       (std::fabs(uk.lo) + uk.e) * (std::fabs(b.hi) + bound_of_hi(b));
+        }
+    }
+    for (int n = 0; n < N; ++n) {
+        g[n].add_exact(-f.K.hi);
+        g[n].add_small(-f.K.lo);
+        BoundedDD G = g[n].rounded(propagated[n]);
+        out[n] = {G.hi, G.e, 2 * Gp[n],
+                  2 * (4 * u * products[n] + e_Gp[n]) * F::cover(8192) + F::underflow_floor};
+    }
+}
+template <int SigmaZ>
+Local local_at(const LineForm& f, double c) {
+    const double at[1] = {c};
+    Local out[1];
+    local_at<SigmaZ>(f, at, out);
+    return out[0];
+}
+
+// An upper bound of x y for upper bounds x, y >= 0 of two quantities: each may have underflowed
+// by up to 2^-1074, and the product rounds (relatively, or by 2^-1074 below the normal range).
+LINEQUAD_INLINE double upper_product(double x, double y) {
+    return (x + F::denorm_min) * (y + F::denorm_min) * F::cover(8) + F::denorm_min;
+}
+
+// A root of g proven to lie in c + x +- e (x and e not rounded into c), and whether it is the
+// smaller of the two.
+struct Enclosure {
+    double c, x, e;
+    bool smaller;
+};
+
+// The root next to c, when the local quadratic proves it (see newton_rung.hpp): with
+// y = 4 A G / G'^2 and |y| <= 1/2 there are two distinct real roots (the discriminant is
+// G'^2 (1 - y) > 0); the one nearer c is x* = (-G/G') phi(y), phi(y) = 2 / (1 + sqrt(1 - y)),
+// and |phi(y) - 1| = |y| / (1 + sqrt(1 - y))^2 <= 0.35 |y|. |-G/G' - x0| is at most
+// (e_G + |x0| e_G') / |G'| + u |x0| (the perturbed quotient and its rounding). The other root is
+// at -G'/A - x*, on the side of -sgn(G' A): |2 x*| < |G'/A| when |y| <= 1/2.
+std::optional<Enclosure> root_near(const Local& L, const Leading& A, double c) {
+    double P = (std::fabs(L.Gp) - L.e_Gp) * F::shrink(8);         // |G'| >= P
+    if (!(P >= 0x1p-1000 && P <= 0x1p+1000)) return std::nullopt; // NaN too
+    // Bounds from 1/P (normal, so each rounding is relative: 1 + 2^-48 covers a dozen). y is
+    // formed from two ratios of like quantities, so that no product of two small ones underflows.
+    double inv_P = 1 / P, G_max = std::fabs(L.G) + L.e_G;
+    double y = 4 * upper_product((std::fabs(A.A) + A.e) * inv_P, G_max * inv_P);
+    if (!(y <= 0.5)) return std::nullopt;
+    double x0 = -L.G / L.Gp;
+    double e = ((L.e_G + std::fabs(x0) * L.e_Gp + 0.35 * y * G_max) * inv_P + u * std::fabs(x0)) *
+                   F::cover(32) +
+               F::subnormal_slack;
+    return Enclosure{c, x0, e, (L.Gp > 0) != (A.A > 0)};
+}
+
+// No real root: at c (near the vertex), g(c + x) = A x^2 + G' x + G with G'^2 < 4 A G.
+template <int SigmaZ>
+bool no_root_proven(const LineForm& f, const Leading& A, double c) {
+    if (!std::isfinite(c)) return false;
+    Local L = local_at<SigmaZ>(f, c);
+    double A_min = (std::fabs(A.A) - A.e) * F::shrink(8), G_min = std::fabs(L.G) - L.e_G;
+    if (!(G_min > 0 && A_min >= 0x1p-1000) || (L.G > 0) != (A.A > 0)) return false;
+    // G'^2 / A < 4 G, each side of like degree (no product of two small quantities).
+    double slope = std::fabs(L.Gp) + L.e_Gp;
+    return upper_product(slope, slope / A_min) < 4 * G_min * F::shrink(32) - F::denorm_min;
+}
+
+// 1: the root is inside the extent and the range; 0: outside; -1: the bounds cannot tell.
+int kept(const LineForm& f, const Unit& unit, const Enclosure& en) {
+    double t = en.c + en.x;
+    double e_t = en.e + u * std::fabs(t) + F::denorm_min;
+    // Z(t*) = Z0 + t* dZ from z = fma(t, dZ, Z0): the bounds of Z0 and dZ, |t* - t|, and z's
+    // rounding.
+    double z = std::fma(t, f.dZ, f.Z0);
+    double e_z =
+        (f.e_Z0 + e_t * (std::fabs(f.dZ) + f.e_dZ) + std::fabs(t) * f.e_dZ + u * std::fabs(z)) *
+            F::cover(32) +
+        F::subnormal_slack;
+    int s[4] = {1, 1, 1, 1}; // Z - lo, hi - Z, t - t0, t1 - t
+    if (f.lo_bounded) s[0] = certain_sign_of_difference(z, e_z, f.lo, f.e_lo);
+    if (f.hi_bounded) s[1] = certain_sign_of_difference(f.hi, f.e_hi, z, e_z);
+    const Interval& range = unit.line.range; // ends exact in the scaled parameter
+    if (range.has_t0()) s[2] = certain_sign_of_difference(t, e_t, range.t0, 0);
+    if (range.has_t1()) s[3] = certain_sign_of_difference(range.t1, 0, t, e_t);
+    for (int si : s)
+        if (si < 0) return 0; // outside one bound: outside, whatever the others say
+    for (int si : s)
+        if (si == 0) return -1;
+    return 1;
+}
+
+// The hit, t and its point correctly rounded in the caller's units; false when a bound does
+// not prove a rounding.
+bool add_hit(const Enclosure& en, const Unit& unit, const Line& caller, Query q, Result& r) {
+    TwoTerm t = two_sum(en.c, en.x);
+    std::optional<double> rounded = round_proven({t.hi, t.lo, en.e}, unit.t_factor);
+    if (!rounded) return false;
+    Hit& h = r.hits[r.count];
+    h.t = *rounded;
+    h.kind = HitKind::cross;
+    h.p = {};
+    if (q.points) {
+        double p[3];
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; ++k) {
+            // L0_k + t v_k is L0_k exactly when v_k = 0 (an exact zero is +0, as the oracle's).
+            if (caller.v[k] == 0) {
+                p[k] = caller.L0[k] + 0.0;
+                continue;
+            }
+            // L0_k + c v_k + x v_k: the first two exactly (hi + s.lo + cv.lo), the rest rounded
+            // three times: u (2 |x v_k| + |cv.lo| + |lo|) with the rounding of the bound.
+            double v = unit.line.v[k];
+            TwoTerm cv = two_prod(en.c, v), s = two_sum(unit.line.L0[k], cv.hi);
+            double xv = en.x * v, lo = s.lo + (cv.lo + xv);
+            double e =
+                (std::fabs(v) * en.e + u * (2 * std::fabs(xv) + std::fabs(cv.lo) + std::fabs(lo))) *
+                    F::cover(32) +
+                F::underflow_floor;
+            TwoTerm n = two_sum(s.hi, lo);
+            std::optional<double> pk = round_proven({n.hi, n.lo, e}, unit.pos_factor);
+            if (!pk) return false;
+            p[k] = *pk;
+        }
+        h.p = {p[0], p[1], p[2]};
+    }
+    ++r.count;
+    return true;
+}
+
+} // namespace
+
+namespace {
+
+template <int SigmaZ>
+bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
+    Leading A = leading<SigmaZ>(f);
+    if (!(std::fabs(A.A) > A.e)) return false; // nearly parallel to the axis or to a generator
+    // The estimates: the quadratic's coefficients from the high parts, the stable root pair.
+    double B = 0, C0 = -f.K.hi;
+#pragma GCC unroll 3
+    for (int k = 0; k < used_components<SigmaZ>; ++k) {
+        B += sigma<SigmaZ>(k) * (f.U0[k].hi * f.U1[k].hi);
+        C0 += sigma<SigmaZ>(k) * (f.U0[k].hi * f.U0[k].hi);
+    }
+    double D = difference_of_products(B, B, A.A, C0);
+    if (!(D > 0)) return no_root_proven<SigmaZ>(f, A, -B / A.A);
+    double q = -(B + std::copysign(std::sqrt(D), B));
+    double estimate[2] = {q / A.A, C0 / q};
+    if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
+    // Both roots at once when both are needed; otherwise the second only if the first is not kept.
+    Local local[2];
+    if (query.need == Need::all) local_at<SigmaZ>(f, estimate, local);
+    for (int i = 0; i < 2; ++i) {
+        if (query.need != Need::all) local[i] = local_at<SigmaZ>(f, estimate[i]);
+        std::optional<Enclosure> en = root_near(local[i], A, estimate[i]);
+        if (!en || en->smaller != (i == 0)) return false;
+        int inside = kept(f, unit, *en);
+        if (inside < 0) return false;
+        if (inside == 0) continue;
+        if (!add_hit(*en, unit, caller, query, r)) return false;
+        if (query.need != Need::all) break; // the smaller root first: also the nearest
+    }
+    return true;
+}
+
+} // namespace
+
+bool newton_rung(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
+    switch (f.sigma_z) {
+    case 1:
+        return solve<1>(f, unit, caller, query, r);
+    case 0:
+        return solve<0>(f, unit, caller, query, r);
+    default:
+        return solve<-1>(f, unit, caller, query, r);
+    }
+}
+
+} // namespace linequad::detail

@@ -1,0 +1,29 @@
+// The correct solver's first rung: a double estimate of each root, refined by one Newton step
+// whose residual is evaluated in double-double, with a proven enclosure of the exact root.
+//
+// The division-free quadratic of each shape (its exact form) is a sum of squares of linear
+// functions of t, minus a constant:
+//     g(t) = A t^2 + 2 B t + C0 = sum_k sigma_k u_k(t)^2 - K,   u(t) = U0 + t U1,
+// each shape's line_form() (shapes/*.hpp, correct/line_form.hpp) gives U0, U1 and K in
+// double-double with a bound. Then, at a point c near a root,
+// g(c + x) = A x^2 + G' x + G holds exactly, with G = g(c) in double-double and G', A in double,
+// each with a bound. When y = 4 A G / G'^2 is at most 1/2 in magnitude, there is a root at
+// c + x* with x* = (-G / G') 2 / (1 + sqrt(1 - y)), within |x0| 0.35 |y| of x0 = -G / G':
+// existence, a simple root, which of the two roots it is (the other is at -G'/A - x*), and an
+// enclosure about 2^-100 |t| wide, from one evaluation. The extent, the range, t and the points
+// are then decided on the enclosure; whatever the bounds leave open goes to the next rung.
+#pragma once
+
+#include "correct/ladder.hpp"
+#include "correct/line_form.hpp"
+
+#include "linequad/result.hpp"
+
+namespace linequad::detail {
+
+// The answer to `query` in r (hits, t and points correctly rounded, r.count set) when every
+// decision and every rounding is proven; false otherwise, with r to be discarded. `caller` is
+// the line as given, u the scaled scene.
+bool newton_rung(const LineForm& f, const Unit& u, const Line& caller, Query query, Result& r);
+
+} // namespace linequad::detail

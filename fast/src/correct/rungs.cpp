@@ -1,0 +1,261 @@
+// The correct solver's second and third rungs: the exact form of the derivation in bounded
+// double-double (its classification and roots, each rounding proven), and in exact big-float
+// arithmetic, each output rounded by deciding exactly on which side of the midpoints between
+// neighbouring doubles it lies.
+#include "correct/rungs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+namespace linequad::detail {
+
+using exact_form::Classification;
+using exact_form::LineQuadratic;
+using exact_form::Outcome;
+using exact_form::SurdRoot;
+
+namespace {
+
+constexpr double dbl_max = std::numeric_limits<double>::max();
+
+// ---- Rung 2: double-double ----
+
+// t' = (N + S sqrt(D)) / Den without cancellation: when N and S sqrt(D) differ in sign (N = -B,
+// Den = A), the other root's form t' = C0 / (N - S sqrt(D)).
+BoundedDD root_value(const SurdRoot<BoundedDD>& r, const BoundedDD& sqrt_D,
+                     const LineQuadratic<BoundedDD>& q) {
+    if (r.S == 0) return r.N / r.Den;
+    BoundedDD s = r.S > 0 ? -sqrt_D : sqrt_D; // -S sqrt(D)
+    int sn = sign(r.N);
+    bool cancels = sn != exact_form::undecided && sn * r.S < 0;
+    return cancels ? q.C0 / (r.N + s) : (r.N - s) / r.Den;
+}
+
+} // namespace
+
+bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query query, Result& r) {
+    Classification<BoundedDD> c =
+        exact_form::classify(q, exact_form::parameter_range<BoundedDD>(u.line.range), query.need);
+    switch (c.outcome) {
+    case Outcome::undecided:
+        return false;
+    case Outcome::none:
+        return true;
+    case Outcome::on_surface: // needs exact zeros of A, B and C0: only BigFloat has them
+        return false;
+    case Outcome::hits:
+        break;
+    }
+    BoundedDD sqrt_D = c.roots[0].S == 0 ? BoundedDD() : sqrt(c.D);
+    for (int i = 0; i < c.count; ++i) {
+        BoundedDD t = root_value(c.roots[i], sqrt_D, q);
+        std::optional<double> rounded = round_proven(t, u.t_factor);
+        if (!rounded) return false;
+        Hit& h = r.hits[r.count++];
+        h.t = *rounded;
+        h.kind = c.roots[i].kind;
+        h.p = {};
+        if (!query.points) continue;
+        for (int k = 0; k < 3; ++k) {
+            BoundedDD p = BoundedDD(u.line.L0[k]) + BoundedDD(u.line.v[k]) * t;
+            std::optional<double> pk = round_proven(p, u.pos_factor);
+            if (!pk) return false;
+            (k == 0 ? h.p.x : k == 1 ? h.p.y : h.p.z) = *pk;
+        }
+    }
+    return true;
+}
+
+// ---- Rung 3: exact ----
+
+namespace {
+
+// Doubles in order, as integers: adjacent doubles have adjacent keys (+0 and -0 share 0).
+using Key = Binary64::Ordinal;
+Key key_of(double x) {
+    return Binary64::ordinal(x);
+}
+double from_key(Key k) {
+    return Binary64::from_ordinal(k);
+}
+const Key key_max = key_of(dbl_max);
+
+// The midpoint between the doubles of keys k and k + 1. Beyond the largest double, the next
+// "double" is 2^1024 (IEEE rounds there to infinity): the midpoint is DBL_MAX + 2^970.
+BigFloat midpoint_after(Key k) {
+    if (k >= key_max) return BigFloat(dbl_max) + BigFloat::pow2(970);
+    if (k < -key_max) return -(BigFloat(dbl_max) + BigFloat::pow2(970));
+    return (BigFloat(from_key(k)) + BigFloat(from_key(k + 1))).scaled(-1);
+}
+
+// A first guess at (X + Y sqrt(D)) / Den from the leading bits, without cancellation: a few
+// ulps off at most, so that the exact search below usually needs two comparisons.
+struct Approx {
+    double m;
+    long e; // m 2^e
+    static Approx of(const BigFloat& x) {
+        BigFloat::Approx a = x.approx();
+        return {a.m, a.e};
+    }
+    Approx operator*(Approx b) const { return {m * b.m, e + b.e}; }
+    Approx operator/(Approx b) const { return {m / b.m, e - b.e}; }
+    Approx sqrt() const {
+        long ee = e;
+        double mm = m;
+        if (ee % 2 != 0) mm *= 2, ee -= 1;
+        return {std::sqrt(mm), ee / 2};
+    }
+    // For terms of one sign.
+    Approx operator+(Approx b) const {
+        if (m == 0) return b;
+        if (b.m == 0) return *this;
+        long d = e - b.e;
+        if (d > 2000) return *this;
+        if (d < -2000) return b;
+        return d >= 0 ? Approx{m + std::ldexp(b.m, int(-d)), e}
+                      : Approx{std::ldexp(m, int(d)) + b.m, b.e};
+    }
+    double value() const {
+        if (m == 0) return 0;
+        if (e > 2000) return std::copysign(dbl_max, m);
+        if (e < -2000) return 0;
+        double v = std::ldexp(m, int(e));
+        return std::isinf(v) ? std::copysign(dbl_max, m) : v;
+    }
+};
+
+// (X + Y sqrt(D)) / Den rounded to the nearest double, ties to even; infinite beyond the range,
+// +0 for an exact zero (the oracle's conventions).
+class ExactRounder {
+  public:
+    ExactRounder(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den)
+        : X_(X), Y_(Y), D_(D), Den_(Den), sden_(sign(Den)), sy_(sign(D) == 0 ? 0 : sign(Y)),
+          Y2D_(sy_ == 0 ? BigFloat() : Y * Y * D) {}
+
+    double run() const {
+        int s = sden_ * exact_form::sign_surd(X_, sy_, Y2D_);
+        if (s == 0) return 0.0;
+        Key k = search(key_of(guess()));
+        if (k > key_max) return INFINITY;
+        if (k < -key_max) return -INFINITY;
+        double x = from_key(k);
+        return x == 0 ? std::copysign(0.0, s) : x;
+    }
+
+  private:
+    const BigFloat &X_, &Y_, &D_, &Den_;
+    int sden_, sy_;
+    BigFloat Y2D_; // Y^2 D, the same for every comparison
+
+    // sign(value - midpoint_after(k)): decreasing in k.
+    int above_midpoint(Key k) const {
+        BigFloat m = midpoint_after(k);
+        return sden_ * exact_form::sign_surd(BigFloat(X_ - m * Den_), sy_, Y2D_);
+    }
+
+    double guess() const {
+        int sx = sign(X_), sy = sy_;
+        Approx x = Approx::of(X_), y = Approx::of(Y_), d = Approx::of(D_), den = Approx::of(Den_);
+        if (sy == 0) return (x / den).value();
+        Approx ysd = y * d.sqrt();
+        if (sx == 0 || sx == sy) return ((x + ysd) / den).value();
+        Approx conj = Approx::of(BigFloat(X_ * X_ - Y2D_)); // X^2 - Y^2 D
+        return (conj / (den * (x + Approx{-ysd.m, ysd.e}))).value();
+    }
+
+    // b - a for a <= b: keys span more than an int64_t can hold.
+    static std::uint64_t distance(Key a, Key b) { return std::uint64_t(b) - std::uint64_t(a); }
+
+    // The key of the rounded value, from the guess g: the smallest k whose midpoint_after(k) is
+    // at or above the value (key_max + 1: +infinity), and the even side of a tie.
+    Key search(Key g) const {
+        const Key first = -key_max - 1, last = key_max;
+        g = std::clamp(g, first, last);
+        Key lo, hi; // above_midpoint(lo) > 0 >= above_midpoint(hi)
+        int fhi;
+        if (int fg = above_midpoint(g); fg <= 0) {
+            hi = g, fhi = fg;
+            for (std::uint64_t step = 1;; step *= 2) {
+                if (hi == first) return resolve(first, fhi);
+                Key cand = distance(first, hi) > step ? hi - step : first;
+                int f = above_midpoint(cand);
+                if (f > 0) {
+                    lo = cand;
+                    break;
+                }
+                hi = cand, fhi = f;
+            }
+        } else {
+            lo = g;
+            for (std::uint64_t step = 1;; step *= 2) {
+                if (lo == last) return last + 1; // above every midpoint: +infinity
+                Key cand = distance(lo, last) > step ? lo + step : last;
+                int f = above_midpoint(cand);
+                if (f <= 0) {
+                    hi = cand, fhi = f;
+                    break;
+                }
+                lo = cand;
+            }
+        }
+        while (distance(lo, hi) > 1) {
+            Key mid = lo + Key(distance(lo, hi) / 2);
+            int f = above_midpoint(mid);
+            if (f > 0)
+                lo = mid;
+            else
+                hi = mid, fhi = f;
+        }
+        return resolve(hi, fhi);
+    }
+
+    // The value is at or below midpoint_after(k) and above midpoint_after(k - 1): double k, or
+    // on a tie (exactly at the midpoint) the even one of k and k + 1.
+    static Key resolve(Key k, int f) {
+        if (k == -key_max - 1) return k; // below -DBL_MAX's cell: -infinity
+        if (f != 0) return k;
+        if (k == key_max) return k + 1; // the midpoint to 2^1024 rounds to infinity
+        return (Binary64::bits(from_key(k)) & 1) == 0 ? k : k + 1;
+    }
+};
+
+double round_exact(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den) {
+    return ExactRounder(X, Y, D, Den).run();
+}
+
+} // namespace
+
+Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) {
+    Classification<BigFloat> c =
+        exact_form::classify(q, exact_form::parameter_range<BigFloat>(l.range), query.need);
+    Result r;
+    if (c.outcome == Outcome::none) return r; // exact: never undecided
+    BigFloat zero;
+    if (c.outcome == Outcome::on_surface) {
+        r.on_surface = true;
+        r.s0 = c.s0.bounded ? round_exact(c.s0.num, zero, zero, c.s0.den) : -INFINITY;
+        r.s1 = c.s1.bounded ? round_exact(c.s1.num, zero, zero, c.s1.den) : INFINITY;
+        return r;
+    }
+    for (int i = 0; i < c.count; ++i) {
+        const SurdRoot<BigFloat>& rt = c.roots[i];
+        BigFloat S(rt.S);
+        Hit& h = r.hits[r.count++];
+        h.kind = rt.kind;
+        h.t = round_exact(rt.N, S, c.D, rt.Den);
+        h.p = {};
+        if (!query.points) continue;
+        // L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den
+        for (int k = 0; k < 3; ++k) {
+            BigFloat L0(l.L0[k]), v(l.v[k]);
+            double pk = round_exact(L0 * rt.Den + v * rt.N, v * S, c.D, rt.Den);
+            (k == 0 ? h.p.x : k == 1 ? h.p.y : h.p.z) = pk;
+        }
+    }
+    return r;
+}
+
+} // namespace linequad::detail

@@ -1,0 +1,51 @@
+// Exact signs of small polynomials in doubles, by floating-point expansions (Shewchuk 1997).
+//
+// An Expansion holds a sum of doubles that is exact, nonoverlapping and ordered by increasing
+// magnitude, so its sign is the sign of its last nonzero component. Products are exact as long
+// as they neither overflow nor underflow; callers scale their inputs by powers of two first.
+#pragma once
+
+#include "numeric/eft.hpp"
+
+#include <cstddef>
+
+namespace linequad {
+
+// Each add keeps at most one more term than it had, so Capacity must be at least the number of
+// doubles added: 4 per product of three (the determinants below add at most 48).
+template <std::size_t Capacity>
+class Expansion {
+  public:
+    // Grow-Expansion: adds one double exactly.
+    void add(double b) {
+        std::size_t out = 0;
+        double q = b;
+        for (std::size_t i = 0; i < size_; ++i) {
+            TwoTerm s = two_sum(q, terms_[i]);
+            q = s.hi;
+            if (s.lo != 0) terms_[out++] = s.lo;
+        }
+        if (q != 0) terms_[out++] = q;
+        size_ = out;
+    }
+    void add_product(double a, double b) {
+        TwoTerm p = two_prod(a, b);
+        add(p.lo);
+        add(p.hi);
+    }
+    void add_product(double a, double b, double c) {
+        TwoTerm p = two_prod(a, b);
+        add_product(p.lo, c);
+        add_product(p.hi, c);
+    }
+    int sign() const {
+        if (size_ == 0) return 0;
+        return terms_[size_ - 1] > 0 ? 1 : -1;
+    }
+
+  private:
+    double terms_[Capacity] = {};
+    std::size_t size_ = 0;
+};
+
+} // namespace linequad

@@ -1,0 +1,19 @@
+// Every shape's derivations. The list of shapes itself is linequad::Shape (linequad/shapes.hpp);
+// LINEQUAD_FOR_EACH_SHAPE names the same list for the explicit instantiations of the solvers,
+// which C++17 cannot generate from a type list.
+#pragma once
+
+#include "shapes/cylinder.hpp"
+#include "shapes/elliptic_cone.hpp"
+#include "shapes/elliptic_cylinder.hpp"
+
+#include <variant>
+
+#define LINEQUAD_FOR_EACH_SHAPE(X) X(Cylinder) X(EllipticCylinder) X(EllipticCone)
+
+namespace linequad::detail {
+#define LINEQUAD_COUNT_SHAPE(S) +1
+static_assert(std::variant_size_v<Shape> == 0 LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_COUNT_SHAPE),
+              "LINEQUAD_FOR_EACH_SHAPE must list every alternative of linequad::Shape");
+#undef LINEQUAD_COUNT_SHAPE
+} // namespace linequad::detail

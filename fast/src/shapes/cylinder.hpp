@@ -1,0 +1,311 @@
+// Line against a right circular cylinder {C, H, r} (seed 001): every derivation of it, once.
+//
+// Derivation (checked against the surface equation). With h = H - C, w = L0 - C, a point P is on
+// the infinite cylinder iff its distance to the axis is r:
+//     |P - C|^2 - ((P - C) . h)^2 / (h . h) = r^2.
+// Substituting P = L0 + t v and multiplying by h . h (no square root, erratum 3):
+//     A t^2 + 2 B t + C0 = 0,
+//     A  = (v.v)(h.h) - (v.h)^2 = |v x h|^2,
+//     B  = (v.w)(h.h) - (v.h)(w.h) = (v x h) . (w x h),
+//     C0 = (w.w)(h.h) - (w.h)^2 - r^2 (h.h) = |w x h|^2 - r^2 (h.h)
+// (Lagrange's identity turns each Gram difference into a cross product). The extent is the
+// projection on the axis: 0 <= (P - C) . h <= h . h.
+//
+// seed: seed 001 as written, with the unit axis h^ = h / |h| and a = v.v - (v.h^)^2 etc.
+//
+// stable: the cross-product form above, and
+//  - the discriminant in geometric form. With det = (v x h) . w (the triple product: |v x h|
+//    times the line's distance from the axis, times |h|; any point of the line will do for w),
+//        D = B^2 - A C0 = (h.h) (r^2 A - det^2),
+//    a difference of two accurate numbers, with det^2 exact inside one fma, not of the two
+//    large squares B^2 and A C0. v x h from h = H - C exactly (hi + lo) by Kahan's fma
+//    difference of products: a line nearly along the axis makes it a tiny difference. det is a
+//    compensated dot product with the moved origin below, whose own rounding is what remains
+//    (a few ulps of |v x h| |w|, as for any rounded point of the line);
+//  - the origin moved to the line's point of closest approach to the middle of the axis before
+//    B and C0 are formed (never farther than the caller's origin; det does not change);
+//  - the stable root pair q / A, C0 / q, then t = t_c + s; a root that cancels there (near the
+//    caller's origin) from Vieta instead (t1 t2 = C0 / A, with C0 = |w x h|^2 - r^2 (h.h));
+//  - A = 0 exactly when the line is parallel to the axis: no hit, or on the surface when
+//    C0 = 0, which only the certified computation may claim (rounded zeros are no proof);
+//  - the scene prescaled by powers of two (exact) so no product overflows or underflows.
+//
+// certified: the same quantities in bounded arithmetic (value and rigorous error bound, see
+// numeric/bounded.hpp: QuickBounded first, Bounded when that leaves anything uncertain), with
+// h = H - C exact (hi, bound |lo|) and the moved origin bounded; a sign is used only when the
+// bound excludes zero, so a certain classification is never wrong.
+//
+// exact: the quadratic above, times nothing, in any exact number type; Z = (P - C) . h with
+// 0 <= Z <= h.h.
+//
+// correct (the Newton rung): g(t) = |u(t)|^2 - K with u(t) = w x h + t (v x h) and K = r^2 (h.h),
+// by Lagrange's identity.
+#pragma once
+
+#include "correct/line_form.hpp"
+#include "shapes/exact_form.hpp"
+#include "shapes/traits.hpp"
+#include "solve/certified.hpp"
+#include "solve/roots.hpp"
+
+namespace linequad::detail {
+
+// The arithmetic of stable's cylinder solve, once, for a lane type T: double for the scalar
+// solver, the 4-lane type for the batch solver. The scalar solver calls these steps with its
+// branches; the batch calls them for all lanes and sends the lanes that would branch to the
+// scalar solver. Same operations in the same order: the same bits.
+template <class T>
+struct CylinderStable {
+    static constexpr bool parallel_is_miss = true; // A = 0: along the axis, no crossing
+    using Mask = decltype(T() < T());
+    // Prescaled inputs and what depends on the shape and the line's direction.
+    Vec3TwoTermT<T> hx, w;
+    Vec3T<T> h, v, vh;
+    T r, hh, r2, r2hh, A, inv_vv, dz;
+    // From the moved origin.
+    T tc, B, Cc, D, zc;
+    Vec3T<T> wc;
+
+    CylinderStable(Vec3T<T> C, Vec3T<T> H, Vec3T<T> L0, Vec3T<T> v_, T r_) : v(v_), r(r_) {
+        // h = H - C exactly, as hi + lo: for a line nearly along the axis, v x h is a tiny
+        // difference that the rounding of H - C alone would swamp.
+        hx = difference_exact(H, C);
+        h = hx.rounded();
+        hh = dot(h, h);
+        w = difference_exact(L0, C);
+        vh = cross_accurate(v, hx);
+        A = dot(vh, vh);
+        r2 = r * r;
+        r2hh = r2 * hh;
+        inv_vv = T(1) / dot(v, v); // tc need not be a rounded quotient: any tc is an exact move
+        dz = dot(v, h);
+    }
+
+    // Sizes that products of four would underflow (prescaled scene: near unit size).
+    Mask too_small() const {
+        return (r < T(min_relative_size)) | (hh < T(min_relative_size * min_relative_size));
+    }
+    // Lanes that only the scalar solver can finish, beyond the usual branches: none here.
+    Mask scalar_only() const { return Mask{}; }
+    // C0 at the caller's origin: for lines parallel to the axis, and for Vieta's product.
+    T C0_at_origin() const {
+        Vec3T<T> wh = cross_accurate(w.rounded(), hx);
+        return dot(wh, wh) - r2hh;
+    }
+
+    // The origin moved to the line's closest approach to the axis' midpoint: never farther
+    // than the caller's origin, so every later product is as small as the geometry allows.
+    // Then B, Cc and the discriminant in geometric form. The rounded products of Cc and D are
+    // no less accurate than a factored (sqrt - r|h|)(sqrt + r|h|) form would be: their inputs
+    // are rounded already.
+    void discriminant() {
+        using std::fma;
+        tc = -dot(v, w.rounded() - T(0.5) * h) * inv_vv;
+        wc = moved_origin(w, tc, v);
+        Vec3T<T> whc = cross_accurate(wc, hx);
+        B = dot2(vh, whc);
+        zc = dot(wc, h);
+        Cc = dot(whc, whc) - r2hh;
+        T det = dot2(vh, wc);
+        D = hh * fma(-det, det, r2 * A);
+    }
+
+    // z = (P - C) . h at a root: from the moved origin, or from the caller's for a root that
+    // came from Vieta's product (near the caller's origin); one fma either way.
+    T z_moved(T s) const {
+        using std::fma;
+        return fma(s, dz, zc);
+    }
+    T z_at_origin(T t) const {
+        using std::fma;
+        return fma(t, dz, dot2(w.rounded(), h));
+    }
+    double z_of(const Roots& r, int i) const {
+        return r.from_vieta[i] ? z_at_origin(r.t[i]) : z_moved(r.s[i]);
+    }
+    T z_lanes(T t, T s, Mask from_vieta) const {
+        return select(from_vieta, z_at_origin(t), z_moved(s));
+    }
+    ExtentT<T> extent(bool finite) const {
+        if (finite) return {T(0.0), hh};
+        return {T(-Binary64::inf), T(Binary64::inf)};
+    }
+};
+
+template <>
+struct ShapeTraits<Cylinder> {
+    static constexpr const char* name = "cylinder";
+    static constexpr auto fields = std::make_tuple(
+        field("C", &Cylinder::C), field("H", &Cylinder::H), field("r", &Cylinder::r));
+    // What a double solver names when the scene is beyond its reach: sizes too small beside the
+    // scene, and components too small for its zeros to be trusted.
+    static constexpr const char* scale_fields = "r,H-C";
+    static constexpr const char* fragile_fields = "v,H-C";
+
+    static Validity validate(const Cylinder& s) {
+        if (!(s.r > 0)) return {{ErrorCode::bad_radius, "r"}};
+        if (s.H == s.C) return {{ErrorCode::degenerate_axis, "H-C"}};
+        return {};
+    }
+
+    // ---- What prepare() keeps ----
+
+    struct SeedAxis {
+        Vec3 unit;
+        double length;
+    };
+    template <class Src>
+    static SeedAxis seed_axis(const Src& src) {
+        if constexpr (Src::prepared) {
+            return {src.facts.seed_axis, src.facts.seed_length};
+        } else {
+            Vec3 h = src.shape.H - src.shape.C;
+            double hn = norm(h);
+            return {(1 / hn) * h, hn};
+        }
+    }
+    struct NewtonAxis {
+        Vec3TwoTerm h;
+        BoundedDD hh, K; // h.h and r^2 h.h
+    };
+    template <class Src>
+    static NewtonAxis newton_axis(const Src& src) {
+        if constexpr (Src::prepared) {
+            const Facts<Cylinder>& f = src.facts;
+            return {{f.h_hi, f.h_lo}, bounded_dd(f.hh), bounded_dd(f.K)};
+        } else {
+            const Cylinder& s = src.shape;
+            NewtonAxis a;
+            a.h = difference_exact(s.H, s.C);
+            CompensatedSum hh_sum; // h.h
+#pragma GCC unroll 3
+            for (int k = 0; k < 3; ++k) {
+                hh_sum.add_product(a.h.hi[k], a.h.hi[k]);
+                hh_sum.add_small(2 * a.h.hi[k] * a.h.lo[k]);
+                hh_sum.add_small(a.h.lo[k] * a.h.lo[k]);
+            }
+            a.hh = hh_sum.result();
+            TwoTerm r2 = two_prod(s.r, s.r);
+            a.K = product({r2.hi, r2.lo, 0}, a.hh);
+            return a;
+        }
+    }
+    static void prepare(const Cylinder& s, Facts<Cylinder>& f) {
+        SeedAxis axis = seed_axis(AsGiven<Cylinder>{s});
+        f.seed_axis = axis.unit, f.seed_length = axis.length;
+        NewtonAxis n = newton_axis(AsGiven<Cylinder>{s});
+        f.h_hi = n.h.hi, f.h_lo = n.h.lo;
+        store(n.hh, f.hh), store(n.K, f.K);
+    }
+
+    // ---- seed ----
+
+    template <class Src>
+    static SeedForm seed_form(const Src& src, const Line& l) {
+        const Cylinder& s = src.shape;
+        SeedAxis axis = seed_axis(src);
+        Vec3 w = l.L0 - s.C;
+        double vh = dot(l.v, axis.unit), wh = dot(w, axis.unit);
+        double a = dot(l.v, l.v) - vh * vh;
+        double b = 2 * (dot(l.v, w) - vh * wh);
+        double c = dot(w, w) - wh * wh - s.r * s.r;
+        bool usable =
+            std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && std::isfinite(axis.length);
+        Extent e = s.finite ? Extent{0, axis.length} : Extent{-Binary64::inf, Binary64::inf};
+        return {a, b, c, wh, vh, e, usable};
+    }
+
+    // ---- stable ----
+
+    template <class T>
+    using Stable = CylinderStable<T>;
+    // The core for the line L0 + t v (a lane type's values for the batch), prescaled by ps.
+    template <class T, class Src, class Scale>
+    static Stable<T> stable_core(const Src& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
+        const Cylinder& s = src.shape;
+        return {ps.pos(s.C), ps.pos(s.H), ps.pos(L0), ps.dir(v), ps.len(s.r)};
+    }
+
+    // ---- certified ----
+
+    template <class B, class Src>
+    static CertifiedForm<B> certified_form(const Src& src, const Prescale& ps, const Line& l) {
+        const Cylinder& s = src.shape;
+        Vec3 C = ps.pos(s.C), v = ps.dir(l.v);
+        Vec3TwoTerm w = difference_exact(ps.pos(l.L0), C);
+        BoundedVec3<B> h = difference_bounded<B>(ps.pos(s.H), C), V = exact<B>(v);
+        B R = B::exact(ps.len(s.r)), hh = dot(h, h);
+        BoundedVec3<B> vxh = cross(V, h);
+        B A = dot(vxh, vxh);
+        // Any tc is an exact move of the origin; the closest approach to the axis' middle keeps
+        // the bounded quantities small. A line exactly parallel to the axis is not moved, so
+        // that its exact zeros stay exact.
+        Vec3 hm{h.x.v, h.y.v, h.z.v};
+        double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * hm) / dot(v, v);
+        BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), wxh = cross(wc, h);
+        B det = dot(V, wxh);
+        BoundedQuadratic<B> quad{A, dot(vxh, wxh), dot(wxh, wxh) - R * R * hh,
+                                 hh * (R * R * A - det * det)};
+        // z = (P - C) . h / h.h
+        Extent e = s.finite ? Extent{0, 1} : Extent{-Binary64::inf, Binary64::inf};
+        return {quad, tc, dot(wc, h) / hh, dot(V, h) / hh, e};
+    }
+
+    // ---- exact ----
+
+    // The circular cylinder has no frame to orient.
+    template <class NT>
+    static int exact_orientation(const Cylinder&) {
+        return 0;
+    }
+
+    // Multiplied through by h.h: |P - C|^2 (h.h) - ((P - C).h)^2 = r^2 (h.h),
+    // 0 <= (P - C).h <= h.h, with P = L0 + t v, w = L0 - C, h = H - C.
+    template <class NT>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const Cylinder& s, const Line& l,
+                                                         int /*orientation*/) {
+        using exact_form::lift;
+        Vec3T<NT> h = lift<NT>(s.H) - lift<NT>(s.C), w = lift<NT>(l.L0) - lift<NT>(s.C);
+        Vec3T<NT> v = lift<NT>(l.v);
+        NT hh = dot(h, h), vh = dot(v, h), wh = dot(w, h), r(s.r);
+        exact_form::LineQuadratic<NT> q;
+        q.A = dot(v, v) * hh - vh * vh;
+        q.B = dot(v, w) * hh - vh * wh;
+        q.C0 = dot(w, w) * hh - wh * wh - r * r * hh;
+        q.Z0 = wh, q.dZ = vh, q.lo = NT(0), q.hi = hh;
+        q.lo_bounded = q.hi_bounded = s.finite;
+        return q;
+    }
+
+    // ---- correct: the Newton rung's line form ----
+
+    template <class Src>
+    static LineForm line_form(const Src& src, const Line& l, int /*orientation*/) {
+        using F = Binary64;
+        const Cylinder& s = src.shape;
+        NewtonAxis axis = newton_axis(src);
+        const Vec3TwoTerm& h = axis.h;
+        Vec3TwoTerm w = difference_exact(l.L0, s.C);
+        LineForm f;
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; ++k) {
+            f.U0[k] = cross_component(w, h, k);
+            f.U1[k] = cross_component(l.v, h, k);
+        }
+        f.sigma_z = 1;
+        f.K = axis.K;
+        // Z = (P - C).h = w.h + t v.h, from the high parts in double: gamma_3 of the sum of
+        // products' magnitudes for the rounding, and 2u (1 + u) of it for the low parts left
+        // out; 6u covers both (5u for v.h, whose v has no low part).
+        f.Z0 = dot(w.hi, h.hi);
+        f.e_Z0 = 6 * F::u * dot(magnitudes(w.hi), magnitudes(h.hi)) + F::underflow_floor;
+        f.dZ = dot(l.v, h.hi);
+        f.e_dZ = 5 * F::u * dot(magnitudes(l.v), magnitudes(h.hi)) + F::underflow_floor;
+        f.lo = 0, f.e_lo = 0;
+        f.hi = axis.hh.hi, f.e_hi = bound_of_hi(axis.hh);
+        f.lo_bounded = f.hi_bounded = s.finite;
+        return f;
+    }
+};
+
+} // namespace linequad::detail

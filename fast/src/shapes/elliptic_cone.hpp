@@ -1,0 +1,286 @@
+// Line against an elliptic cone {C, H, a, b} (seed 002): every derivation of it, once.
+//
+// Derivation. With c = H - C (erratum 4), the frame M = [a b c] with origin H maps the unit cone
+// (apex at the origin, base centre (0, 0, -1), base radius 1) to the shape: P = H + M (x, y, z).
+// Seed 002 derives the unit cone as |P - H'|^2 = 2 ((P - H') . h)^2 with h = (0, 0, -1), i.e.
+//     x^2 + y^2 = z^2,
+// a double cone (erratum 5: the nappe z <= 0 is kept; finite keeps -1 <= z <= 0). Its section
+// "Intersections calculation" then substitutes into the cylinder's equation; substituting into
+// the cone's own (erratum 1), with w = M^-1 (L0 - H) and v' = M^-1 v:
+//     A t^2 + 2 B t + C0 = 0,
+//     A = v'x^2 + v'y^2 - v'z^2,  B = v'x wx + v'y wy - v'z wz,  C0 = wx^2 + wy^2 - wz^2.
+// Cases the seed does not name (erratum 6): A = 0 when v' is along a generator (one root when
+// B != 0; when B = 0 too, the line lies on the cone if C0 = 0, and there is no hit otherwise);
+// a line through the apex gives a double root there (reported as tangent).
+//
+// seed: M = T R S as written; a = v'.v' - 2 (v'.h)^2, b = 2 (v'.w - 2 (v'.h)(w.h)),
+// c = w.w - 2 (w.h)^2; textbook roots.
+//
+// stable: the dual frame in double-double; local coordinates times s det (s a power of two near
+// 1 / |det|) instead of divided by det, since the equation is homogeneous; the origin moved to
+// the line's closest approach to the apex; each form x^2 + y^2 - z^2 with x^2 and y^2 exact
+// inside fmas (squares_difference), except A, whose geometric form (rho - |z|)(rho + |z|),
+// rho = sqrt(x^2 + y^2), decides lines along a generator better; B as a compensated dot product;
+// and the discriminant in geometric form: with u = v' x w' = M^T (v x w) / det, Lagrange's
+// identity in the metric diag(1, 1, -1) gives
+//     D = B^2 - A C0 = ux^2 + uy^2 - uz^2,
+// u by Kahan's cross product of the rounded v' and w', or, near tangency (|D| small beside the
+// products u came from), from double-double triple products. Roots are the stable pair q / A,
+// C0 / q, paired back as for the circular cylinder (cylinder.hpp); a line on the surface only
+// from the certified computation.
+//
+// certified: the same quantities in bounded arithmetic (QuickBounded, then Bounded when needed),
+// c = H - C exact (hi and bound); signs used only when certain.
+//
+// exact: as the elliptic cylinder's, with w = M^-1 (L0 - H); the equation is homogeneous, so
+// the det^2 factor drops out; -|det| <= Z <= 0.
+//
+// correct (the Newton rung): g(t) = Ux^2 + Uy^2 - Uz^2 with U(t) = adj(M)(L0 - H) + t adj(M) v.
+#pragma once
+
+#include "correct/line_form.hpp"
+#include "shapes/exact_form.hpp"
+#include "shapes/frame.hpp"
+#include "shapes/seed_frame.hpp"
+#include "shapes/traits.hpp"
+#include "solve/certified.hpp"
+#include "solve/roots.hpp"
+
+#include <type_traits>
+
+namespace linequad::detail {
+
+// The arithmetic of stable's cone solve, once, for a lane type T. The cone's equation
+// x^2 + y^2 = z^2 is homogeneous: its roots do not change when every local coordinate is scaled
+// by one factor. So the local coordinates here are M^-1 u times sigma = s det, s a power of two
+// near 1 / |det| (frame.hpp): A, B and C0 carry sigma^2, D sigma^4, and no division by det is
+// needed but in z itself (z_at), which the extent test needs as it is.
+template <class T>
+struct ConeStable {
+    static constexpr bool parallel_is_miss = false; // A = 0: along a generator, one crossing
+    using Mask = decltype(T() < T());
+    DualFrameT<T> f;
+    Vec3TwoTermT<T> w, c;
+    Vec3T<T> a, b, v, vl;
+    T s, A, tc, B, Cc, D;
+    Mask near_tangent; // D came from the double-double triple products (the scalar solver)
+
+    // The dual frame of the prescaled a, b, c; c = H - C exactly (it is not a double);
+    // prescaled a, b, H, L0 and v.
+    ConeStable(const DualFrameT<T>& frame, const Vec3TwoTermT<T>& c_, Vec3T<T> a_, Vec3T<T> b_,
+               Vec3T<T> H, Vec3T<T> L0, Vec3T<T> v_)
+        : f(frame), w(difference_exact(L0, H)), c(c_), a(a_), b(b_), v(v_) {
+        s = power_of_two_inverse(f.det);
+        vl = f.scaled_local(v, s);
+        A = circle_minus_square(vl.x, vl.y, vl.z);
+    }
+    Mask too_small() const {
+        return lane_min(lane_min(max_abs_lanes(a), max_abs_lanes(b)), max_abs_lanes(c.hi)) <
+               T(min_relative_size);
+    }
+    // Near tangency D comes from the double-double triple products, which only the scalar
+    // solver computes.
+    Mask scalar_only() const { return near_tangent; }
+    T C0_at_origin() const {
+        Vec3T<T> wl = f.scaled_local(w.rounded(), s);
+        return squares_difference(wl.x, wl.y, wl.z);
+    }
+    // Origin moved to the line's closest approach to the apex; D = ux^2 + uy^2 - uz^2 with
+    // u = v' x w' (sigma^2 u in the scaled coordinates), by Kahan's cross product of the rounded
+    // local v' and w'. Its error is a few u of the products u came from, which is small beside D
+    // but near tangency: where |D| is at most 1/8 of them, D comes from accurate_discriminant (in
+    // the batch: the lane goes to the scalar solver, which does that).
+    void discriminant() {
+        using std::fabs;
+        tc = -dot(v, w.rounded()) / dot(v, v); // any tc is an exact move
+        Vec3T<T> wcw = moved_origin(w, tc, v), wc = f.scaled_local(wcw, s);
+        const T vm[3] = {vl.x, vl.y, -vl.z}, wm[3] = {wc.x, wc.y, wc.z};
+        B = dot2(vm, wm);
+        Cc = squares_difference(wc.x, wc.y, wc.z);
+        Vec3T<T> u = cross_accurate(vl, wc);
+        D = squares_difference(u.x, u.y, u.z);
+        T size = fabs(u.x) * (fabs(vl.y * wc.z) + fabs(vl.z * wc.y)) +
+                 fabs(u.y) * (fabs(vl.z * wc.x) + fabs(vl.x * wc.z)) +
+                 fabs(u.z) * (fabs(vl.x * wc.y) + fabs(vl.y * wc.x));
+        near_tangent = fabs(D) <= T(0.125) * size; // and where u, and D with it, came out 0
+        if constexpr (std::is_same_v<T, double>)
+            if (near_tangent) D = accurate_discriminant(wcw);
+    }
+    // u = M^T (v x w) / det with each component a double-double triple product, which stays
+    // accurate when D nearly vanishes; sigma^2 u = s (s det) M^T (v x w), a product by an exact
+    // power-of-two multiple of det.
+    T accurate_discriminant(Vec3T<T> wcw) const {
+        Vec3TwoTermT<T> vw = cross_dd(v, wcw);
+        Vec3T<T> u{dot2(a, vw), dot2(b, vw), dot2(c.hi, vw) + dot(c.lo, vw.hi)};
+        u = (s * (s * f.det)) * u;
+        return squares_difference(u.x, u.y, u.z);
+    }
+    T z_at(T t) const { return f.local_z(moved_origin(w, t, v)); }
+    double z_of(const Roots& r, int i) const { return z_at(r.t[i]); }
+    T z_lanes(T t, T, Mask) const { return z_at(t); }
+    ExtentT<T> extent(bool finite) const { return {T(finite ? -1.0 : -Binary64::inf), T(0.0)}; }
+};
+
+template <>
+struct ShapeTraits<EllipticCone> {
+    static constexpr const char* name = "elliptic_cone";
+    static constexpr auto fields =
+        std::make_tuple(field("C", &EllipticCone::C), field("H", &EllipticCone::H),
+                        field("a", &EllipticCone::a), field("b", &EllipticCone::b));
+    static constexpr const char* scale_fields = "a,b,H-C";
+    static constexpr const char* fragile_fields = "v,a,b,H-C";
+
+    static Validity validate(const EllipticCone& s) {
+        if (s.H == s.C) return {{ErrorCode::degenerate_axis, "H-C"}};
+        int orientation = cone_det_sign_exact(s.a, s.b, s.C, s.H);
+        if (orientation == 0) return {{ErrorCode::singular_frame, "a,b,H-C"}};
+        return {{}, orientation};
+    }
+
+    // ---- What prepare() keeps ----
+
+    static void prepare(const EllipticCone& s, Facts<EllipticCone>& f) {
+        seed_inverse_frame(s.H, s.a, s.b, s.c(), f.seed_inverse);
+        f.exponent = scale_exponent(f.magnitude);
+        double to_unit = Binary64::pow2(-f.exponent);
+        Vec3TwoTerm c = difference_exact(to_unit * s.H, to_unit * s.C);
+        f.c_hi = c.hi, f.c_lo = c.lo;
+        f.dual = DualFrame(to_unit * s.a, to_unit * s.b, c).rows();
+        f.lowest_exponent = lowest_exponent({s.a, s.b, s.H, s.C}, to_unit);
+        store(adjugate_rows_dd(s.a, s.b, difference_exact(s.H, s.C)), f);
+    }
+
+    // ---- seed ----
+
+    template <class Src>
+    static SeedForm seed_form(const Src& src, const Line& l) {
+        const EllipticCone& s = src.shape;
+        Vec3 w, v; // H' = 0
+        if constexpr (Src::prepared) {
+            to_seed_frame(src.facts.seed_inverse, l, w, v);
+        } else {
+            double inverse[16];
+            seed_inverse_frame(s.H, s.a, s.b, s.c(), inverse);
+            to_seed_frame(inverse, l, w, v);
+        }
+        const Vec3 h{0, 0, -1};
+        double vh = dot(v, h), wh = dot(w, h);
+        double a = dot(v, v) - 2 * vh * vh;
+        double b = 2 * (dot(v, w) - 2 * vh * wh);
+        double c = dot(w, w) - 2 * wh * wh;
+        bool usable = std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
+        Extent e{s.finite ? -1.0 : -Binary64::inf, 0};
+        return {a, b, c, w.z, v.z, e, usable};
+    }
+
+    // ---- stable ----
+
+    template <class T>
+    using Stable = ConeStable<T>;
+    // The core for the line L0 + t v (a lane type's values for the batch), prescaled by ps; a
+    // prepared shape's dual frame, when it rescales to ps exactly (frame.hpp).
+    template <class T, class Src, class Scale>
+    static Stable<T> stable_core(const Src& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
+        const EllipticCone& s = src.shape;
+        Vec3T<T> a = ps.pos(s.a), b = ps.pos(s.b), H = ps.pos(s.H);
+        Vec3TwoTermT<T> c;
+        auto frame = [&]() -> DualFrameT<T> {
+            if constexpr (Src::prepared) {
+                const FrameFacts& f = src.facts;
+                int delta = ps.k - f.exponent;
+                if (dual_frame_rescales(f, delta)) {
+                    double scale = Binary64::pow2(-delta); // c = H - C scales as the rows do
+                    c = {scale * f.c_hi, scale * f.c_lo};
+                    return rescaled_dual_frame(f, delta);
+                }
+            }
+            c = difference_exact(H, ps.pos(s.C)); // c = H - C exactly: it is not a double
+            return {a, b, c};
+        };
+        DualFrameT<T> f = frame();
+        return {f, c, a, b, H, ps.pos(L0), ps.dir(v)};
+    }
+
+    // ---- certified ----
+
+    template <class B, class Src>
+    static CertifiedForm<B> certified_form(const Src& src, const Prescale& ps, const Line& l) {
+        const EllipticCone& s = src.shape;
+        Vec3 H = ps.pos(s.H), v = ps.dir(l.v);
+        Vec3TwoTerm w = difference_exact(ps.pos(l.L0), H);
+        BoundedVec3<B> a3 = exact<B>(ps.pos(s.a)), b3 = exact<B>(ps.pos(s.b)), V = exact<B>(v);
+        BoundedVec3<B> c3 = difference_bounded<B>(H, ps.pos(s.C)); // c = H - C exactly
+        BoundedDualFrame<B> frame(a3, b3, c3);
+        BoundedVec3<B> vl = frame.local(V);
+        B A = vl.x * vl.x + vl.y * vl.y - vl.z * vl.z;
+        // Closest approach to the apex; not moved along a generator, where exact zeros decide.
+        double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded()) / dot(v, v);
+        BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), wl = frame.local(wc);
+        BoundedVec3<B> vw = cross(V, wc);
+        BoundedVec3<B> u{dot(a3, vw) / frame.det, dot(b3, vw) / frame.det, dot(c3, vw) / frame.det};
+        BoundedQuadratic<B> quad{A, vl.x * wl.x + vl.y * wl.y - vl.z * wl.z,
+                                 wl.x * wl.x + wl.y * wl.y - wl.z * wl.z,
+                                 u.x * u.x + u.y * u.y - u.z * u.z};
+        Extent e{s.finite ? -1.0 : -Binary64::inf, 0};
+        return {quad, tc, wl.z, vl.z, e};
+    }
+
+    // ---- exact ----
+
+    // sgn det[a b H-C], in NT (the oracle decides it in its own arithmetic).
+    template <class NT>
+    static int exact_orientation(const EllipticCone& s) {
+        using exact_form::lift;
+        return sign(exact_form::AdjugateFrame<NT>(lift<NT>(s.a), lift<NT>(s.b),
+                                                  lift<NT>(s.H) - lift<NT>(s.C))
+                        .det);
+    }
+
+    // x^2 + y^2 = z^2 (homogeneous, so the det^2 factor drops out), -1 <= z <= 0 (erratum 5),
+    // with W = det M^-1 (L0 - H), V = det M^-1 v.
+    template <class NT>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const EllipticCone& s, const Line& l,
+                                                         int orientation) {
+        using exact_form::lift;
+        bool negative_det = orientation < 0;
+        exact_form::AdjugateFrame<NT> f(lift<NT>(s.a), lift<NT>(s.b),
+                                        lift<NT>(s.H) - lift<NT>(s.C));
+        Vec3T<NT> W = f.scaled_local(lift<NT>(l.L0) - lift<NT>(s.H));
+        Vec3T<NT> V = f.scaled_local(lift<NT>(l.v));
+        exact_form::LineQuadratic<NT> q;
+        q.A = V.x * V.x + V.y * V.y - V.z * V.z;
+        q.B = V.x * W.x + V.y * W.y - V.z * W.z;
+        q.C0 = W.x * W.x + W.y * W.y - W.z * W.z;
+        q.Z0 = negative_det ? -W.z : W.z;
+        q.dZ = negative_det ? -V.z : V.z;
+        q.lo = negative_det ? f.det : -f.det, q.hi = NT(0);
+        q.lo_bounded = s.finite;
+        q.hi_bounded = true; // the nappe z <= 0
+        return q;
+    }
+
+    // ---- correct: the Newton rung's line form ----
+
+    template <class Src>
+    static LineForm line_form(const Src& src, const Line& l, int orientation) {
+        const EllipticCone& s = src.shape;
+        bool negative_det = orientation < 0;
+        AdjugateRowsDD rows = [&] {
+            if constexpr (Src::prepared)
+                return adjugate_rows_dd(src.facts);
+            else
+                return adjugate_rows_dd(s.a, s.b, difference_exact(s.H, s.C));
+        }();
+        LineForm f = elliptic_form(rows, difference_exact(l.L0, s.H), l.v, negative_det);
+        BoundedDD det = absolute_det(rows, negative_det);
+        f.sigma_z = -1;
+        f.K = BoundedDD(0);
+        f.lo = -det.hi, f.e_lo = bound_of_hi(det); // -|det| <= Z <= 0: the nappe z <= 0
+        f.hi = 0, f.e_hi = 0;
+        f.lo_bounded = s.finite;
+        f.hi_bounded = true;
+        return f;
+    }
+};
+
+} // namespace linequad::detail

@@ -1,0 +1,248 @@
+// Line against an elliptic cylinder {C, a, b, c} (seed 000): every derivation of it, once.
+//
+// Derivation. The frame M maps the unit cylinder x^2 + y^2 = 1 (0 <= z <= 1) to the shape:
+// P = C + M (x, y, z). The line maps back by M^-1 as a point and a vector (erratum 2):
+//     w = M^-1 (L0 - C),   v' = M^-1 v,
+// and on the unit cylinder, with h = (0, 0, 1), seed 000's equation |P|^2 - (P.h)^2 = 1 gives
+//     A t^2 + 2 B t + C0 = 0,  A = v'x^2 + v'y^2,  B = v'x wx + v'y wy,  C0 = wx^2 + wy^2 - 1.
+// The extent is 0 <= wz + t v'z <= 1.
+//
+// seed: M = T R S built and inverted as the seed writes it; the textbook roots.
+//
+// stable: M^-1 as the dual frame (adjugate / determinant in double-double, no normalisation),
+// then in the plane of the unit circle, with u = v'x wy - v'y wx = c . (v x w) / det,
+//     D = B^2 - A C0 = A - u^2 = (sqrt(A) - |u|)(sqrt(A) + |u|)
+// (|u| / sqrt(A) is the distance from the axis to the line: D < 0 iff it exceeds 1), u as a
+// double-double triple product; C0 = wx^2 + wy^2 - 1 with the squares exact inside fmas
+// (squares_difference); the origin moved to the closest approach to the axis' midpoint,
+// and the roots paired as for the circular cylinder (cylinder.hpp). A = 0 exactly when v' is
+// along the axis (on the surface only from the certified computation).
+//
+// certified: the same quantities in bounded arithmetic (QuickBounded, then Bounded when needed),
+// the dual frame as adjugate rows over a bounded determinant; signs used only when certain.
+//
+// exact: M^-1 = adj(M) / det(M) (erratum 3); with W = det w and V = det v' the equation is
+// multiplied through by det^2: W and V are polynomials in the inputs, and z = Z / det with the
+// sign of det folded into the extent, 0 <= Z <= |det|.
+//
+// correct (the Newton rung): g(t) = Ux^2 + Uy^2 - det^2 with U(t) = adj(M)(L0 - C) + t adj(M) v,
+// the exact form's W + t V.
+#pragma once
+
+#include "correct/line_form.hpp"
+#include "shapes/exact_form.hpp"
+#include "shapes/frame.hpp"
+#include "shapes/seed_frame.hpp"
+#include "shapes/traits.hpp"
+#include "solve/certified.hpp"
+#include "solve/roots.hpp"
+
+namespace linequad::detail {
+
+// The arithmetic of stable's elliptic cylinder solve, once, for a lane type T (as CylinderStable
+// is for the cylinder): the scalar solver and the batch kernels share it.
+template <class T>
+struct EllipticStable {
+    static constexpr bool parallel_is_miss = true; // A = 0: along the axis, no crossing
+    using Mask = decltype(T() < T());
+    DualFrameT<T> f;
+    Vec3TwoTermT<T> w;
+    Vec3T<T> a, b, c, v, vl;
+    T A, tc, B, Cc, D;
+
+    // The dual frame of the prescaled a, b, c; prescaled a, b, c, C, L0 and v.
+    EllipticStable(const DualFrameT<T>& frame, Vec3T<T> a_, Vec3T<T> b_, Vec3T<T> c_, Vec3T<T> C,
+                   Vec3T<T> L0, Vec3T<T> v_)
+        : f(frame), w(difference_exact(L0, C)), a(a_), b(b_), c(c_), v(v_) {
+        vl = f.local(v);
+        A = vl.x * vl.x + vl.y * vl.y;
+    }
+    // An axis too short beside the scene for products of four to stay normal.
+    Mask too_small() const {
+        return lane_min(lane_min(max_abs_lanes(a), max_abs_lanes(b)), max_abs_lanes(c)) <
+               T(min_relative_size);
+    }
+    Mask scalar_only() const { return Mask{}; }
+    // C0 at the caller's origin: for lines along the axis, and for Vieta's product.
+    T C0_at_origin() const {
+        Vec3T<T> wl = f.local(w.rounded());
+        return squares_difference(wl.x, wl.y, T(1));
+    }
+    // Origin moved to the closest approach to the axis' midpoint (see cylinder.hpp); then, with
+    // u = v'x w'y - v'y w'x = c . (v x w) / det, D = A - u^2 = (sqrt(A) - |u|)(sqrt(A) + |u|).
+    void discriminant() {
+        using std::fabs;
+        using std::sqrt;
+        tc = -dot(v, w.rounded() - T(0.5) * c) / dot(v, v); // any tc is an exact move
+        Vec3T<T> wc = moved_origin(w, tc, v);
+        Vec3T<T> wcl = f.local(wc);
+        const T vxy[2] = {vl.x, vl.y}, wxy[2] = {wcl.x, wcl.y};
+        B = dot2(vxy, wxy);
+        Cc = squares_difference(wcl.x, wcl.y, T(1));
+        T u = fabs(dot2(c, cross_dd(v, wc)) / f.det);
+        T sA = sqrt(A);
+        T gap = sA - u;
+        D = select(gap < T(0), T(-1), gap * (sA + u));
+    }
+    // The local z of a hit point itself, in compensated arithmetic: near the extent's ends,
+    // where it decides, a sum of moved-origin terms would cancel.
+    T z_at(T t) const { return f.local_z(moved_origin(w, t, v)); }
+    double z_of(const Roots& r, int i) const { return z_at(r.t[i]); }
+    T z_lanes(T t, T, Mask) const { return z_at(t); }
+    ExtentT<T> extent(bool finite) const {
+        if (finite) return {T(0.0), T(1.0)};
+        return {T(-Binary64::inf), T(Binary64::inf)};
+    }
+};
+
+template <>
+struct ShapeTraits<EllipticCylinder> {
+    static constexpr const char* name = "elliptic_cylinder";
+    static constexpr auto fields =
+        std::make_tuple(field("C", &EllipticCylinder::C), field("a", &EllipticCylinder::a),
+                        field("b", &EllipticCylinder::b), field("c", &EllipticCylinder::c));
+    static constexpr const char* scale_fields = "a,b,c";
+    static constexpr const char* fragile_fields = "v,a,b,c";
+
+    static Validity validate(const EllipticCylinder& s) {
+        int orientation =
+            s.a == Vec3{} || s.b == Vec3{} || s.c == Vec3{} ? 0 : det3_sign_exact(s.a, s.b, s.c);
+        if (orientation == 0) return {{ErrorCode::singular_frame, "a,b,c"}};
+        return {{}, orientation};
+    }
+
+    // ---- What prepare() keeps ----
+
+    static DualFrame dual_frame(const EllipticCylinder& s, double to_unit) {
+        return DualFrame(to_unit * s.a, to_unit * s.b, {to_unit * s.c, {}});
+    }
+    static void prepare(const EllipticCylinder& s, Facts<EllipticCylinder>& f) {
+        seed_inverse_frame(s.C, s.a, s.b, s.c, f.seed_inverse);
+        f.exponent = scale_exponent(f.magnitude);
+        double to_unit = Binary64::pow2(-f.exponent);
+        f.dual = dual_frame(s, to_unit).rows();
+        f.lowest_exponent = lowest_exponent({s.a, s.b, s.c}, to_unit);
+        store(adjugate_rows_dd(s.a, s.b, s.c), f);
+    }
+
+    // ---- seed ----
+
+    template <class Src>
+    static SeedForm seed_form(const Src& src, const Line& l) {
+        const EllipticCylinder& s = src.shape;
+        Vec3 w, v; // C' = 0
+        if constexpr (Src::prepared) {
+            to_seed_frame(src.facts.seed_inverse, l, w, v);
+        } else {
+            double inverse[16];
+            seed_inverse_frame(s.C, s.a, s.b, s.c, inverse);
+            to_seed_frame(inverse, l, w, v);
+        }
+        const Vec3 h{0, 0, 1};
+        double vh = dot(v, h), wh = dot(w, h);
+        double a = dot(v, v) - vh * vh;
+        double b = 2 * (dot(v, w) - vh * wh);
+        double c = dot(w, w) - wh * wh - 1;
+        bool usable = std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
+        Extent e = s.finite ? Extent{0, 1} : Extent{-Binary64::inf, Binary64::inf};
+        return {a, b, c, w.z, v.z, e, usable};
+    }
+
+    // ---- stable ----
+
+    template <class T>
+    using Stable = EllipticStable<T>;
+    // The core for the line L0 + t v (a lane type's values for the batch), prescaled by ps; a
+    // prepared shape's dual frame, when it rescales to ps exactly (frame.hpp).
+    template <class T, class Src, class Scale>
+    static Stable<T> stable_core(const Src& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
+        const EllipticCylinder& s = src.shape;
+        Vec3T<T> a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c);
+        auto frame = [&]() -> DualFrameT<T> {
+            if constexpr (Src::prepared) {
+                int delta = ps.k - src.facts.exponent;
+                if (dual_frame_rescales(src.facts, delta))
+                    return rescaled_dual_frame(src.facts, delta);
+            }
+            return {a, b, {c, {}}};
+        };
+        return {frame(), a, b, c, ps.pos(s.C), ps.pos(L0), ps.dir(v)};
+    }
+
+    // ---- certified ----
+
+    template <class B, class Src>
+    static CertifiedForm<B> certified_form(const Src& src, const Prescale& ps, const Line& l) {
+        const EllipticCylinder& s = src.shape;
+        Vec3 c = ps.pos(s.c), v = ps.dir(l.v);
+        Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
+        BoundedVec3<B> a3 = exact<B>(ps.pos(s.a)), b3 = exact<B>(ps.pos(s.b)), c3 = exact<B>(c),
+                       V = exact<B>(v);
+        BoundedDualFrame<B> frame(a3, b3, c3);
+        BoundedVec3<B> vl = frame.local(V);
+        B A = vl.x * vl.x + vl.y * vl.y;
+        double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * c) / dot(v, v);
+        BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), wl = frame.local(wc);
+        B u = dot(c3, cross(V, wc)) / frame.det;
+        BoundedQuadratic<B> quad{A, vl.x * wl.x + vl.y * wl.y,
+                                 wl.x * wl.x + wl.y * wl.y - B::exact(1), A - u * u};
+        Extent e = s.finite ? Extent{0, 1} : Extent{-Binary64::inf, Binary64::inf};
+        return {quad, tc, wl.z, vl.z, e};
+    }
+
+    // ---- exact ----
+
+    // sgn det[a b c], in NT (the oracle decides it in its own arithmetic).
+    template <class NT>
+    static int exact_orientation(const EllipticCylinder& s) {
+        using exact_form::lift;
+        return sign(exact_form::AdjugateFrame<NT>(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.c)).det);
+    }
+
+    // x^2 + y^2 = 1, 0 <= z <= 1, times det^2 with W = det w, V = det v'. The sign of det is
+    // folded into the extent: the caller gives it (validation decided it exactly), so that a
+    // filtered number type need not.
+    template <class NT>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const EllipticCylinder& s, const Line& l,
+                                                         int orientation) {
+        using exact_form::lift;
+        bool negative_det = orientation < 0;
+        exact_form::AdjugateFrame<NT> f(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.c));
+        Vec3T<NT> W = f.scaled_local(lift<NT>(l.L0) - lift<NT>(s.C));
+        Vec3T<NT> V = f.scaled_local(lift<NT>(l.v));
+        exact_form::LineQuadratic<NT> q;
+        q.A = V.x * V.x + V.y * V.y;
+        q.B = V.x * W.x + V.y * W.y;
+        q.C0 = W.x * W.x + W.y * W.y - f.det * f.det;
+        // z = Z / det in [0, 1]: with the sign of det folded into Z, 0 <= Z <= |det|.
+        q.Z0 = negative_det ? -W.z : W.z;
+        q.dZ = negative_det ? -V.z : V.z;
+        q.lo = NT(0), q.hi = negative_det ? -f.det : f.det;
+        q.lo_bounded = q.hi_bounded = s.finite;
+        return q;
+    }
+
+    // ---- correct: the Newton rung's line form ----
+
+    template <class Src>
+    static LineForm line_form(const Src& src, const Line& l, int orientation) {
+        const EllipticCylinder& s = src.shape;
+        bool negative_det = orientation < 0;
+        AdjugateRowsDD rows = [&] {
+            if constexpr (Src::prepared)
+                return adjugate_rows_dd(src.facts);
+            else
+                return adjugate_rows_dd(s.a, s.b, s.c);
+        }();
+        LineForm f = elliptic_form(rows, difference_exact(l.L0, s.C), l.v, negative_det);
+        BoundedDD det = absolute_det(rows, negative_det);
+        f.sigma_z = 0;
+        f.K = product(det, det);
+        f.lo = 0, f.e_lo = 0;
+        f.hi = det.hi, f.e_hi = bound_of_hi(det); // 0 <= Z <= |det|
+        f.lo_bounded = f.hi_bounded = s.finite;
+        return f;
+    }
+};
+
+} // namespace linequad::detail

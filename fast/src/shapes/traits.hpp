@@ -1,0 +1,179 @@
+// What the solvers share about shapes. Each shape's facts and derivations are written once, in
+// its ShapeTraits specialisation (shapes/cylinder.hpp, elliptic_cylinder.hpp, elliptic_cone.hpp):
+//   name                  the case format's name of the shape
+//   fields                the case format's table: name and member of every field
+//   validate(shape)       what is wrong with a shape whose fields are finite (and its orientation)
+//   extent(shape)         the axial extent in the unit shape's frame
+//   seed_form, Stable, certified_form, exact_form, line_form: each solver's derivation
+// and the facts prepare() works out once (Facts<S>, linequad/prepared.hpp). Every field is a
+// position: it scales with the scene (the scene's magnitude and the checks for components too
+// small for double arithmetic run over them).
+#pragma once
+
+#include "numeric/format.hpp"
+#include "numeric/vector.hpp"
+
+#include "linequad/prepared.hpp"
+#include "linequad/result.hpp"
+#include "linequad/shapes.hpp"
+
+#include <cmath>
+#include <tuple>
+
+namespace linequad::detail {
+
+template <class S>
+struct ShapeTraits;
+
+// A field of the case format: its name and the member that holds it (a Vec3 or a number).
+template <class S, class T>
+struct Field {
+    const char* name;
+    T S::*member;
+};
+template <class S, class T>
+constexpr Field<S, T> field(const char* name, T S::*member) {
+    return {name, member};
+}
+
+template <class S, class Visit>
+void for_each_field(Visit&& visit) {
+    std::apply([&](const auto&... f) { (visit(f), ...); }, ShapeTraits<S>::fields);
+}
+
+inline double max_abs(double x) {
+    return std::fabs(x);
+}
+// The smallest nonzero |component| (infinity when every one is zero).
+inline double min_nonzero(double x) {
+    return x != 0 ? std::fabs(x) : Binary64::inf;
+}
+inline double min_nonzero(Vec3 a) {
+    return std::fmin(min_nonzero(a.x), std::fmin(min_nonzero(a.y), min_nonzero(a.z)));
+}
+inline bool has_nan(double x) {
+    return std::isnan(x);
+}
+inline bool has_nan(Vec3 a) {
+    return std::isnan(a.x) || std::isnan(a.y) || std::isnan(a.z);
+}
+inline bool is_finite(double x) {
+    return std::isfinite(x);
+}
+
+// The largest |coordinate| of the shape's positions: the scene's size as the shape sets it.
+template <class S>
+double shape_magnitude(const S& s) {
+    double m = 0;
+    for_each_field<S>([&](const auto& f) { m = std::max(m, max_abs(s.*f.member)); });
+    return m;
+}
+template <class S>
+double smallest_component(const S& s) {
+    double m = Binary64::inf;
+    for_each_field<S>([&](const auto& f) { m = std::fmin(m, min_nonzero(s.*f.member)); });
+    return m;
+}
+// The shape with every position times f (a power of two: exactly, barring underflow).
+template <class S>
+S scaled(S s, double f) {
+    for_each_field<S>([&](const auto& fl) { s.*fl.member = f * (s.*fl.member); });
+    return s;
+}
+
+// NaN, then infinite, field by field in the table's order.
+template <class S>
+Error check_fields(const S& s) {
+    Error e;
+    for_each_field<S>([&](const auto& f) {
+        if (!e.ok()) return;
+        const auto& x = s.*f.member;
+        if (has_nan(x))
+            e = {ErrorCode::not_a_number, f.name};
+        else if (!is_finite(x))
+            e = {ErrorCode::infinite, f.name};
+    });
+    return e;
+}
+
+// The line's own checks, before any of the shape's: L0, v (NaN, then infinite), the range's
+// ends, v = 0, an empty range.
+Error check_line(const Line& l);
+
+// A shape's validity, and the orientation of its frame (elliptic shapes) that deciding it took.
+struct Validity {
+    Error error;
+    int orientation = 0;
+};
+template <class S>
+Validity validity_of(const S& s) {
+    Error e = check_fields(s);
+    if (!e.ok()) return {e};
+    return ShapeTraits<S>::validate(s);
+}
+
+struct PreparedAccess {
+    template <class S>
+    static const Facts<S>& facts(const Prepared<S>& p) {
+        return p.facts_;
+    }
+    template <class S>
+    static Prepared<S> make(const S& s, const Facts<S>& f) {
+        Prepared<S> p;
+        p.shape_ = s, p.facts_ = f;
+        return p;
+    }
+};
+
+// A shape as a solver sees it. AsGiven works out each fact when a solver asks for it (a solver
+// asks only for what it needs); AsPrepared reads it from what prepare() worked out. The solvers
+// are written once over both, so their results cannot differ.
+template <class S>
+struct AsGiven {
+    using Shape = S;
+    static constexpr bool prepared = false;
+    const S& shape;
+
+    Validity validity() const { return validity_of(shape); }
+    double magnitude() const { return shape_magnitude(shape); }
+    double smallest() const { return smallest_component(shape); }
+};
+template <class S>
+struct AsPrepared {
+    using Shape = S;
+    static constexpr bool prepared = true;
+    const S& shape;
+    const Facts<S>& facts;
+
+    explicit AsPrepared(const Prepared<S>& p) : shape(p.shape()), facts(PreparedAccess::facts(p)) {}
+    Validity validity() const { return {facts.error, facts.orientation}; }
+    double magnitude() const { return facts.magnitude; }
+    double smallest() const { return facts.smallest; }
+};
+template <class S>
+AsGiven<S> source(const S& s) {
+    return {s};
+}
+template <class S>
+AsPrepared<S> source(const Prepared<S>& p) {
+    return AsPrepared<S>(p);
+}
+
+// A fact of the shape: read from a prepared shape, or worked out now for one as given.
+template <class Source, class Member, class Compute>
+decltype(auto) fact(const Source& src, Member member, Compute compute) {
+    if constexpr (Source::prepared)
+        return (src.facts.*member);
+    else
+        return compute();
+}
+
+// The axial extent lo <= z <= hi in a derivation's own units (infinite ends when unbounded);
+// for any lane type.
+template <class T>
+struct ExtentT {
+    T lo, hi;
+};
+using Extent = ExtentT<double>;
+
+} // namespace linequad::detail

@@ -1,0 +1,125 @@
+// The last step of the seed and stable solvers: roots to a Result (the extent, the range, what
+// the caller needs, the points), written once, in place.
+#pragma once
+
+#include "solve/roots.hpp"
+
+#include "linequad/result.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace linequad::detail {
+
+constexpr double no_bound = std::numeric_limits<double>::quiet_NaN();
+
+// A root before the extent and range tests: t in the caller's parameter, z its axial coordinate
+// in the form's own units.
+struct Candidate {
+    double t;
+    HitKind kind;
+    double z;
+};
+
+// r becomes an error result (its hits are no longer read).
+inline void fail(Result& r, ErrorCode code, const char* field) {
+    r.error_code = code, r.error_field = field;
+    r.count = 0, r.on_surface = false;
+}
+
+inline Vec3 point_at(const Line& l, double t) {
+    return {std::fma(t, l.v.x, l.L0.x), std::fma(t, l.v.y, l.L0.y), std::fma(t, l.v.z, l.L0.z)};
+}
+
+// The Result from candidates whose facts are known: c.t(i), c.kind(i), c.bad(i) (t or z not
+// finite), c.keep(i) (inside extent and range), c.point(i). Keeps the candidates inside, sorted
+// by t, as many as q.need asks for (a hit test takes the first in the order found), with their
+// points when asked; a bad candidate, or a point that overflows, makes the result out_of_range.
+// r may be a caller's buffer: every field the result has is written.
+template <class Candidates>
+void assemble(const Candidates& c, int n, Query q, Result& r) {
+    r.error_code = ErrorCode::none, r.error_field = "";
+    r.count = 0, r.on_surface = false;
+    r.certainty = Certainty::unknown, r.rung = Rung::none;
+    for (int i = 0; i < n; ++i)
+        if (c.bad(i)) return fail(r, ErrorCode::out_of_range, "t");
+    bool swap = n == 2 && q.need != Need::any && c.t(1) < c.t(0);
+    bool points = q.points && q.need != Need::any;
+    for (int k = 0; k < n; ++k) {
+        int i = swap ? 1 - k : k;
+        if (!c.keep(i)) continue;
+        Hit& h = r.hits[r.count++];
+        h.t = c.t(i), h.kind = c.kind(i), h.bound = no_bound, h.certain = false;
+        h.p = points ? c.point(i) : Vec3{};
+        // A hit whose point lies beyond double's range is refused, not returned as inf.
+        if (points && !is_finite(h.p)) return fail(r, ErrorCode::out_of_range, "p");
+        if (q.need != Need::all) break; // sorted, so the first kept is also the nearest
+    }
+}
+
+// Candidates' facts from their t and z.
+struct CandidateFacts {
+    const Candidate* c;
+    Extent e;
+    const Line& l;
+    double t(int i) const { return c[i].t; }
+    HitKind kind(int i) const { return c[i].kind; }
+    bool bad(int i) const { return !std::isfinite(c[i].t) || std::isnan(c[i].z); }
+    bool keep(int i) const { return c[i].z >= e.lo && c[i].z <= e.hi && l.range.contains(c[i].t); }
+    Vec3 point(int i) const { return point_at(l, c[i].t); }
+};
+
+inline Result finish(const Candidate* c, int n, Extent e, const Line& l, Query q) {
+    Result r;
+    assemble(CandidateFacts{c, e, l}, n, q, r);
+    return r;
+}
+
+// Roots to candidates (t scaled back by t_scale, z_of(roots, i) the axial coordinate of root
+// i), then finish(). Lines on the surface never get here: see without_certification.
+template <class AxialOf>
+Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e, const Line& l,
+                    Query q) {
+    Candidate c[2];
+    int n = r.count();
+    for (int i = 0; i < n; ++i)
+        c[i] = {r.t[i] * t_scale, r.hit_kind(), z_of(r, i)};
+    return finish(c, n, e, l, q);
+}
+
+// The line lies on the surface: z(t) = z0 + (t / t_scale) dz. The interval of t where it is
+// inside the extent, intersected with the range.
+inline Result finish_on_surface(double z0, double dz, double t_scale, Extent e, const Line& l) {
+    constexpr double inf = Binary64::inf;
+    const Interval& range = l.range;
+    // dz != 0 on every surface line: it runs along the axis (cylinders) or a generator (cone).
+    // The interval is cut to the range in the prescaled parameter, where neither end has
+    // underflowed, and only then scaled back (an end may then round to +-0 or overflow).
+    double a = (e.lo - z0) / dz, b = (e.hi - z0) / dz;
+    if (std::isnan(a)) a = -inf; // guards (-inf) / 0-like cases for unbounded extents
+    if (std::isnan(b)) b = inf;
+    double s0 = std::min(a, b), s1 = std::max(a, b);
+    if (range.has_t0()) s0 = std::max(s0, range.t0 == 0 ? 0.0 : range.t0 / t_scale);
+    if (range.has_t1()) s1 = std::min(s1, range.t1 / t_scale);
+    Result r;
+    if (!(s0 <= s1)) return r;
+    r.on_surface = true;
+    // An unbounded end stays unbounded, even if t_scale underflowed (inf * 0 would be NaN).
+    auto to_caller = [&](double x) { return std::isinf(x) ? x : x * t_scale; };
+    r.s0 = to_caller(s0), r.s1 = to_caller(s1);
+    if (range.has_t0()) r.s0 = std::max(r.s0, range.t0) + 0.0; // +0, never -0, at t0 = 0
+    if (range.has_t1()) r.s1 = std::min(r.s1, range.t1);
+    return r;
+}
+
+// A result from the certified solver, presented as an uncertified one (no bounds, no claims):
+// how seed and stable settle the rare cases where their rounded zeros would otherwise claim
+// that a line lies on the surface (infinitely many hits) without proof.
+inline Result without_certification(Result r) {
+    r.certainty = Certainty::unknown;
+    for (int i = 0; i < r.count; ++i)
+        r.hits[i].bound = no_bound, r.hits[i].certain = false;
+    return r;
+}
+
+} // namespace linequad::detail

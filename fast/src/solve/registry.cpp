@@ -1,0 +1,88 @@
+// Solvers by name, error messages, and what the library was built with.
+#include "linequad/solvers.hpp"
+
+#include "linequad_build_info.hpp"
+
+namespace linequad {
+
+const char* range_name(Range r) {
+    switch (r) {
+    case Range::line:
+        return "line";
+    case Range::ray:
+        return "ray";
+    case Range::segment:
+        return "segment";
+    }
+    return "?";
+}
+
+const char* code_name(ErrorCode c) {
+    switch (c) {
+    case ErrorCode::none:
+        return "none";
+    case ErrorCode::not_a_number:
+        return "not_a_number";
+    case ErrorCode::infinite:
+        return "infinite";
+    case ErrorCode::zero_direction:
+        return "zero_direction";
+    case ErrorCode::bad_radius:
+        return "bad_radius";
+    case ErrorCode::degenerate_axis:
+        return "degenerate_axis";
+    case ErrorCode::singular_frame:
+        return "singular_frame";
+    case ErrorCode::empty_range:
+        return "empty_range";
+    case ErrorCode::out_of_range:
+        return "out_of_range";
+    }
+    return "?";
+}
+
+std::string message(const Error& e) {
+    std::string f = e.field;
+    switch (e.code) {
+    case ErrorCode::none:
+        return "";
+    case ErrorCode::not_a_number:
+        return f + " has a NaN coordinate";
+    case ErrorCode::infinite:
+        return f + " has an infinite coordinate";
+    case ErrorCode::zero_direction:
+        return "the direction " + f + " is the zero vector";
+    case ErrorCode::bad_radius:
+        return "the radius " + f + " is not positive";
+    case ErrorCode::degenerate_axis:
+        return f + ": the axis has zero length (H = C)";
+    case ErrorCode::singular_frame:
+        return "the frame " + f + " is singular (linearly dependent)";
+    case ErrorCode::empty_range:
+        return f + ": the range holds no t (t0 > t1, or an end at the wrong infinity)";
+    case ErrorCode::out_of_range:
+        return f + ": magnitudes too far apart for double evaluation (overflow or underflow)";
+    }
+    return "?";
+}
+
+const std::vector<Solver>& fast_solvers() {
+    static const std::vector<Solver> solvers = {
+        {"seed", "the seed derivations as written (errata fixed): textbook quadratic",
+         [](const Shape& s, const Line& l, Query q) { return seed::intersect(s, l, q); }},
+        {"stable", "geometric discriminant, closest-approach origin, stable root pair",
+         [](const Shape& s, const Line& l, Query q) { return stable::intersect(s, l, q); }},
+        {"certified", "stable's geometry with rigorous error bounds; certain or marked uncertain",
+         [](const Shape& s, const Line& l, Query q) { return certified::intersect(s, l, q); }},
+        {"correct",
+         "exact classification, correctly rounded t and points: Newton, double-double, exact",
+         [](const Shape& s, const Line& l, Query q) { return correct::intersect(s, l, q); }},
+    };
+    return solvers;
+}
+
+BuildInfo build_info() {
+    return {LINEQUAD_VERSION, LINEQUAD_COMPILER, LINEQUAD_FAST_FLAGS};
+}
+
+} // namespace linequad

@@ -1,0 +1,114 @@
+// The seed, stable and certified solvers, each written once over every shape: what differs from
+// shape to shape is the shape's derivation (ShapeTraits<S>, shapes/), what a solve does with it
+// is here. Src is the shape as the solver sees it: as given, or prepared (shapes/traits.hpp).
+#pragma once
+
+#include "shapes/all.hpp"
+#include "solve/certified.hpp"
+#include "solve/finish.hpp"
+#include "solve/roots.hpp"
+
+namespace linequad::detail {
+
+// The checks every solve starts with: the line's, then the shape's (its Validity).
+template <class Src>
+Error check(const Src& src, const Line& l, Validity& validity) {
+    if (Error e = check_line(l); !e.ok()) return e;
+    validity = src.validity();
+    return validity.error;
+}
+
+// The scene's size: the shape's and the line's origin's.
+template <class Src>
+double scene_extent(const Src& src, const Line& l) {
+    return std::max(max_abs(l.L0), src.magnitude());
+}
+
+// The solvers as types, each a skeleton generic over the shapes' traits.
+
+// Stable's geometry with a rigorous bound on every quantity; certain or marked uncertain.
+struct Certified {
+    template <class Src>
+    static Result solve(const Src& src, const Line& l, Query q);
+};
+template <class Src>
+Result Certified::solve(const Src& src, const Line& l, Query q) {
+    using Traits = ShapeTraits<typename Src::Shape>;
+    Validity valid;
+    if (Error e = check(src, l, valid); !e.ok()) return Result::failure(e);
+    double extent = scene_extent(src, l);
+    // Prescaling is exact unless a component is tiny enough to lose bits: refuse those.
+    if (fragile_scene(src, extent, l))
+        return Result::failure(ErrorCode::out_of_range, Traits::fragile_fields);
+    Prescale ps = prescale_for(extent, l.v);
+    return quick_then_bounded([&](auto number) {
+        using B = decltype(number);
+        CertifiedForm<B> f = Traits::template certified_form<B>(src, ps, l);
+        return certified_result(certified_roots(f.quad), f.tc, f.z0, f.dz, ps.t_scale(), f.extent,
+                                l, q);
+    });
+}
+
+// Each seed as written (errata fixed): the textbook quadratic.
+struct Seed {
+    template <class Src>
+    static Result solve(const Src& src, const Line& l, Query q);
+};
+template <class Src>
+Result Seed::solve(const Src& src, const Line& l, Query q) {
+    Validity valid;
+    if (Error e = check(src, l, valid); !e.ok()) return Result::failure(e);
+    SeedForm f = ShapeTraits<typename Src::Shape>::seed_form(src, l);
+    if (!f.usable) return Result::failure(ErrorCode::out_of_range, "coefficients");
+    Roots roots = textbook_roots(f.a, f.b, f.c);
+    auto magnitudes = [&] {
+        double largest = std::max({src.magnitude(), max_abs(l.L0), max_abs(l.v)});
+        double smallest = std::fmin(src.smallest(), std::fmin(min_nonzero(l.L0), min_nonzero(l.v)));
+        return std::pair{largest, smallest};
+    };
+    if (seed_undecidable(roots, f.a, f.b * f.b - 4 * f.a * f.c, magnitudes))
+        return Result::failure(ErrorCode::out_of_range, "coefficients");
+    // A line on the surface is a claim of infinitely many hits: only with proof.
+    if (roots.kind == Roots::on_surface) return without_certification(Certified::solve(src, l, q));
+    auto z_of = [&](const Roots& r, int i) { return f.z0 + r.t[i] * f.dz; };
+    return finish_roots(roots, 1, z_of, f.extent, l, q);
+}
+
+// The scalar stable solve around a shape's core (its Stable<double>): the branches that the
+// batch kernels send back here. For the cylinders A = 0 (a line along the axis) means no hit or
+// a line on the surface; for the cone it is a line along a generator, a linear equation that
+// stable_roots solves. A line on the surface needs proof: the certified result stands for it.
+struct Stable {
+    template <class Src>
+    static Result solve(const Src& src, const Line& l, Query q);
+};
+template <class Src>
+Result Stable::solve(const Src& src, const Line& l, Query q) {
+    using Traits = ShapeTraits<typename Src::Shape>;
+    Validity valid;
+    if (Error e = check(src, l, valid); !e.ok()) return Result::failure(e);
+    double extent = scene_extent(src, l);
+    Prescale ps = prescale_for(extent, l.v);
+    auto k = Traits::template stable_core<double>(src, ps, l.L0, l.v);
+    if (k.too_small()) return Result::failure(ErrorCode::out_of_range, Traits::scale_fields);
+    auto fragile = [&] { return fragile_scene(src, extent, l); };
+    auto on_surface = [&] { return without_certification(Certified::solve(src, l, q)); };
+    Roots roots;
+    if (k.parallel_is_miss && k.A == 0) {
+        double C0 = k.C0_at_origin();
+        roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
+        if (undecidable(roots, fragile, k.A, C0))
+            return Result::failure(ErrorCode::out_of_range, Traits::fragile_fields);
+        return roots.kind == Roots::on_surface ? on_surface() : Result{};
+    }
+    k.discriminant();
+    roots = stable_roots(k.A, k.B, k.Cc, k.D);
+    if (undecidable(roots, fragile, k.A, k.D) || (k.A == 0 && fragile()))
+        return Result::failure(ErrorCode::out_of_range, Traits::fragile_fields);
+    if (roots.kind == Roots::on_surface) return on_surface();
+    shift_back(roots, k.tc, [&] { return k.C0_at_origin() / k.A; });
+    auto z_of = [&](const Roots& r, int i) { return k.z_of(r, i); };
+    return finish_roots(roots, ps.t_scale(), z_of, k.extent(src.shape.finite), l, q);
+}
+
+} // namespace linequad::detail
