@@ -106,6 +106,29 @@ inline void check_same_answer(const Result& got, const Result& want) {
     }
 }
 
+// A hit test's answer (Need::any) against the oracle's full answer: a hit when the oracle has
+// one, and then one of the oracle's within the hit's bound (|t - exact t| <= bound, and the
+// oracle's t is within half an ulp of exact), certain when the solver says so; no hit
+// otherwise; a line on the surface as the oracle has it.
+inline void check_hit_test(const Result& got, const Result& all) {
+    INFO("hit test " << describe(got) << "\noracle   " << describe(all));
+    REQUIRE(got.error_code == all.error_code);
+    REQUIRE(got.on_surface == all.on_surface);
+    if (all.on_surface) return;
+    REQUIRE(got.count == (all.count > 0 ? 1 : 0));
+    if (all.count == 0) return;
+    const Hit& h = got.hits[0];
+    bool matched = false;
+    for (int i = 0; i < all.count; ++i) {
+        double t = all.hits[i].t;
+        double half_ulp = (std::nextafter(std::fabs(t), INFINITY) - std::fabs(t)) / 2;
+        bool near = h.t == t || std::fabs(h.t - t) <= h.bound + half_ulp; // equal infinities too
+        matched = matched || (h.kind == all.hits[i].kind && near);
+    }
+    CHECK(matched);
+    CHECK(h.p == Vec3{}); // a hit test computes no point
+}
+
 // Uniform doubles and vectors from a fixed seed (full 53-bit mantissas: exact inputs).
 struct RandomReals {
     std::mt19937_64 rng;

@@ -5,6 +5,7 @@
 
 #include "numeric/big_float.hpp"
 #include "numeric/bounded_dd.hpp"
+#include "numeric/format.hpp"
 #include "shapes/frame.hpp"
 
 #include "linequad/exact.hpp"
@@ -18,6 +19,7 @@
 
 using namespace linequad;
 using namespace linequad::test;
+using linequad::detail::Binary64;
 
 namespace {
 
@@ -285,6 +287,8 @@ TEST_CASE("correct answers exactly where exact zeros decide: on the surface, at 
 }
 
 TEST_CASE("correct equals the oracle bit for bit on every family, range and query") {
+    // Every query but the hit test, whose t is not rounded: checked against the oracle's roots
+    // and its own bound.
     const Query queries[] = {{Need::all, true}, {Need::nearest, false}, {Need::any, true}};
     std::uint64_t by_rung[4] = {};
     for (Family f :
@@ -298,7 +302,10 @@ TEST_CASE("correct equals the oracle bit for bit on every family, range and quer
                     for (Query q : queries) {
                         Result got = correct_solve(c.shape, c.line, q);
                         INFO(format_case(c));
-                        check_same_answer(got, exact::intersect(c.shape, c.line, q));
+                        if (q.need == Need::any)
+                            check_hit_test(got, exact::intersect(c.shape, c.line));
+                        else
+                            check_same_answer(got, exact::intersect(c.shape, c.line, q));
                         if (got.ok()) {
                             ++by_rung[std::size_t(got.rung)];
                             CHECK(got.certainty == Certainty::certain);
@@ -311,4 +318,43 @@ TEST_CASE("correct equals the oracle bit for bit on every family, range and quer
     CHECK(by_rung[std::size_t(Rung::newton)] > 0);
     CHECK(by_rung[std::size_t(Rung::double_double)] > 0);
     CHECK(by_rung[std::size_t(Rung::exact)] > 0);
+}
+
+TEST_CASE("correct's hit test: proven on its quick rung almost always, never beyond the oracle") {
+    // Every family, shape and range, and ranges ending a few ulps from a root: each answer must
+    // be the oracle's (a hit within its bound of an oracle root, or none); on generic cases the
+    // quick rung (Rung::newton, t not rounded) must give nearly all of them.
+    std::mt19937_64 rng(5);
+    long generic = 0, generic_quick = 0, checked = 0;
+    for (int f = 0; f < family_count; ++f)
+        for (int shape = 0; shape < 3; ++shape) {
+            if (!family_applies(Family(f), shape)) continue;
+            for (Range range : {Range::line, Range::ray, Range::segment})
+                for (std::uint64_t i = 0; i < 80; ++i) {
+                    Case c = make_case(Family(f), shape, range, 71, i);
+                    Result all = exact::intersect(c.shape, c.line);
+                    if (i % 4 == 3 && all.count > 0) { // a range ending within ulps of a root
+                        double t = all.hits[rng() % all.count].t;
+                        for (int k = int(rng() % 5) - 2; k != 0; k += k > 0 ? -1 : 1)
+                            t = std::nextafter(t, k > 0 ? INFINITY : -INFINITY);
+                        c.line.range = rng() % 2 ? Interval(t, INFINITY) : Interval(-INFINITY, t);
+                        all = exact::intersect(c.shape, c.line);
+                    }
+                    Result got = correct_solve(c.shape, c.line, {Need::any, false});
+                    INFO(format_case(c));
+                    check_hit_test(got, all);
+                    ++checked;
+                    if (Family(f) == Family::generic && c.line.range == Interval(range)) {
+                        ++generic;
+                        // A hit from the quick rung carries its enclosure, wider than the
+                        // half ulp a rounded t would; a miss is proven by either Newton rung.
+                        generic_quick += got.rung == Rung::newton &&
+                                         (got.count == 0 ||
+                                          got.hits[0].bound > Binary64::half_ulp(got.hits[0].t));
+                    }
+                }
+        }
+    INFO(generic_quick << " of " << generic << " generic hit tests on the quick rung");
+    CHECK(generic_quick * 10 >= generic * 9);
+    CHECK(checked > 4000);
 }

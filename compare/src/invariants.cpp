@@ -17,6 +17,8 @@
 #include "linequad/exact.hpp"
 #include "linequad/registry.hpp"
 
+#include "numeric/format.hpp"
+
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -109,6 +111,22 @@ std::string broken_invariant(const Case& c) {
         Result got = correct::intersect(c.shape, c.line, q);
         k.require(same_answer(got, want), "correct equals the oracle bit for bit", "correct", got);
     }
+    // The hit test: a hit exactly when the oracle has one (or the interval), and then within
+    // its bound of one of the oracle's roots (each within half an ulp of exact).
+    Result any = correct::intersect(c.shape, c.line, {Need::any, false});
+    bool any_ok = any.error_code == oracle.error_code && any.on_surface == oracle.on_surface &&
+                  any.count == (oracle.ok() && !oracle.on_surface && oracle.count > 0 ? 1 : 0);
+    for (int i = 0; any_ok && i < any.count; ++i) {
+        bool near = false;
+        for (int j = 0; j < oracle.count; ++j) {
+            double t = oracle.hits[j].t;
+            double half_ulp = detail::Binary64::half_ulp(t);
+            near = near || any.hits[i].t == t || // equal infinities too
+                   std::fabs(any.hits[i].t - t) <= any.hits[i].bound + half_ulp;
+        }
+        any_ok = near;
+    }
+    k.require(any_ok, "correct's hit test is within its bound of the oracle", "correct (any)", any);
     // Five lines through the batch: this one, reversed, doubled, moved, and this one again.
     const Line variants[5] = {c.line,
                               {c.line.L0, -1.0 * c.line.v, c.line.range},

@@ -25,7 +25,7 @@ struct CommonFacts {
 
 // The rows of adj(M), M = [a b c]: b x c, c x a, a x b, and det M.
 struct AdjugateRows {
-    Vec3 hi[3], lo[3]; // in double-double
+    Vec3 hi[3]{}, lo[3]{}; // in double-double
     double det = 0;
 };
 
@@ -34,7 +34,7 @@ struct FrameFacts : CommonFacts {
     // The stable solvers' dual frame with the shape scaled by 2^-exponent to unit size, and the
     // smallest exponent of a nonzero coordinate of its inputs there.
     AdjugateRows dual;
-    Vec3 c_hi, c_lo; // c in double-double (the cone's H - C is not a double)
+    Vec3 c_hi{}, c_lo{}; // c in double-double (the cone's H - C is not a double)
     int exponent = 0, lowest_exponent = 0;
     // The correct solver's rows and determinant: each value, its low part and its error bound.
     double rows[3][3][3] = {}, det[3] = {};
@@ -44,9 +44,9 @@ template <class S>
 struct Facts;
 template <>
 struct Facts<Cylinder> : CommonFacts {
-    Vec3 seed_axis;               // h / |h|, as seed 001 normalises it
+    Vec3 seed_axis{};             // h / |h|, as seed 001 normalises it
     double seed_length = 0;       // |h|
-    Vec3 h_hi, h_lo;              // h = H - C in double-double
+    Vec3 h_hi{}, h_lo{};          // h = H - C in double-double
     double hh[3] = {}, K[3] = {}; // h.h and r^2 h.h: value, low part, error bound
 };
 template <>

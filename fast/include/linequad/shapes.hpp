@@ -37,15 +37,15 @@ inline bool operator!=(Interval a, Interval b) {
 
 // L(t) = L0 + t v for t in range; v need not have unit length.
 struct Line {
-    Vec3 L0;
-    Vec3 v;
+    Vec3 L0{};
+    Vec3 v{};
     Interval range = Range::line;
 };
 
 // Seed 001: the right circular cylinder of radius r around the axis from C to H.
 // Finite: only the lateral surface between the planes through C and H (no caps).
 struct Cylinder {
-    Vec3 C, H;
+    Vec3 C{}, H{};
     double r = 0;
     bool finite = true;
 };
@@ -53,14 +53,14 @@ struct Cylinder {
 // Seed 000: points C + x a + y b + z c with x^2 + y^2 = 1; finite keeps 0 <= z <= 1.
 // a, b, c may be any linearly independent vectors (oblique and sheared frames included).
 struct EllipticCylinder {
-    Vec3 C, a, b, c;
+    Vec3 C{}, a{}, b{}, c{};
     bool finite = true;
 };
 
 // Seed 002: base centre C, apex H, c = H - C; points H + x a + y b + z c with x^2 + y^2 = z^2.
 // Only the nappe z <= 0 (towards the base); finite keeps -1 <= z <= 0.
 struct EllipticCone {
-    Vec3 C, H, a, b;
+    Vec3 C{}, H{}, a{}, b{};
     bool finite = true;
     Vec3 c() const { return H - C; }
 };

@@ -4,12 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace linequad {
 
+// A plain value: Vec3{} is zero; a Vec3 left uninitialised is not (a Hit's point is written
+// once, by the solver that finds it).
 template <class T>
 struct Vec3T {
-    T x{}, y{}, z{};
+    T x, y, z;
     T operator[](int i) const { return i == 0 ? x : i == 1 ? y : z; }
 };
 using Vec3 = Vec3T<double>;
@@ -39,10 +42,11 @@ inline double norm(Vec3 a) {
     return std::sqrt(dot(a, a));
 }
 inline double max_abs(Vec3 a) {
-    return std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
+    return std::max(std::max(std::fabs(a.x), std::fabs(a.y)), std::fabs(a.z));
 }
 inline bool is_finite(Vec3 a) {
-    return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+    constexpr double largest = std::numeric_limits<double>::max(); // NaN compares false
+    return (std::fabs(a.x) <= largest) & (std::fabs(a.y) <= largest) & (std::fabs(a.z) <= largest);
 }
 
 } // namespace linequad

@@ -41,14 +41,31 @@ inline void mark_certain(Result& r, Rung rung) {
 inline bool in_moderate_range(double x) {
     return x >= 0x1p-64 && x <= 0x1p+64;
 }
+inline bool moderate(double extent, const Line& l) {
+    return in_moderate_range(extent) && in_moderate_range(max_abs(l.v));
+}
 
 struct Correct {
     template <class Src>
     static Result solve(const Src& src, const Line& l, Query q) {
         Validity valid;
         if (Error e = check(src, l, valid); !e.ok()) return Result::failure(e);
-        if (q.need == Need::any) q.points = false; // a hit test computes no point
-        return ladder(src, valid.orientation, scene_extent(src, l), l, q);
+        double extent = scene_extent(src, l);
+        if (q.need == Need::any) {
+            q.points = false; // a hit test computes no point
+            // The quick rung first, where the scene's products stay in double's normal range.
+            if (moderate(extent, l)) {
+                Result r;
+                LineForm form =
+                    ShapeTraits<typename Src::Shape>::quick_line_form(src, l, valid.orientation);
+                if (hit_test_rung(form, Unit{1, 1, l}, r)) {
+                    r.certainty = Certainty::certain;
+                    r.rung = Rung::newton;
+                    return r;
+                }
+            }
+        }
+        return ladder(src, valid.orientation, extent, l, q);
     }
 
     // The rungs in turn, each only where the one before cannot prove its answer.
@@ -70,11 +87,11 @@ struct Correct {
         // The Newton rung's bounds hold at any scale (underflow is in them, overflow makes them
         // infinite), so a scene of moderate size is solved as given; others are scaled first,
         // so that tiny or huge scenes are not left to the slower rungs.
-        bool moderate = in_moderate_range(extent) && in_moderate_range(max_abs(l.v));
-        if (moderate && newton(src, Unit{1, 1, l})) return r;
+        bool as_given = moderate(extent, l);
+        if (as_given && newton(src, Unit{1, 1, l})) return r;
         if (std::optional<Unit> u = unit_scale(src, extent, l)) {
             S unit = scaled(src.shape, 1 / u->pos_factor);
-            if (!moderate && newton(AsGiven<S>{unit}, *u)) return r;
+            if (!as_given && newton(AsGiven<S>{unit}, *u)) return r;
             auto dd = Traits::template exact_quadratic<BoundedDD>(unit, u->line, orientation);
             if (double_double_rung(dd, *u, q, r)) {
                 mark_certain(r, Rung::double_double);

@@ -5,6 +5,7 @@
 // Each shape's line_form() (shapes/*.hpp) builds one from the pieces here.
 #pragma once
 
+#include "numeric/bounded.hpp"
 #include "numeric/bounded_dd.hpp"
 #include "numeric/compensated_sum.hpp"
 #include "numeric/eft.hpp"
@@ -136,6 +137,38 @@ inline LineForm elliptic_form(const AdjugateRowsDD& rows, const Vec3TwoTerm& w, 
 inline BoundedDD absolute_det(const AdjugateRowsDD& rows, bool negative_det) {
     double sign = negative_det ? -1 : 1;
     return {rows.det.hi * sign, rows.det.lo * sign, rows.det.e};
+}
+
+// The quick line form's values (the hit test's, see correct/newton_rung.hpp): doubles with a
+// rigorous bound, computed in QuickBounded, stored with no low part.
+inline BoundedDD quick(const QuickBounded& x) {
+    return {x.v, 0, x.bound()};
+}
+inline QuickBounded quick(const BoundedDD& x) {
+    return {x.hi, bound_of_hi(x)};
+}
+template <class T>
+Vec3T<QuickBounded> quick_exact(Vec3T<T> a) {
+    return {{a.x, 0}, {a.y, 0}, {a.z, 0}};
+}
+// p - q, exactly, as its rounded value with the bound |lo|.
+inline Vec3T<QuickBounded> quick_difference(Vec3 p, Vec3 q) {
+    Vec3TwoTerm d = difference_exact(p, q);
+    return {{d.hi.x, std::fabs(d.lo.x)}, {d.hi.y, std::fabs(d.lo.y)}, {d.hi.z, std::fabs(d.lo.z)}};
+}
+// The elliptic shapes' quick form: U0 = adj(M) w, U1 = adj(M) v from the rows (n) and |det|.
+inline LineForm quick_elliptic_form(const Vec3T<QuickBounded> (&n)[3], const Vec3T<QuickBounded>& w,
+                                    Vec3 v, bool negative_det) {
+    LineForm f;
+    Vec3T<QuickBounded> V = quick_exact(v);
+    for (int k = 0; k < 3; ++k) {
+        f.U0[k] = quick(dot(n[k], w));
+        f.U1[k] = quick(dot(n[k], V));
+    }
+    double sign = negative_det ? -1 : 1;
+    f.Z0 = sign * f.U0[2].hi, f.e_Z0 = f.U0[2].e;
+    f.dZ = sign * f.U1[2].hi, f.e_dZ = f.U1[2].e;
+    return f;
 }
 
 // BoundedDD as prepare() keeps it: value, low part, bound.

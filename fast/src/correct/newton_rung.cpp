@@ -135,11 +135,12 @@ std::optional<Enclosure> root_near(const Local& L, const Leading& A, double c) {
     return Enclosure{c, x0, e, (L.Gp > 0) != (A.A > 0)};
 }
 
-// No real root: at c (near the vertex), g(c + x) = A x^2 + G' x + G with G'^2 < 4 A G.
-template <int SigmaZ>
-bool no_root_proven(const LineForm& f, const Leading& A, double c) {
+// No real root: at c (near the vertex), g(c + x) = A x^2 + G' x + G with G'^2 < 4 A G; the
+// local expansion from local_at (the precise one, or the hit test's quick one).
+template <class LocalAt>
+bool no_root_proven(const Leading& A, double c, LocalAt local_at) {
     if (!std::isfinite(c)) return false;
-    Local L = local_at<SigmaZ>(f, c);
+    Local L = local_at(c);
     double A_min = (std::fabs(A.A) - A.e) * F::shrink(8), G_min = std::fabs(L.G) - L.e_G;
     if (!(G_min > 0 && A_min >= 0x1p-1000) || (L.G > 0) != (A.A > 0)) return false;
     // G'^2 / A < 4 G, each side of like degree (no product of two small quantities).
@@ -226,7 +227,8 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         C0 += sigma<SigmaZ>(k) * (f.U0[k].hi * f.U0[k].hi);
     }
     double D = difference_of_products(B, B, A.A, C0);
-    if (!(D > 0)) return no_root_proven<SigmaZ>(f, A, -B / A.A);
+    if (!(D > 0))
+        return no_root_proven(A, -B / A.A, [&](double c) { return local_at<SigmaZ>(f, c); });
     double q = -(B + std::copysign(std::sqrt(D), B));
     double estimate[2] = {q / A.A, C0 / q};
     if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
@@ -246,7 +248,88 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
     return true;
 }
 
+// ---- The hit test ----
+
+// g(c + x) = A x^2 + G' x + G from the quick line form (values a_k, b_k, kappa in double, each
+// within alpha_k, beta_k, e_kappa of U0_k, U1_k, K). With u_k = fma(c, b_k, a_k), one rounding:
+//   |u_k - u*_k| <= E_k = alpha_k + |c| beta_k + u |u_k| (1 + 2u),
+//   |u_k^2 - u*_k^2| <= E_k (2 |u_k| + E_k),
+// and G = sum sigma_k fl(u_k^2) - kappa rounds at most five times, each by u of a partial sum
+// no larger than S = sum u_k^2 + |kappa|: 6u S covers them with the squares' own rounding. G' =
+// 2 sum sigma_k u_k b_k as the precise rung's: |u_k b_k - u*_k U1*_k| <= E_k |b_k| +
+// (|u_k| + E_k) beta_k, and 4u sum |u_k b_k| for its roundings. Every bound is computed in a
+// dozen roundings of nonnegative terms (cover(32)), and may have underflowed (the floor).
+template <int SigmaZ>
+Local quick_local_at(const LineForm& f, double c) {
+    double G = -f.K.hi, S = std::fabs(f.K.hi), e_G = f.K.e, Gp = 0, P = 0, e_Gp = 0;
+    const double ac = std::fabs(c);
+#pragma GCC unroll 3
+    for (int k = 0; k < used_components<SigmaZ>; ++k) {
+        const double a = f.U0[k].hi, b = f.U1[k].hi, beta = f.U1[k].e; // no low parts
+        double uk = std::fma(c, b, a), au = std::fabs(uk);
+        double E = f.U0[k].e + ac * beta + u * F::cover(2) * au;
+        double sq = uk * uk, ub = uk * b;
+        G += sigma<SigmaZ>(k) * sq;
+        Gp += sigma<SigmaZ>(k) * ub;
+        S += sq;
+        P += std::fabs(ub);
+        e_G += E * (2 * au + E);
+        e_Gp += E * std::fabs(b) + (au + E) * beta;
+    }
+    return {G, (e_G + 6 * u * S) * F::cover(32) + F::underflow_floor, 2 * Gp,
+            2 * (e_Gp + 4 * u * P) * F::cover(32) + F::underflow_floor};
+}
+
+// Any root proven inside the extent and the range is a hit, whichever it is: the first one
+// found is the answer. No hit needs both roots proven outside, or none proven real.
+template <int SigmaZ>
+bool hit_test(const LineForm& f, const Unit& unit, Result& r) {
+    Leading A = leading<SigmaZ>(f);
+    if (!(std::fabs(A.A) > A.e)) return false;
+    double B = 0, C0 = -f.K.hi;
+#pragma GCC unroll 3
+    for (int k = 0; k < used_components<SigmaZ>; ++k) {
+        B += sigma<SigmaZ>(k) * (f.U0[k].hi * f.U1[k].hi);
+        C0 += sigma<SigmaZ>(k) * (f.U0[k].hi * f.U0[k].hi);
+    }
+    auto local = [&](double c) { return quick_local_at<SigmaZ>(f, c); };
+    double D = difference_of_products(B, B, A.A, C0);
+    if (!(D > 0)) return no_root_proven(A, -B / A.A, local); // r has no hit
+    double q = -(B + std::copysign(std::sqrt(D), B));
+    double estimate[2] = {q / A.A, C0 / q};
+    bool outside[2] = {false, false}; // the smaller, the larger root proven outside
+    for (double c : estimate) {
+        std::optional<Enclosure> en = root_near(local(c), A, c);
+        if (!en) continue;
+        int inside = kept(f, unit, *en);
+        if (inside == 1) {
+            // t = c + x rounded once: within e + u |t| of the root (the sum's rounding).
+            double t = en->c + en->x;
+            r.hits[0] = {t,
+                         {},
+                         (en->e + u * std::fabs(t)) * F::cover(8) + F::denorm_min,
+                         HitKind::cross,
+                         true};
+            r.count = 1;
+            return true;
+        }
+        if (inside == 0) outside[en->smaller ? 0 : 1] = true;
+    }
+    return outside[0] && outside[1];
+}
+
 } // namespace
+
+bool hit_test_rung(const LineForm& f, const Unit& unit, Result& r) {
+    switch (f.sigma_z) {
+    case 1:
+        return hit_test<1>(f, unit, r);
+    case 0:
+        return hit_test<0>(f, unit, r);
+    default:
+        return hit_test<-1>(f, unit, r);
+    }
+}
 
 bool newton_rung(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
     switch (f.sigma_z) {

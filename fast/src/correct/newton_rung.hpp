@@ -26,4 +26,11 @@ namespace linequad::detail {
 // the line as given, u the scaled scene.
 bool newton_rung(const LineForm& f, const Unit& u, const Line& caller, Query query, Result& r);
 
+// The hit test (Need::any) on a quick line form (the shape's quick_line_form: doubles with
+// bounds) of a scene as given (u's factors 1): the same proof, from G in double. When it proves
+// a root inside the extent and the range, r holds that one hit, certain, its t the enclosure's
+// midpoint with the enclosure's half-width as bound (not rounded: a hit test does not pay for
+// it); when it proves there is none, r holds no hit; false otherwise.
+bool hit_test_rung(const LineForm& f, const Unit& u, Result& r);
+
 } // namespace linequad::detail

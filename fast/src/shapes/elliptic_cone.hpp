@@ -147,7 +147,7 @@ struct ShapeTraits<EllipticCone> {
         f.c_hi = c.hi, f.c_lo = c.lo;
         f.dual = DualFrame(to_unit * s.a, to_unit * s.b, c).rows();
         f.lowest_exponent = lowest_exponent({s.a, s.b, s.H, s.C}, to_unit);
-        store(adjugate_rows_dd(s.a, s.b, difference_exact(s.H, s.C)), f);
+        store(adjugate_rows(AsGiven<EllipticCone>{s}), f);
     }
 
     // ---- seed ----
@@ -261,21 +261,50 @@ struct ShapeTraits<EllipticCone> {
 
     // ---- correct: the Newton rung's line form ----
 
+    // The rows of adj(M) and det in bounded double-double: what prepare() keeps, or computed.
+    template <class Src>
+    static AdjugateRowsDD adjugate_rows(const Src& src) {
+        if constexpr (Src::prepared) {
+            return adjugate_rows_dd(src.facts);
+        } else {
+            const EllipticCone& s = src.shape;
+            return adjugate_rows_dd(s.a, s.b, difference_exact(s.H, s.C));
+        }
+    }
+
     template <class Src>
     static LineForm line_form(const Src& src, const Line& l, int orientation) {
         const EllipticCone& s = src.shape;
         bool negative_det = orientation < 0;
-        AdjugateRowsDD rows = [&] {
-            if constexpr (Src::prepared)
-                return adjugate_rows_dd(src.facts);
-            else
-                return adjugate_rows_dd(s.a, s.b, difference_exact(s.H, s.C));
-        }();
+        AdjugateRowsDD rows = adjugate_rows(src);
         LineForm f = elliptic_form(rows, difference_exact(l.L0, s.H), l.v, negative_det);
         BoundedDD det = absolute_det(rows, negative_det);
         f.sigma_z = -1;
         f.K = BoundedDD(0);
         f.lo = -det.hi, f.e_lo = bound_of_hi(det); // -|det| <= Z <= 0: the nappe z <= 0
+        f.hi = 0, f.e_hi = 0;
+        f.lo_bounded = s.finite;
+        f.hi_bounded = true;
+        return f;
+    }
+
+    // ---- correct: the hit test's quick line form (the same, in doubles with bounds) ----
+
+    template <class Src>
+    static LineForm quick_line_form(const Src& src, const Line& l, int orientation) {
+        using Q = QuickBounded;
+        const EllipticCone& s = src.shape;
+        bool negative_det = orientation < 0;
+        AdjugateRowsDD rows = adjugate_rows(src);
+        Vec3T<Q> n[3];
+        for (int i = 0; i < 3; ++i)
+            n[i] = {quick(rows.n[i][0]), quick(rows.n[i][1]), quick(rows.n[i][2])};
+        Q det = quick(rows.det);
+        LineForm f = quick_elliptic_form(n, quick_difference(l.L0, s.H), l.v, negative_det);
+        Q d = negative_det ? -det : det; // |det|
+        f.sigma_z = -1;
+        f.K = BoundedDD(0);
+        f.lo = -d.v, f.e_lo = d.bound(); // -|det| <= Z <= 0: the nappe z <= 0
         f.hi = 0, f.e_hi = 0;
         f.lo_bounded = s.finite;
         f.hi_bounded = true;

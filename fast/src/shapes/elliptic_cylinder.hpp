@@ -122,7 +122,7 @@ struct ShapeTraits<EllipticCylinder> {
         double to_unit = Binary64::pow2(-f.exponent);
         f.dual = dual_frame(s, to_unit).rows();
         f.lowest_exponent = lowest_exponent({s.a, s.b, s.c}, to_unit);
-        store(adjugate_rows_dd(s.a, s.b, s.c), f);
+        store(adjugate_rows(AsGiven<EllipticCylinder>{s}), f);
     }
 
     // ---- seed ----
@@ -224,22 +224,50 @@ struct ShapeTraits<EllipticCylinder> {
 
     // ---- correct: the Newton rung's line form ----
 
+    // The rows of adj(M) and det in bounded double-double: what prepare() keeps, or computed.
+    template <class Src>
+    static AdjugateRowsDD adjugate_rows(const Src& src) {
+        if constexpr (Src::prepared) {
+            return adjugate_rows_dd(src.facts);
+        } else {
+            const EllipticCylinder& s = src.shape;
+            return adjugate_rows_dd(s.a, s.b, s.c);
+        }
+    }
+
     template <class Src>
     static LineForm line_form(const Src& src, const Line& l, int orientation) {
         const EllipticCylinder& s = src.shape;
         bool negative_det = orientation < 0;
-        AdjugateRowsDD rows = [&] {
-            if constexpr (Src::prepared)
-                return adjugate_rows_dd(src.facts);
-            else
-                return adjugate_rows_dd(s.a, s.b, s.c);
-        }();
+        AdjugateRowsDD rows = adjugate_rows(src);
         LineForm f = elliptic_form(rows, difference_exact(l.L0, s.C), l.v, negative_det);
         BoundedDD det = absolute_det(rows, negative_det);
         f.sigma_z = 0;
         f.K = product(det, det);
         f.lo = 0, f.e_lo = 0;
         f.hi = det.hi, f.e_hi = bound_of_hi(det); // 0 <= Z <= |det|
+        f.lo_bounded = f.hi_bounded = s.finite;
+        return f;
+    }
+
+    // ---- correct: the hit test's quick line form (the same, in doubles with bounds) ----
+
+    template <class Src>
+    static LineForm quick_line_form(const Src& src, const Line& l, int orientation) {
+        using Q = QuickBounded;
+        const EllipticCylinder& s = src.shape;
+        bool negative_det = orientation < 0;
+        AdjugateRowsDD rows = adjugate_rows(src);
+        Vec3T<Q> n[3];
+        for (int i = 0; i < 3; ++i)
+            n[i] = {quick(rows.n[i][0]), quick(rows.n[i][1]), quick(rows.n[i][2])};
+        Q det = quick(rows.det);
+        LineForm f = quick_elliptic_form(n, quick_difference(l.L0, s.C), l.v, negative_det);
+        Q d = negative_det ? -det : det; // |det|
+        f.sigma_z = 0;
+        f.K = quick(d * d);
+        f.lo = 0, f.e_lo = 0;
+        f.hi = d.v, f.e_hi = d.bound(); // 0 <= Z <= |det|
         f.lo_bounded = f.hi_bounded = s.finite;
         return f;
     }

@@ -60,6 +60,12 @@ inline bool has_nan(Vec3 a) {
 inline bool is_finite(double x) {
     return std::isfinite(x);
 }
+inline double component_sum(double x) {
+    return x;
+}
+inline double component_sum(Vec3 a) {
+    return a.x + a.y + a.z;
+}
 
 // The largest |coordinate| of the shape's positions: the scene's size as the shape sets it.
 template <class S>
@@ -79,6 +85,14 @@ template <class S>
 S scaled(S s, double f) {
     for_each_field<S>([&](const auto& fl) { s.*fl.member = f * (s.*fl.member); });
     return s;
+}
+
+// The sum of every coordinate of the shape's fields: finite when they all are (or it overflowed).
+template <class S>
+double field_sum(const S& s) {
+    double sum = 0;
+    for_each_field<S>([&](const auto& f) { sum += component_sum(s.*f.member); });
+    return sum;
 }
 
 // NaN, then infinite, field by field in the table's order.
@@ -135,6 +149,8 @@ struct AsGiven {
     const S& shape;
 
     Validity validity() const { return validity_of(shape); }
+    // When every field is known finite.
+    Validity validity_of_finite() const { return ShapeTraits<S>::validate(shape); }
     double magnitude() const { return shape_magnitude(shape); }
     double smallest() const { return smallest_component(shape); }
 };
@@ -147,6 +163,7 @@ struct AsPrepared {
 
     explicit AsPrepared(const Prepared<S>& p) : shape(p.shape()), facts(PreparedAccess::facts(p)) {}
     Validity validity() const { return {facts.error, facts.orientation}; }
+    Validity validity_of_finite() const { return validity(); }
     double magnitude() const { return facts.magnitude; }
     double smallest() const { return facts.smallest; }
 };

@@ -42,9 +42,10 @@ void solve_batch(const S& shape, const LineArrays& lines, Query q, Result* out) 
             for (int k = 0; k < 4; ++k) {
                 Line l = line_at(i + k);
                 bool line_ok = is_finite(l.L0) && is_finite(l.v) && l.v != Vec3{};
-                if (lane[k].generic && line_ok)
+                if (lane[k].generic && line_ok) {
+                    detail::reset(out[i + k]);
                     detail::assemble(lane[k], lane[k].count, q, out[i + k]);
-                else
+                } else
                     out[i + k] = stable::intersect(shape, l, q);
             }
         }

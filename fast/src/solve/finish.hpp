@@ -31,18 +31,24 @@ inline Vec3 point_at(const Line& l, double t) {
     return {std::fma(t, l.v.x, l.L0.x), std::fma(t, l.v.y, l.L0.y), std::fma(t, l.v.z, l.L0.z)};
 }
 
-// The Result from candidates whose facts are known: c.t(i), c.kind(i), c.bad(i) (t or z not
-// finite), c.keep(i) (inside extent and range), c.point(i). Keeps the candidates inside, sorted
-// by t, as many as q.need asks for (a hit test takes the first in the order found), with their
-// points when asked; a bad candidate, or a point that overflows, makes the result out_of_range.
-// r may be a caller's buffer: every field the result has is written.
-template <class Candidates>
-void assemble(const Candidates& c, int n, Query q, Result& r) {
+// A caller's buffer made a fresh result: the fields a result without hits has.
+inline void reset(Result& r) {
     r.error_code = ErrorCode::none, r.error_field = "";
     r.count = 0, r.on_surface = false;
     r.certainty = Certainty::unknown, r.rung = Rung::none;
+}
+
+// The Result, into a fresh r, from candidates whose facts are known: c.t(i), c.kind(i), c.bad(i)
+// (t or z not finite), c.keep(i) (inside extent and range), c.point(i). Keeps the candidates
+// inside, sorted by t, as many as q.need asks for (a hit test takes the first in the order
+// found), with their points when asked; a bad candidate, or a point that overflows, makes the
+// result out_of_range.
+template <class Candidates>
+void assemble(const Candidates& c, int n, Query q, Result& r) {
+    bool bad = false;
     for (int i = 0; i < n; ++i)
-        if (c.bad(i)) return fail(r, ErrorCode::out_of_range, "t");
+        bad |= c.bad(i);
+    if (bad) return fail(r, ErrorCode::out_of_range, "t");
     bool swap = n == 2 && q.need != Need::any && c.t(1) < c.t(0);
     bool points = q.points && q.need != Need::any;
     for (int k = 0; k < n; ++k) {
@@ -64,8 +70,11 @@ struct CandidateFacts {
     const Line& l;
     double t(int i) const { return c[i].t; }
     HitKind kind(int i) const { return c[i].kind; }
-    bool bad(int i) const { return !std::isfinite(c[i].t) || std::isnan(c[i].z); }
-    bool keep(int i) const { return c[i].z >= e.lo && c[i].z <= e.hi && l.range.contains(c[i].t); }
+    bool bad(int i) const { return !(std::fabs(c[i].t) <= Binary64::max) | (c[i].z != c[i].z); }
+    bool keep(int i) const {
+        return (c[i].z >= e.lo) & (c[i].z <= e.hi) & (c[i].t >= l.range.t0) &
+               (c[i].t <= l.range.t1);
+    }
     Vec3 point(int i) const { return point_at(l, c[i].t); }
 };
 
