@@ -98,7 +98,7 @@ struct CylinderStable {
     // Then B, Cc and the discriminant in geometric form. The rounded products of Cc and D are
     // no less accurate than a factored (sqrt - r|h|)(sqrt + r|h|) form would be: their inputs
     // are rounded already.
-    void discriminant() {
+    LINEQUAD_INLINE void discriminant() {
         using std::fma;
         tc = -dot(v, w.rounded() - T(0.5) * h) * inv_vv;
         wc = moved_origin(w, tc, v);

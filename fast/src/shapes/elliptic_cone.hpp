@@ -65,11 +65,12 @@ struct ConeStable {
     T s, A, tc, B, Cc, D;
     Mask near_tangent; // D came from the double-double triple products (the scalar solver)
 
-    // The dual frame of the prescaled a, b, c; c = H - C exactly (it is not a double);
-    // prescaled a, b, H, L0 and v.
-    ConeStable(const DualFrameT<T>& frame, const Vec3TwoTermT<T>& c_, Vec3T<T> a_, Vec3T<T> b_,
+    // make_frame() gives the dual frame of the prescaled a, b, c (built in place), with c = H - C
+    // exactly (it is not a double); prescaled a, b, H, L0 and v.
+    template <class MakeFrame>
+    ConeStable(MakeFrame make_frame, const Vec3TwoTermT<T>& c_, Vec3T<T> a_, Vec3T<T> b_,
                Vec3T<T> H, Vec3T<T> L0, Vec3T<T> v_)
-        : f(frame), w(difference_exact(L0, H)), c(c_), a(a_), b(b_), v(v_) {
+        : f(make_frame()), w(difference_exact(L0, H)), c(c_), a(a_), b(b_), v(v_) {
         s = power_of_two_inverse(f.det);
         vl = f.scaled_local(v, s);
         A = circle_minus_square(vl.x, vl.y, vl.z);
@@ -184,21 +185,24 @@ struct ShapeTraits<EllipticCone> {
         const EllipticCone& s = src.shape;
         Vec3T<T> a = ps.pos(s.a), b = ps.pos(s.b), H = ps.pos(s.H);
         Vec3TwoTermT<T> c;
-        auto frame = [&]() -> DualFrameT<T> {
-            if constexpr (Src::prepared) {
-                const FrameFacts& f = src.facts;
-                int delta = ps.k - f.exponent;
-                if (dual_frame_rescales(f, delta)) {
-                    double scale = Binary64::pow2(-delta); // c = H - C scales as the rows do
-                    c = {scale * f.c_hi, scale * f.c_lo};
-                    return rescaled_dual_frame(f, delta);
-                }
+        bool rescaled = false;
+        int delta = 0;
+        if constexpr (Src::prepared) {
+            const FrameFacts& f = src.facts;
+            delta = ps.k - f.exponent;
+            rescaled = dual_frame_rescales(f, delta);
+            if (rescaled) {
+                double scale = Binary64::pow2(-delta); // c = H - C scales as the rows do
+                c = {scale * f.c_hi, scale * f.c_lo};
             }
-            c = difference_exact(H, ps.pos(s.C)); // c = H - C exactly: it is not a double
+        }
+        if (!rescaled) c = difference_exact(H, ps.pos(s.C)); // c = H - C exactly: not a double
+        auto frame = [&]() -> DualFrameT<T> {
+            if constexpr (Src::prepared)
+                if (rescaled) return rescaled_dual_frame(src.facts, delta);
             return {a, b, c};
         };
-        DualFrameT<T> f = frame();
-        return {f, c, a, b, H, ps.pos(L0), ps.dir(v)};
+        return {frame, c, a, b, H, ps.pos(L0), ps.dir(v)};
     }
 
     // ---- certified ----

@@ -50,10 +50,12 @@ struct EllipticStable {
     Vec3T<T> a, b, c, v, vl;
     T A, tc, B, Cc, D;
 
-    // The dual frame of the prescaled a, b, c; prescaled a, b, c, C, L0 and v.
-    EllipticStable(const DualFrameT<T>& frame, Vec3T<T> a_, Vec3T<T> b_, Vec3T<T> c_, Vec3T<T> C,
+    // make_frame() gives the dual frame of the prescaled a, b, c (built in place); prescaled a,
+    // b, c, C, L0 and v.
+    template <class MakeFrame>
+    EllipticStable(MakeFrame make_frame, Vec3T<T> a_, Vec3T<T> b_, Vec3T<T> c_, Vec3T<T> C,
                    Vec3T<T> L0, Vec3T<T> v_)
-        : f(frame), w(difference_exact(L0, C)), a(a_), b(b_), c(c_), v(v_) {
+        : f(make_frame()), w(difference_exact(L0, C)), a(a_), b(b_), c(c_), v(v_) {
         vl = f.local(v);
         A = vl.x * vl.x + vl.y * vl.y;
     }
@@ -166,7 +168,7 @@ struct ShapeTraits<EllipticCylinder> {
             }
             return {a, b, {c, {}}};
         };
-        return {frame(), a, b, c, ps.pos(s.C), ps.pos(L0), ps.dir(v)};
+        return {frame, a, b, c, ps.pos(s.C), ps.pos(L0), ps.dir(v)};
     }
 
     // ---- certified ----

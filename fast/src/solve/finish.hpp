@@ -44,23 +44,28 @@ inline void reset(Result& r) {
 // found), with their points when asked; a bad candidate, or a point that overflows, makes the
 // result out_of_range.
 template <class Candidates>
-void assemble(const Candidates& c, int n, Query q, Result& r) {
-    bool bad = false;
-    for (int i = 0; i < n; ++i)
-        bad |= c.bad(i);
-    if (bad) return fail(r, ErrorCode::out_of_range, "t");
-    bool swap = n == 2 && q.need != Need::any && c.t(1) < c.t(0);
+LINEQUAD_INLINE void assemble(const Candidates& c, int n, Query q, Result& r) {
+    if (n == 0) return;
+    bool two = n == 2;
+    if (c.bad(0) | (two && c.bad(1))) return fail(r, ErrorCode::out_of_range, "t");
+    int first = two && q.need != Need::any && c.t(1) < c.t(0) ? 1 : 0;
     bool points = q.points && q.need != Need::any;
-    for (int k = 0; k < n; ++k) {
-        int i = swap ? 1 - k : k;
-        if (!c.keep(i)) continue;
-        Hit& h = r.hits[r.count++];
+    int count = 0;
+    // Hit i as the next one; false when its point lies beyond double's range (refused, not
+    // returned as inf).
+    auto put = [&](int i) {
+        Hit& h = r.hits[count++];
         h.t = c.t(i), h.kind = c.kind(i), h.bound = no_bound, h.certain = false;
         h.p = points ? c.point(i) : Vec3{};
-        // A hit whose point lies beyond double's range is refused, not returned as inf.
-        if (points && !is_finite(h.p)) return fail(r, ErrorCode::out_of_range, "p");
-        if (q.need != Need::all) break; // sorted, so the first kept is also the nearest
+        return !points || is_finite(h.p);
+    };
+    if (c.keep(first)) {
+        if (!put(first)) return fail(r, ErrorCode::out_of_range, "p");
+        // sorted, so the first kept is also the nearest
+        if (!two || q.need != Need::all) return void(r.count = std::uint8_t(count));
     }
+    if (two && c.keep(1 - first) && !put(1 - first)) return fail(r, ErrorCode::out_of_range, "p");
+    r.count = std::uint8_t(count);
 }
 
 // Candidates' facts from their t and z.
