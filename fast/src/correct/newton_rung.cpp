@@ -120,7 +120,7 @@ struct Enclosure {
 // and |phi(y) - 1| = |y| / (1 + sqrt(1 - y))^2 <= 0.35 |y|. |-G/G' - x0| is at most
 // (e_G + |x0| e_G') / |G'| + u |x0| (the perturbed quotient and its rounding). The other root is
 // at -G'/A - x*, on the side of -sgn(G' A): |2 x*| < |G'/A| when |y| <= 1/2.
-std::optional<Enclosure> root_near(const Local& L, const Leading& A, double c) {
+LINEQUAD_INLINE std::optional<Enclosure> root_near(const Local& L, const Leading& A, double c) {
     double P = (std::fabs(L.Gp) - L.e_Gp) * F::shrink(8);         // |G'| >= P
     if (!(P >= 0x1p-1000 && P <= 0x1p+1000)) return std::nullopt; // NaN too
     // Bounds from 1/P (normal, so each rounding is relative: 1 + 2^-48 covers a dozen). y is
@@ -149,7 +149,7 @@ bool no_root_proven(const Leading& A, double c, LocalAt local_at) {
 }
 
 // 1: the root is inside the extent and the range; 0: outside; -1: the bounds cannot tell.
-int kept(const LineForm& f, const Unit& unit, const Enclosure& en) {
+LINEQUAD_INLINE int kept(const LineForm& f, const Unit& unit, const Enclosure& en) {
     double t = en.c + en.x;
     double e_t = en.e + u * std::fabs(t) + F::denorm_min;
     // Z(t*) = Z0 + t* dZ from z = fma(t, dZ, Z0): the bounds of Z0 and dZ, |t* - t|, and z's
@@ -174,7 +174,7 @@ int kept(const LineForm& f, const Unit& unit, const Enclosure& en) {
 
 // The hit, t and its point correctly rounded in the caller's units; false when a bound does
 // not prove a rounding.
-bool add_hit(const Enclosure& en, const Unit& unit, const Line& caller, Query q, Result& r) {
+LINEQUAD_INLINE bool add_hit(const Enclosure& en, const Unit& unit, const Line& caller, Query q, Result& r) {
     TwoTerm t = two_sum(en.c, en.x);
     std::optional<double> rounded = round_proven({t.hi, t.lo, en.e}, unit.t_factor);
     if (!rounded) return false;
