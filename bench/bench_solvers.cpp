@@ -34,6 +34,36 @@ void solve(benchmark::State& state, const Solver* solver, int shape, Query q) {
         benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// Every alternative of Shape, prepared: what a renderer holds for many lines.
+template <class Variant>
+struct PreparedOf;
+template <class... S>
+struct PreparedOf<std::variant<S...>> {
+    using type = std::variant<Prepared<S>...>;
+};
+using PreparedShape = PreparedOf<Shape>::type;
+
+// The same cases, each shape prepared before the loop; solve(prepared, line, query) is one
+// solver's typed call.
+template <class Solve>
+void solve_prepared(benchmark::State& state, int shape, Query q, Solve solve) {
+    auto cases = bench::generic_cases(shape, 1024);
+    std::vector<PreparedShape> shapes;
+    for (const auto& c : cases)
+        shapes.push_back(std::visit([](const auto& s) { return PreparedShape(prepare(s)); }, c.shape));
+    std::size_t i = 0;
+    int hits = 0;
+    for (auto _ : state) {
+        std::size_t k = i++ & 1023;
+        Result r = std::visit([&](const auto& p) { return solve(p, cases[k].line, q); }, shapes[k]);
+        hits += r.count;
+        benchmark::DoNotOptimize(r);
+    }
+    state.counters["hits/solve"] = double(hits) / double(state.iterations());
+    state.counters["solves/s"] =
+        benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
 // One shape, 1024 generic lines aimed at it: the scalar solver in a loop, and the batch.
 struct OneShape {
     Shape shape;
@@ -99,7 +129,26 @@ int register_all() {
                                          Query{Need::all, true});
             benchmark::RegisterBenchmark((name + "/no_points").c_str(), solve, s, shape,
                                          Query{Need::all, false});
+            // The nearest hit, and the hit test (no point either way).
+            benchmark::RegisterBenchmark((name + "/nearest").c_str(), solve, s, shape,
+                                         Query{Need::nearest, false});
+            benchmark::RegisterBenchmark((name + "/any").c_str(), solve, s, shape,
+                                         Query{Need::any, false});
         }
+    // Prepared shapes, every fast solver, all hits with points.
+    auto prepared = [&](const char* solver, auto solve) {
+        for (int shape = 0; shape < int(shape_count); ++shape)
+            benchmark::RegisterBenchmark(
+                (name_of(shape) + "/" + solver + "/prepared/points").c_str(),
+                [=](benchmark::State& st) { solve_prepared(st, shape, Query{}, solve); });
+    };
+    prepared("seed", [](const auto& p, const Line& l, Query q) { return seed::intersect(p, l, q); });
+    prepared("stable",
+             [](const auto& p, const Line& l, Query q) { return stable::intersect(p, l, q); });
+    prepared("certified",
+             [](const auto& p, const Line& l, Query q) { return certified::intersect(p, l, q); });
+    prepared("correct",
+             [](const auto& p, const Line& l, Query q) { return correct::intersect(p, l, q); });
     return 0;
 }
 const int registered = register_all();

@@ -28,14 +28,19 @@ per_solve() {
 floor=$(per_solve floor cylinder all points direct)
 printf '%-10s %-18s %-8s %-10s %-9s %8s %7s\n' solver shape need points shape instr ratio
 printf '%-10s %-18s %-8s %-10s %-9s %8d %7s\n' floor cylinder all points - "$floor" 1.00
+# Default rows: the core redesign's table (the cylinder as given, the cone prepared), then the
+# same for the other shapes and the cone as given, for reference.
 rows=${ROWS:-}
 if [ -z "$rows" ]; then
-  for shape in cylinder elliptic_cylinder elliptic_cone; do
-    for solver in seed stable certified correct; do
-      rows="$rows $solver:$shape:all:points:direct $solver:$shape:all:points:prepared"
-    done
-    rows="$rows correct:$shape:any:no_points:direct correct:$shape:any:no_points:prepared"
+  for solver in seed stable correct; do rows="$rows $solver:cylinder:all:points:direct"; done
+  rows="$rows correct:cylinder:any:no_points:direct correct:cylinder:nearest:no_points:direct"
+  for solver in seed stable correct; do rows="$rows $solver:elliptic_cone:all:points:prepared"; done
+  rows="$rows correct:elliptic_cone:any:no_points:prepared"
+  rows="$rows correct:elliptic_cone:nearest:no_points:prepared"
+  for shape in elliptic_cylinder elliptic_cone; do
+    for solver in seed stable certified correct; do rows="$rows $solver:$shape:all:points:direct"; done
   done
+  rows="$rows certified:cylinder:all:points:direct"
 fi
 for row in $rows; do
   IFS=: read -r solver shape need points prepared <<<"$row"

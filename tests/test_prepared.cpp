@@ -7,6 +7,7 @@
 #include "linequad/families.hpp"
 
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 using namespace linequad;
@@ -93,4 +94,13 @@ TEST_CASE("prepared shapes: bad shapes keep their error, named as the shape's ow
                 CHECK(stable::intersect(shape, zero, {}).error_code == ErrorCode::zero_direction);
             },
             s);
+}
+
+TEST_CASE("results are small values: no larger than their fields need") {
+    // Two hits (t, point, bound, kind, certainty), the interval, the error and four one-byte
+    // fields: 96 + 16 + 8 + 5 bytes, padded to 128 (168 before the core redesign).
+    STATIC_REQUIRE(sizeof(Hit) == 48);
+    STATIC_REQUIRE(sizeof(Result) == 128);
+    STATIC_REQUIRE(std::is_trivially_copyable_v<Result>);
+    STATIC_REQUIRE(std::is_trivially_copyable_v<Prepared<EllipticCone>>);
 }
