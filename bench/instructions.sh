@@ -36,7 +36,7 @@ if [ -z "$rows" ]; then
   rows="$rows correct:cylinder:any:no_points:direct correct:cylinder:nearest:no_points:direct"
   for solver in seed stable correct; do rows="$rows $solver:elliptic_cone:all:points:prepared"; done
   rows="$rows correct:elliptic_cone:any:no_points:prepared"
-  rows="$rows correct:elliptic_cone:nearest:no_points:prepared"
+  rows="$rows correct:elliptic_cone:nearest:no_points:prepared correct:elliptic_cone:any:no_points:direct"
   for shape in elliptic_cylinder elliptic_cone; do
     for solver in seed stable certified correct; do rows="$rows $solver:$shape:all:points:direct"; done
   done

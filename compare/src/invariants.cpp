@@ -10,7 +10,11 @@
 //  - the correct solver returns the oracle's answer bit for bit (all hits with points, and the
 //    nearest without);
 //  - the batch solver (four lanes and a scalar tail) returns the scalar solver's result, bit for
-//    bit, for this line among variants of it.
+//    bit, for this line among variants of it;
+//  - every solver returns for the prepared shape what it returns for the shape, bit for bit
+//    (bounds, certainty and rung included);
+//  - the correct solver's hit test has a hit exactly when the oracle has one, within its bound of
+//    one of the oracle's roots.
 #include "linequad/invariants.hpp"
 
 #include "linequad/batch.hpp"
@@ -111,6 +115,33 @@ std::string broken_invariant(const Case& c) {
         Result got = correct::intersect(c.shape, c.line, q);
         k.require(same_answer(got, want), "correct equals the oracle bit for bit", "correct", got);
     }
+    // A prepared shape: the same answers, bit for bit, from every solver and the oracle.
+    std::visit(
+        [&](const auto& s) {
+            auto p = prepare(s);
+            const std::pair<const char*, Result (*)(const decltype(p)&, const Line&, Query)> by[] =
+                {{"seed", [](const decltype(p)& x, const Line& l,
+                             Query q) { return seed::intersect(x, l, q); }},
+                 {"stable", [](const decltype(p)& x, const Line& l,
+                               Query q) { return stable::intersect(x, l, q); }},
+                 {"certified", [](const decltype(p)& x, const Line& l,
+                                  Query q) { return certified::intersect(x, l, q); }},
+                 {"correct", [](const decltype(p)& x, const Line& l,
+                                Query q) { return correct::intersect(x, l, q); }},
+                 {"exact", [](const decltype(p)& x, const Line& l, Query q) {
+                      return exact::intersect(x, l, q);
+                  }}};
+            for (const auto& [name, solve] : by)
+                for (Query q : {Query{}, Query{Need::any, false}}) {
+                    Result given = find_solver(name)->solve(c.shape, c.line, q);
+                    Result prepared = solve(p, c.line, q);
+                    k.require(format_result(c.id, name, given) ==
+                                      format_result(c.id, name, prepared) &&
+                                  given.rung == prepared.rung,
+                              "a prepared shape gives the same answer", name, prepared);
+                }
+        },
+        c.shape);
     // The hit test: a hit exactly when the oracle has one (or the interval), and then within
     // its bound of one of the oracle's roots (each within half an ulp of exact).
     Result any = correct::intersect(c.shape, c.line, {Need::any, false});
