@@ -156,11 +156,16 @@ inline Vec3T<QuickBounded> quick_difference(Vec3 p, Vec3 q) {
     Vec3TwoTerm d = difference_exact(p, q);
     return {{d.hi.x, std::fabs(d.lo.x)}, {d.hi.y, std::fabs(d.lo.y)}, {d.hi.z, std::fabs(d.lo.z)}};
 }
-// The elliptic shapes' quick form: U0 = adj(M) w, U1 = adj(M) v from the rows (n) and |det|.
-inline LineForm quick_elliptic_form(const Vec3T<QuickBounded> (&n)[3], const Vec3T<QuickBounded>& w,
-                                    Vec3 v, bool negative_det) {
+// The elliptic shapes' quick form, from the precise rows (the same values, prepared or not):
+// U0 = adj(M) w, U1 = adj(M) v, Z = U_z with det's sign folded in; abs_det = |det|.
+inline LineForm quick_elliptic_form(const AdjugateRowsDD& rows, const Vec3T<QuickBounded>& w,
+                                    Vec3 v, bool negative_det, QuickBounded& abs_det) {
+    Vec3T<QuickBounded> n[3], V = quick_exact(v);
+    for (int i = 0; i < 3; ++i)
+        n[i] = {quick(rows.n[i][0]), quick(rows.n[i][1]), quick(rows.n[i][2])};
+    QuickBounded det = quick(rows.det);
+    abs_det = negative_det ? -det : det;
     LineForm f;
-    Vec3T<QuickBounded> V = quick_exact(v);
     for (int k = 0; k < 3; ++k) {
         f.U0[k] = quick(dot(n[k], w));
         f.U1[k] = quick(dot(n[k], V));

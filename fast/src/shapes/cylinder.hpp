@@ -132,6 +132,18 @@ struct CylinderStable {
     }
 };
 
+// Z = (P - C).h = w.h + t v.h in double from w and h within u of their exact values (and v
+// exact): gamma_5 of the products' magnitudes for w.h (two inputs, a product, two sums), gamma_4
+// for v.h; 6u and 5u cover them with the magnitudes' own rounding. Both line forms' Z.
+inline void cylinder_axial(LineForm& f, Vec3 w, Vec3 h, Vec3 v) {
+    using F = Binary64;
+    f.Z0 = dot(w, h);
+    f.e_Z0 = 6 * F::u * dot(magnitudes(w), magnitudes(h)) + F::underflow_floor;
+    f.dZ = dot(v, h);
+    f.e_dZ = 5 * F::u * dot(magnitudes(v), magnitudes(h)) + F::underflow_floor;
+    f.lo = 0, f.e_lo = 0;
+}
+
 template <>
 struct ShapeTraits<Cylinder> {
     static constexpr const char* name = "cylinder";
@@ -281,7 +293,6 @@ struct ShapeTraits<Cylinder> {
 
     template <class Src>
     static LineForm line_form(const Src& src, const Line& l, int /*orientation*/) {
-        using F = Binary64;
         const Cylinder& s = src.shape;
         NewtonAxis axis = newton_axis(src);
         const Vec3TwoTerm& h = axis.h;
@@ -294,14 +305,8 @@ struct ShapeTraits<Cylinder> {
         }
         f.sigma_z = 1;
         f.K = axis.K;
-        // Z = (P - C).h = w.h + t v.h, from the high parts in double: gamma_3 of the sum of
-        // products' magnitudes for the rounding, and 2u (1 + u) of it for the low parts left
-        // out; 6u covers both (5u for v.h, whose v has no low part).
-        f.Z0 = dot(w.hi, h.hi);
-        f.e_Z0 = 6 * F::u * dot(magnitudes(w.hi), magnitudes(h.hi)) + F::underflow_floor;
-        f.dZ = dot(l.v, h.hi);
-        f.e_dZ = 5 * F::u * dot(magnitudes(l.v), magnitudes(h.hi)) + F::underflow_floor;
-        f.lo = 0, f.e_lo = 0;
+        // Z from the high parts, each within u of its exact value (the low parts left out).
+        cylinder_axial(f, w.hi, h.hi, l.v);
         f.hi = axis.hh.hi, f.e_hi = bound_of_hi(axis.hh);
         f.lo_bounded = f.hi_bounded = s.finite;
         return f;
@@ -345,9 +350,7 @@ struct ShapeTraits<Cylinder> {
         f.U1[2] = bounded(U1.z, 4 * F::u * m1.z);
         f.sigma_z = 1;
         f.K = bounded(K, 8 * F::u * K);
-        f.Z0 = dot(w, h), f.e_Z0 = 6 * F::u * dot(aw, ah) + F::underflow_floor;
-        f.dZ = dot(v, h), f.e_dZ = 5 * F::u * dot(av, ah) + F::underflow_floor;
-        f.lo = 0, f.e_lo = 0;
+        cylinder_axial(f, w, h, v);
         f.hi = hh, f.e_hi = 6 * F::u * hh + F::underflow_floor;
         f.lo_bounded = f.hi_bounded = s.finite;
         return f;

@@ -298,14 +298,9 @@ struct ShapeTraits<EllipticCone> {
     static LineForm quick_line_form(const Src& src, const Line& l, int orientation) {
         using Q = QuickBounded;
         const EllipticCone& s = src.shape;
-        bool negative_det = orientation < 0;
-        AdjugateRowsDD rows = adjugate_rows(src);
-        Vec3T<Q> n[3];
-        for (int i = 0; i < 3; ++i)
-            n[i] = {quick(rows.n[i][0]), quick(rows.n[i][1]), quick(rows.n[i][2])};
-        Q det = quick(rows.det);
-        LineForm f = quick_elliptic_form(n, quick_difference(l.L0, s.H), l.v, negative_det);
-        Q d = negative_det ? -det : det; // |det|
+        Q d; // |det|
+        LineForm f = quick_elliptic_form(adjugate_rows(src), quick_difference(l.L0, s.H), l.v,
+                                         orientation < 0, d);
         f.sigma_z = -1;
         f.K = BoundedDD(0);
         f.lo = -d.v, f.e_lo = d.bound(); // -|det| <= Z <= 0: the nappe z <= 0

@@ -258,14 +258,9 @@ struct ShapeTraits<EllipticCylinder> {
     static LineForm quick_line_form(const Src& src, const Line& l, int orientation) {
         using Q = QuickBounded;
         const EllipticCylinder& s = src.shape;
-        bool negative_det = orientation < 0;
-        AdjugateRowsDD rows = adjugate_rows(src);
-        Vec3T<Q> n[3];
-        for (int i = 0; i < 3; ++i)
-            n[i] = {quick(rows.n[i][0]), quick(rows.n[i][1]), quick(rows.n[i][2])};
-        Q det = quick(rows.det);
-        LineForm f = quick_elliptic_form(n, quick_difference(l.L0, s.C), l.v, negative_det);
-        Q d = negative_det ? -det : det; // |det|
+        Q d; // |det|
+        LineForm f = quick_elliptic_form(adjugate_rows(src), quick_difference(l.L0, s.C), l.v,
+                                         orientation < 0, d);
         f.sigma_z = 0;
         f.K = quick(d * d);
         f.lo = 0, f.e_lo = 0;
