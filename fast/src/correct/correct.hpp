@@ -48,8 +48,8 @@ inline bool moderate(double extent, const Line& l) {
 struct Correct {
     template <class Src>
     static Result solve(const Src& src, const Line& l, Query q) {
-        Validity valid;
-        if (Error e = check(src, l, valid); !e.ok()) return Result::failure(e);
+        Validity valid = check(src, l);
+        if (!valid.error.ok()) return Result::failure(valid.error);
         double extent = scene_extent(src, l);
         if (q.need == Need::any) {
             q.points = false; // a hit test computes no point

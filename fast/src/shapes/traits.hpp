@@ -1,13 +1,18 @@
 // What the solvers share about shapes. Each shape's facts and derivations are written once, in
 // its ShapeTraits specialisation (shapes/cylinder.hpp, elliptic_cylinder.hpp, elliptic_cone.hpp):
-//   name                  the case format's name of the shape
-//   fields                the case format's table: name and member of every field
-//   validate(shape)       what is wrong with a shape whose fields are finite (and its orientation)
-//   extent(shape)         the axial extent in the unit shape's frame
-//   seed_form, Stable, certified_form, exact_form, line_form: each solver's derivation
-// and the facts prepare() works out once (Facts<S>, linequad/prepared.hpp). Every field is a
-// position: it scales with the scene (the scene's magnitude and the checks for components too
-// small for double arithmetic run over them).
+//   name, fields           the case format's name of the shape, and its table: the name and
+//                          member of every field
+//   validate(shape)        what is wrong with a shape whose fields are finite (and the
+//                          orientation of its frame, which deciding it took)
+//   scale_fields, fragile_fields  what a double solver names when the scene is out of its reach
+//   prepare(shape, facts)  the facts prepare() keeps (Facts<S>, linequad/prepared.hpp)
+//   seed_form              the seed's derivation as written
+//   Stable<T>, stable_core the stable solver's core, for any lane type, and its construction
+//   certified_form<B>      the stable quantities in a bounded type
+//   exact_orientation<NT>, exact_quadratic<NT>  the exact, division-free form in any ring
+//   line_form, quick_line_form  the correct solver's Newton rung and hit test views
+// Every field is a position: it scales with the scene (the scene's magnitude and the checks for
+// components too small for double arithmetic run over them).
 #pragma once
 
 #include "numeric/format.hpp"
@@ -140,8 +145,9 @@ struct PreparedAccess {
 };
 
 // A shape as a solver sees it. AsGiven works out each fact when a solver asks for it (a solver
-// asks only for what it needs); AsPrepared reads it from what prepare() worked out. The solvers
-// are written once over both, so their results cannot differ.
+// asks only for what it needs); AsPrepared reads it from what prepare() worked out, with the same
+// functions. The solvers are written once over both, and give the same results
+// (tests/test_prepared.cpp, and the fuzzer).
 template <class S>
 struct AsGiven {
     using Shape = S;
@@ -174,15 +180,6 @@ AsGiven<S> source(const S& s) {
 template <class S>
 AsPrepared<S> source(const Prepared<S>& p) {
     return AsPrepared<S>(p);
-}
-
-// A fact of the shape: read from a prepared shape, or worked out now for one as given.
-template <class Source, class Member, class Compute>
-decltype(auto) fact(const Source& src, Member member, Compute compute) {
-    if constexpr (Source::prepared)
-        return (src.facts.*member);
-    else
-        return compute();
 }
 
 // The axial extent lo <= z <= hi in a derivation's own units (infinite ends when unbounded);

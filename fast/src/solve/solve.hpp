@@ -15,19 +15,15 @@ namespace linequad::detail {
 // merely overflows takes the slow path, which finds nothing), v nonzero, the range not empty.
 // Otherwise the checks one by one, which name the culprit.
 template <class Src>
-Error check(const Src& src, const Line& l, Validity& validity) {
+Validity check(const Src& src, const Line& l) {
     double sum = l.L0.x + l.L0.y + l.L0.z + l.v.x + l.v.y + l.v.z;
     if constexpr (!Src::prepared) sum += field_sum(src.shape);
     const Interval& r = l.range;
     bool usual = (0 * sum == 0) & ((l.v.x != 0) | (l.v.y != 0) | (l.v.z != 0)) & (r.t0 <= r.t1) &
                  (r.t0 < Binary64::inf) & (r.t1 > -Binary64::inf);
-    if (usual) {
-        validity = src.validity_of_finite();
-        return validity.error;
-    }
-    if (Error e = check_line(l); !e.ok()) return e;
-    validity = src.validity();
-    return validity.error;
+    if (usual) return src.validity_of_finite();
+    if (Error e = check_line(l); !e.ok()) return {e};
+    return src.validity();
 }
 
 // The scene's size: the shape's and the line's origin's.
@@ -46,8 +42,7 @@ struct Certified {
 template <class Src>
 Result Certified::solve(const Src& src, const Line& l, Query q) {
     using Traits = ShapeTraits<typename Src::Shape>;
-    Validity valid;
-    if (Error e = check(src, l, valid); !e.ok()) return Result::failure(e);
+    if (Validity valid = check(src, l); !valid.error.ok()) return Result::failure(valid.error);
     double extent = scene_extent(src, l);
     // Prescaling is exact unless a component is tiny enough to lose bits: refuse those.
     if (fragile_scene(src, extent, l))
@@ -68,8 +63,7 @@ struct Seed {
 };
 template <class Src>
 Result Seed::solve(const Src& src, const Line& l, Query q) {
-    Validity valid;
-    if (Error e = check(src, l, valid); !e.ok()) return Result::failure(e);
+    if (Validity valid = check(src, l); !valid.error.ok()) return Result::failure(valid.error);
     SeedForm f = ShapeTraits<typename Src::Shape>::seed_form(src, l);
     if (!f.usable) return Result::failure(ErrorCode::out_of_range, "coefficients");
     Roots roots = textbook_roots(f.a, f.b, f.c);
@@ -97,8 +91,7 @@ struct Stable {
 template <class Src>
 Result Stable::solve(const Src& src, const Line& l, Query q) {
     using Traits = ShapeTraits<typename Src::Shape>;
-    Validity valid;
-    if (Error e = check(src, l, valid); !e.ok()) return Result::failure(e);
+    if (Validity valid = check(src, l); !valid.error.ok()) return Result::failure(valid.error);
     double extent = scene_extent(src, l);
     Prescale ps = prescale_for(extent, l.v);
     auto k = Traits::template stable_core<double>(src, ps, l.L0, l.v);
