@@ -88,8 +88,9 @@ struct CylinderStable {
     // Lanes that only the scalar solver can finish, beyond the usual branches: none here.
     Mask scalar_only() const { return Mask{}; }
     // C0 at the caller's origin: for lines parallel to the axis, and for Vieta's product.
-    T C0_at_origin() const {
-        Vec3T<T> wh = cross_accurate(w.rounded(), hx);
+    LINEQUAD_INLINE T C0_at_origin() const { return C0_at(w.rounded(), hx, r2hh); }
+    [[gnu::noinline]] static T C0_at(Vec3T<T> w0, Vec3TwoTermT<T> hx, T r2hh) {
+        Vec3T<T> wh = cross_accurate(w0, hx);
         return dot(wh, wh) - r2hh;
     }
 

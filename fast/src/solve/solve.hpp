@@ -15,20 +15,24 @@ namespace linequad::detail {
 // merely overflows takes the slow path, which finds nothing), v nonzero, the range not empty.
 // Otherwise the checks one by one, which name the culprit.
 template <class Src>
-Validity check(const Src& src, const Line& l) {
+[[gnu::noinline]] Validity check_one_by_one(const Src& src, const Line& l) {
+    if (Error e = check_line(l); !e.ok()) return {e};
+    return src.validity();
+}
+template <class Src>
+LINEQUAD_INLINE Validity check(const Src& src, const Line& l) {
     double sum = l.L0.x + l.L0.y + l.L0.z + l.v.x + l.v.y + l.v.z;
     if constexpr (!Src::prepared) sum += field_sum(src.shape);
     const Interval& r = l.range;
     bool usual = (0 * sum == 0) & ((l.v.x != 0) | (l.v.y != 0) | (l.v.z != 0)) & (r.t0 <= r.t1) &
                  (r.t0 < Binary64::inf) & (r.t1 > -Binary64::inf);
     if (usual) return src.validity_of_finite();
-    if (Error e = check_line(l); !e.ok()) return {e};
-    return src.validity();
+    return check_one_by_one(src, l);
 }
 
 // The scene's size: the shape's and the line's origin's.
 template <class Src>
-double scene_extent(const Src& src, const Line& l) {
+LINEQUAD_INLINE double scene_extent(const Src& src, const Line& l) {
     return std::max(max_abs(l.L0), src.magnitude());
 }
 
