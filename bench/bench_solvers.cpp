@@ -50,7 +50,8 @@ void solve_prepared(benchmark::State& state, int shape, Query q, Solve solve) {
     auto cases = bench::generic_cases(shape, 1024);
     std::vector<PreparedShape> shapes;
     for (const auto& c : cases)
-        shapes.push_back(std::visit([](const auto& s) { return PreparedShape(prepare(s)); }, c.shape));
+        shapes.push_back(
+            std::visit([](const auto& s) { return PreparedShape(prepare(s)); }, c.shape));
     std::size_t i = 0;
     int hits = 0;
     for (auto _ : state) {
@@ -142,7 +143,8 @@ int register_all() {
                 (name_of(shape) + "/" + solver + "/prepared/points").c_str(),
                 [=](benchmark::State& st) { solve_prepared(st, shape, Query{}, solve); });
     };
-    prepared("seed", [](const auto& p, const Line& l, Query q) { return seed::intersect(p, l, q); });
+    prepared("seed",
+             [](const auto& p, const Line& l, Query q) { return seed::intersect(p, l, q); });
     prepared("stable",
              [](const auto& p, const Line& l, Query q) { return stable::intersect(p, l, q); });
     prepared("certified",

@@ -174,7 +174,8 @@ LINEQUAD_INLINE int kept(const LineForm& f, const Unit& unit, const Enclosure& e
 
 // The hit, t and its point correctly rounded in the caller's units; false when a bound does
 // not prove a rounding.
-LINEQUAD_INLINE bool add_hit(const Enclosure& en, const Unit& unit, const Line& caller, Query q, Result& r) {
+LINEQUAD_INLINE bool add_hit(const Enclosure& en, const Unit& unit, const Line& caller, Query q,
+                             Result& r) {
     TwoTerm t = two_sum(en.c, en.x);
     std::optional<double> rounded = round_proven({t.hi, t.lo, en.e}, unit.t_factor);
     if (!rounded) return false;

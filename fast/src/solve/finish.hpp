@@ -92,8 +92,8 @@ inline Result finish(const Candidate* c, int n, Extent e, const Line& l, Query q
 // Roots to candidates (t scaled back by t_scale, z_of(roots, i) the axial coordinate of root
 // i), then finish(). Lines on the surface never get here: see without_certification.
 template <class AxialOf>
-LINEQUAD_INLINE Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e, const Line& l,
-                    Query q) {
+LINEQUAD_INLINE Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e,
+                                    const Line& l, Query q) {
     Candidate c[2];
     int n = r.count();
     for (int i = 0; i < n; ++i)
