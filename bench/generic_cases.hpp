@@ -5,6 +5,8 @@
 #include "linequad/shapes.hpp"
 
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace linequad::bench {
@@ -13,6 +15,45 @@ struct GenericCase {
     Shape shape;
     Line line;
 };
+
+// A well-shaped instance of each shape from one random frame C, a, b, c (|det| at least a
+// quarter of the product of the lengths); lines aim near C + c / 2, the middle of every one of
+// them. A shape without a specialisation here does not compile into the benchmarks.
+template <class S>
+struct Generic;
+template <>
+struct Generic<Cylinder> {
+    template <class Real>
+    static Cylinder make(Vec3 C, Vec3, Vec3, Vec3 c, Real& real) {
+        return {C, C + c, real(0.5, 2)};
+    }
+};
+template <>
+struct Generic<EllipticCylinder> {
+    template <class Real>
+    static EllipticCylinder make(Vec3 C, Vec3 a, Vec3 b, Vec3 c, Real&) {
+        return {C, a, b, c};
+    }
+};
+template <>
+struct Generic<EllipticCone> {
+    template <class Real>
+    static EllipticCone make(Vec3 C, Vec3 a, Vec3 b, Vec3 c, Real&) {
+        return {C, C + c, a, b};
+    }
+};
+
+// The generic instance of the shape with index `index` in Shape.
+template <std::size_t I = 0, class Real>
+Shape generic_shape(int index, Vec3 C, Vec3 a, Vec3 b, Vec3 c, Real& real) {
+    if constexpr (I < std::variant_size_v<Shape>) {
+        if (index == int(I))
+            return Generic<std::variant_alternative_t<I, Shape>>::make(C, a, b, c, real);
+        return generic_shape<I + 1>(index, C, a, b, c, real);
+    } else {
+        throw std::invalid_argument("no shape has index " + std::to_string(index));
+    }
+}
 
 inline std::vector<GenericCase> generic_cases(int shape_index, int n, unsigned seed = 1) {
     std::mt19937_64 rng(seed);
@@ -24,20 +65,8 @@ inline std::vector<GenericCase> generic_cases(int shape_index, int n, unsigned s
     while (int(out.size()) < n) {
         Vec3 C = vec(2), a = vec(2), b = vec(2), c = vec(2);
         if (std::fabs(dot(a, cross(b, c))) < 0.25 * norm(a) * norm(b) * norm(c)) continue;
-        Shape s;
-        Vec3 middle;
-        switch (shape_index) {
-        case 0:
-            s = Cylinder{C, C + c, real(0.5, 2)}, middle = C + 0.5 * c;
-            break;
-        case 1:
-            s = EllipticCylinder{C, a, b, c}, middle = C + 0.5 * c;
-            break;
-        default:
-            s = EllipticCone{C, C + c, a, b}, middle = C + 0.5 * c;
-            break;
-        }
-        Vec3 from = vec(4);
+        Shape s = generic_shape(shape_index, C, a, b, c, real);
+        Vec3 middle = C + 0.5 * c, from = vec(4);
         out.push_back({s, {from, middle + vec(0.3) - from, Range::line}});
     }
     return out;
