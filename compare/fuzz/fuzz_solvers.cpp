@@ -4,6 +4,7 @@
 // belongs in tests/fuzz_regressions.jsonl once fixed.
 #include "linequad/case_io.hpp"
 #include "linequad/invariants.hpp"
+#include "shape_types.hpp"
 
 #include <cstdint>
 #include <cstdio>
@@ -32,6 +33,26 @@ double take(const std::uint8_t*& p, const std::uint8_t* end) {
     return x;
 }
 
+// A field's coordinates from the next bytes.
+void take_into(double& x, const std::uint8_t*& p, const std::uint8_t* end) {
+    x = take(p, end);
+}
+void take_into(Vec3& x, const std::uint8_t*& p, const std::uint8_t* end) {
+    x.x = take(p, end), x.y = take(p, end), x.z = take(p, end);
+}
+
+// The shape of kind `kind` (its index in Shape), its fields from the bytes in the case format's
+// order: every shape is fuzzed, the ones added later too.
+Shape take_shape(std::size_t kind, bool finite, const std::uint8_t*& p, const std::uint8_t* end) {
+    return with_shape_type(kind, [&](auto tag) -> Shape {
+        using S = typename decltype(tag)::type;
+        S s{};
+        detail::for_each_field<S>([&](const auto& f) { take_into(s.*f.member, p, end); });
+        s.finite = finite;
+        return s;
+    });
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -47,22 +68,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     Case c;
     c.id = "\"fuzz\"";
     bool finite = data[0] & 4;
-    Vec3 v[6];
-    for (Vec3& x : v)
-        x = {take(p, end), take(p, end), take(p, end)};
-    double r = take(p, end);
-    switch (data[0] % 3) {
-    case 0:
-        c.shape = Cylinder{v[0], v[1], r, finite};
-        break;
-    case 1:
-        c.shape = EllipticCylinder{v[0], v[1], v[2], v[3], finite};
-        break;
-    default:
-        c.shape = EllipticCone{v[0], v[1], v[2], v[3], finite};
-        break;
-    }
-    c.line = {v[4], v[5], Range((data[0] >> 3) % 3)};
+    c.shape = take_shape(data[0] % shape_count, finite, p, end);
+    Vec3 L0, v;
+    take_into(L0, p, end), take_into(v, p, end);
+    c.line = {L0, v, Range((data[0] >> 3) % 3)};
     check(c);
     return 0;
 }
