@@ -4,6 +4,8 @@
 #include "linequad/case_io.hpp"
 #include "linequad/registry.hpp"
 
+#include "numeric/format.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -12,6 +14,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <variant>
 
 namespace linequad::test {
 
@@ -29,6 +32,10 @@ inline std::string describe(const Result& r) {
 inline bool same_bits(double a, double b) {
     return std::memcmp(&a, &b, sizeof a) == 0;
 }
+
+// How many kinds of shape there are (the alternatives of Shape, indexed as the families index
+// them).
+inline constexpr int shape_kinds = int(std::variant_size_v<Shape>);
 
 // The solvers that must return exact answers where the arithmetic of a case is exact.
 inline const char* const every_solver[] = {"seed", "stable", "certified", "correct", "exact"};
@@ -121,8 +128,8 @@ inline void check_hit_test(const Result& got, const Result& all) {
     bool matched = false;
     for (int i = 0; i < all.count; ++i) {
         double t = all.hits[i].t;
-        double half_ulp = (std::nextafter(std::fabs(t), INFINITY) - std::fabs(t)) / 2;
-        bool near = h.t == t || std::fabs(h.t - t) <= h.bound + half_ulp; // equal infinities too
+        bool near = h.t == t || // equal infinities too
+                    std::fabs(h.t - t) <= h.bound + detail::Binary64::half_ulp(t);
         matched = matched || (h.kind == all.hits[i].kind && near);
     }
     CHECK(matched);

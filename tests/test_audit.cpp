@@ -54,7 +54,7 @@ audit::Options small(std::uint64_t cases) {
 TEST_CASE("families: every case is valid, reproducible alone, and exercises its family",
           "[audit]") {
     for (int f = 0; f < family_count; ++f)
-        for (int shape = 0; shape < 3; ++shape) {
+        for (int shape = 0; shape < shape_kinds; ++shape) {
             if (!family_applies(Family(f), shape)) continue;
             int hits = 0;
             for (std::uint64_t i = 0; i < 200; ++i) {
@@ -78,7 +78,7 @@ TEST_CASE("families: every case is valid, reproducible alone, and exercises its 
     // Exactly tangent lines (near_tangent, k = 0) are tangent for the oracle.
     int tangent = 0;
     for (std::uint64_t i = 0; i < 61 * 20; i += 61)
-        for (int shape = 0; shape < 3; ++shape) {
+        for (int shape = 0; shape < shape_kinds; ++shape) {
             Result r =
                 exact::intersect(make_case(Family::near_tangent, shape, Range::line, 3, i).shape,
                                  make_case(Family::near_tangent, shape, Range::line, 3, i).line);

@@ -24,7 +24,7 @@ TEST_CASE("batch: stable equals the scalar solver bit for bit, for every shape",
     INFO("AVX2 path: " << batch_uses_avx2());
     const double nan = std::numeric_limits<double>::quiet_NaN();
     std::size_t compared = 0;
-    for (int shape_kind = 0; shape_kind < 3; ++shape_kind)
+    for (int shape_kind = 0; shape_kind < shape_kinds; ++shape_kind)
         for (int f = 0; f < family_count; ++f) {
             if (!family_applies(Family(f), shape_kind)) continue;
             for (Range range : {Range::line, Range::ray, Range::segment}) {

@@ -294,7 +294,7 @@ TEST_CASE("correct equals the oracle bit for bit on every family, range and quer
     for (Family f :
          {Family::generic, Family::near_tangent, Family::axis_parallel, Family::apex,
           Family::generator, Family::degenerate_frame, Family::scale, Family::extent_edge})
-        for (int shape = 0; shape < 3; ++shape) {
+        for (int shape = 0; shape < shape_kinds; ++shape) {
             if (!family_applies(f, shape)) continue;
             for (Range range : {Range::line, Range::ray, Range::segment})
                 for (std::uint64_t i = 0; i < 60; ++i) {
@@ -327,7 +327,7 @@ TEST_CASE("correct's hit test: proven on its quick rung almost always, never bey
     std::mt19937_64 rng(5);
     long generic = 0, generic_quick = 0, checked = 0;
     for (int f = 0; f < family_count; ++f)
-        for (int shape = 0; shape < 3; ++shape) {
+        for (int shape = 0; shape < shape_kinds; ++shape) {
             if (!family_applies(Family(f), shape)) continue;
             for (Range range : {Range::line, Range::ray, Range::segment})
                 for (std::uint64_t i = 0; i < 80; ++i) {

@@ -26,7 +26,7 @@ TEST_CASE("fuzz regressions: every invariant holds on the inputs that once broke
 
 TEST_CASE("invariants: generated cases of every family keep them", "[fuzz]") {
     for (int f = 0; f < family_count; ++f)
-        for (int shape = 0; shape < 3; ++shape)
+        for (int shape = 0; shape < test::shape_kinds; ++shape)
             if (family_applies(Family(f), shape))
                 for (std::uint64_t i = 0; i < 40; ++i) {
                     Case c = make_case(Family(f), shape, Range(i % 3), 17, i);

@@ -214,7 +214,7 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
     int checked = 0;
     for (Family fam : {Family::generic, Family::near_tangent, Family::axis_parallel,
                        Family::degenerate_frame, Family::generator})
-        for (int shape = 0; shape < 3; ++shape) {
+        for (int shape = 0; shape < shape_kinds; ++shape) {
             if (!family_applies(fam, shape)) continue;
             for (int i = 0; i < 40; ++i) {
                 Case c = make_case(fam, shape, Range::line, 9, std::uint64_t(i));
@@ -285,7 +285,7 @@ TEST_CASE("the Newton rung, run as given at sizes 2^-600 to 2^600, answers only 
     const Query queries[] = {{Need::all, true}, {Need::nearest, false}};
     long answered = 0, generic_moderate = 0, generic_moderate_answered = 0;
     for (int f = 0; f < family_count; ++f)
-        for (int shape = 0; shape < 3; ++shape) {
+        for (int shape = 0; shape < shape_kinds; ++shape) {
             if (!family_applies(Family(f), shape)) continue;
             for (Range range : {Range::line, Range::ray, Range::segment})
                 for (int i = 0; i < 120; ++i) {

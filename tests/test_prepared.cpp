@@ -40,7 +40,7 @@ TEST_CASE("prepared shapes: every solver's answer bit for bit, on every family a
     const Query queries[] = {{Need::all, true}, {Need::nearest, false}, {Need::any, false}};
     long compared = 0;
     for (int f = 0; f < family_count; ++f)
-        for (int shape = 0; shape < 3; ++shape) {
+        for (int shape = 0; shape < shape_kinds; ++shape) {
             if (!family_applies(Family(f), shape)) continue;
             for (Range range : {Range::line, Range::ray, Range::segment})
                 for (std::uint64_t i = 0; i < 24; ++i) {
@@ -97,8 +97,9 @@ TEST_CASE("prepared shapes: bad shapes keep their error, named as the shape's ow
 }
 
 TEST_CASE("results are small values: no larger than their fields need") {
-    // Two hits (t, point, bound, kind, certainty), the interval, the error and four one-byte
-    // fields: 96 + 16 + 8 + 5 bytes, padded to 128 (168 before the core redesign).
+    // Two hits (t, point, bound, kind, certainty), the interval, the error's field and five
+    // one-byte fields (error code, count, on_surface, certainty, rung): 96 + 16 + 8 + 5 bytes,
+    // padded to 128 (168 before the core redesign).
     STATIC_REQUIRE(sizeof(Hit) == 48);
     STATIC_REQUIRE(sizeof(Result) == 128);
     STATIC_REQUIRE(std::is_trivially_copyable_v<Result>);

@@ -129,7 +129,7 @@ TEST_CASE("range: correct equals the oracle on random intervals, every family", 
     std::mt19937_64 rng(77);
     long compared = 0;
     for (int f = 0; f < family_count; ++f)
-        for (int shape = 0; shape < 3; ++shape) {
+        for (int shape = 0; shape < shape_kinds; ++shape) {
             if (!family_applies(Family(f), shape)) continue;
             for (std::uint64_t i = 0; i < 40; ++i) {
                 Case c = make_case(Family(f), shape, Range::line, 53, i);

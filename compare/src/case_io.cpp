@@ -108,6 +108,8 @@ bool read_shape(Reader& r, bool finite, Shape* out) {
     return ok;
 }
 
+constexpr Range shorthands[] = {Range::line, Range::ray, Range::segment};
+
 // The range: a shorthand ("range"), or its ends ("t0", "t1"; either may be left out, or be
 // "inf" or "-inf"), not both.
 bool read_range(Reader& r, const Value& obj, Interval* out) {
@@ -115,15 +117,9 @@ bool read_range(Reader& r, const Value& obj, Interval* out) {
     if (range && (t0 || t1)) return r.fail(t0 ? "t0" : "t1", "give either range or t0, t1");
     if (range) {
         if (range->type != Value::Type::string) return r.fail("range", "expected a string");
-        if (range->text == "line")
-            *out = Range::line;
-        else if (range->text == "ray")
-            *out = Range::ray;
-        else if (range->text == "segment")
-            *out = Range::segment;
-        else
-            return r.fail("range", "expected line, ray or segment");
-        return true;
+        for (Range x : shorthands)
+            if (range->text == range_name(x)) return *out = x, true;
+        return r.fail("range", "expected line, ray or segment");
     }
     Interval i;
     if (t0 && !r.number("t0", &i.t0)) return false;
@@ -131,9 +127,6 @@ bool read_range(Reader& r, const Value& obj, Interval* out) {
     *out = i;
     return true;
 }
-
-void put_field(std::string& out, const char* name, Vec3 p);
-void put_field(std::string& out, const char* name, double x);
 
 void put_field(std::string& out, const char* name, Vec3 p) {
     out += ",\"";
@@ -148,7 +141,7 @@ void put_field(std::string& out, const char* name, double x) {
 
 // The shorthand an interval is, if any.
 bool shorthand(Interval i, Range* r) {
-    for (Range x : {Range::line, Range::ray, Range::segment})
+    for (Range x : shorthands)
         if (i == Interval(x)) return *r = x, true;
     return false;
 }

@@ -38,9 +38,6 @@ inline Vec3 high(const Vec3& a) {
 inline Vec3 high(const Vec3TwoTerm& a) {
     return a.hi;
 }
-inline Vec3 magnitudes(Vec3 a) {
-    return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)};
-}
 
 // (a x b)_k = a_i b_j - a_j b_i with (i, j) = (k + 1, k + 2) mod 3.
 template <class P, class Q>
@@ -147,20 +144,11 @@ inline BoundedDD quick(const QuickBounded& x) {
 inline QuickBounded quick(const BoundedDD& x) {
     return {x.hi, bound_of_hi(x)};
 }
-template <class T>
-Vec3T<QuickBounded> quick_exact(Vec3T<T> a) {
-    return {{a.x, 0}, {a.y, 0}, {a.z, 0}};
-}
-// p - q, exactly, as its rounded value with the bound |lo|.
-inline Vec3T<QuickBounded> quick_difference(Vec3 p, Vec3 q) {
-    Vec3TwoTerm d = difference_exact(p, q);
-    return {{d.hi.x, std::fabs(d.lo.x)}, {d.hi.y, std::fabs(d.lo.y)}, {d.hi.z, std::fabs(d.lo.z)}};
-}
 // The elliptic shapes' quick form, from the precise rows (the same values, prepared or not):
 // U0 = adj(M) w, U1 = adj(M) v, Z = U_z with det's sign folded in; abs_det = |det|.
 inline LineForm quick_elliptic_form(const AdjugateRowsDD& rows, const Vec3T<QuickBounded>& w,
                                     Vec3 v, bool negative_det, QuickBounded& abs_det) {
-    Vec3T<QuickBounded> n[3], V = quick_exact(v);
+    Vec3T<QuickBounded> n[3], V = exact<QuickBounded>(v);
     for (int i = 0; i < 3; ++i)
         n[i] = {quick(rows.n[i][0]), quick(rows.n[i][1]), quick(rows.n[i][2])};
     QuickBounded det = quick(rows.det);

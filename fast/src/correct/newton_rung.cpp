@@ -216,11 +216,16 @@ LINEQUAD_INLINE bool add_hit(const Enclosure& en, const Unit& unit, const Line& 
 
 namespace {
 
+// The roots' double estimates, from the quadratic's coefficients in the high parts: the stable
+// pair q / A, C0 / q (in that order) when the discriminant is positive; otherwise the vertex
+// -B / A, where no_root_proven() looks.
+struct Estimates {
+    bool real;
+    double vertex;
+    double root[2];
+};
 template <int SigmaZ>
-bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
-    Leading A = leading<SigmaZ>(f);
-    if (!(std::fabs(A.A) > A.e)) return false; // nearly parallel to the axis or to a generator
-    // The estimates: the quadratic's coefficients from the high parts, the stable root pair.
+LINEQUAD_INLINE Estimates estimates(const LineForm& f, const Leading& A) {
     double B = 0, C0 = -f.K.hi;
 #pragma GCC unroll 3
     for (int k = 0; k < used_components<SigmaZ>; ++k) {
@@ -228,10 +233,19 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         C0 += sigma<SigmaZ>(k) * (f.U0[k].hi * f.U0[k].hi);
     }
     double D = difference_of_products(B, B, A.A, C0);
-    if (!(D > 0))
-        return no_root_proven(A, -B / A.A, [&](double c) { return local_at<SigmaZ>(f, c); });
+    if (!(D > 0)) return {false, -B / A.A, {0, 0}};
     double q = -(B + std::copysign(std::sqrt(D), B));
-    double estimate[2] = {q / A.A, C0 / q};
+    return {true, 0, {q / A.A, C0 / q}};
+}
+
+template <int SigmaZ>
+bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
+    Leading A = leading<SigmaZ>(f);
+    if (!(std::fabs(A.A) > A.e)) return false; // nearly parallel to the axis or to a generator
+    Estimates est = estimates<SigmaZ>(f, A);
+    if (!est.real)
+        return no_root_proven(A, est.vertex, [&](double c) { return local_at<SigmaZ>(f, c); });
+    double estimate[2] = {est.root[0], est.root[1]};
     if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
     // Both roots at once when both are needed; otherwise the second only if the first is not kept.
     Local local[2];
@@ -287,19 +301,11 @@ template <int SigmaZ>
 bool hit_test(const LineForm& f, const Unit& unit, Result& r) {
     Leading A = leading<SigmaZ>(f);
     if (!(std::fabs(A.A) > A.e)) return false;
-    double B = 0, C0 = -f.K.hi;
-#pragma GCC unroll 3
-    for (int k = 0; k < used_components<SigmaZ>; ++k) {
-        B += sigma<SigmaZ>(k) * (f.U0[k].hi * f.U1[k].hi);
-        C0 += sigma<SigmaZ>(k) * (f.U0[k].hi * f.U0[k].hi);
-    }
     auto local = [&](double c) { return quick_local_at<SigmaZ>(f, c); };
-    double D = difference_of_products(B, B, A.A, C0);
-    if (!(D > 0)) return no_root_proven(A, -B / A.A, local); // r has no hit
-    double q = -(B + std::copysign(std::sqrt(D), B));
-    double estimate[2] = {q / A.A, C0 / q};
+    Estimates est = estimates<SigmaZ>(f, A);
+    if (!est.real) return no_root_proven(A, est.vertex, local); // r has no hit
     bool outside[2] = {false, false}; // the smaller, the larger root proven outside
-    for (double c : estimate) {
+    for (double c : est.root) {
         std::optional<Enclosure> en = root_near(local(c), A, c);
         if (!en) continue;
         int inside = kept(f, unit, *en);

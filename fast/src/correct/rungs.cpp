@@ -73,22 +73,17 @@ bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query 
 
 namespace {
 
-// Doubles in order, as integers: adjacent doubles have adjacent keys (+0 and -0 share 0).
+// Doubles in order, as integers (Binary64::ordinal): adjacent doubles have adjacent keys.
 using Key = Binary64::Ordinal;
-Key key_of(double x) {
-    return Binary64::ordinal(x);
-}
-double from_key(Key k) {
-    return Binary64::from_ordinal(k);
-}
-const Key key_max = key_of(dbl_max);
+const Key key_max = Binary64::ordinal(dbl_max);
 
 // The midpoint between the doubles of keys k and k + 1. Beyond the largest double, the next
 // "double" is 2^1024 (IEEE rounds there to infinity): the midpoint is DBL_MAX + 2^970.
 BigFloat midpoint_after(Key k) {
     if (k >= key_max) return BigFloat(dbl_max) + BigFloat::pow2(970);
     if (k < -key_max) return -(BigFloat(dbl_max) + BigFloat::pow2(970));
-    return (BigFloat(from_key(k)) + BigFloat(from_key(k + 1))).scaled(-1);
+    return (BigFloat(Binary64::from_ordinal(k)) + BigFloat(Binary64::from_ordinal(k + 1)))
+        .scaled(-1);
 }
 
 // A first guess at (X + Y sqrt(D)) / Den from the leading bits, without cancellation: a few
@@ -138,10 +133,10 @@ class ExactRounder {
     double run() const {
         int s = sden_ * exact_form::sign_surd(X_, sy_, Y2D_);
         if (s == 0) return 0.0;
-        Key k = search(key_of(guess()));
+        Key k = search(Binary64::ordinal(guess()));
         if (k > key_max) return INFINITY;
         if (k < -key_max) return -INFINITY;
-        double x = from_key(k);
+        double x = Binary64::from_ordinal(k);
         return x == 0 ? std::copysign(0.0, s) : x;
     }
 
@@ -218,7 +213,7 @@ class ExactRounder {
         if (k == -key_max - 1) return k; // below -DBL_MAX's cell: -infinity
         if (f != 0) return k;
         if (k == key_max) return k + 1; // the midpoint to 2^1024 rounds to infinity
-        return (Binary64::bits(from_key(k)) & 1) == 0 ? k : k + 1;
+        return (Binary64::bits(Binary64::from_ordinal(k)) & 1) == 0 ? k : k + 1;
     }
 };
 

@@ -7,6 +7,7 @@
 // fragile scenes).
 #pragma once
 
+#include "numeric/eft.hpp"
 #include "numeric/format.hpp"
 
 #include <cmath>
@@ -150,5 +151,25 @@ inline QuickBounded sqrt(QuickBounded a) {
     double e = denom > 0 ? ea / denom : std::sqrt(ea); // |sqrt(x) - sqrt(y)| <= sqrt(|x - y|)
     return {r, e + F::u * r + F::underflow_floor};
 }
+
+namespace detail {
+
+// Vectors of either bounded type: exact doubles, and an exact two-term value (hi + lo) as its
+// rounded part hi with the bound |lo|.
+template <class BT>
+Vec3T<BT> exact(Vec3 a) {
+    return {BT::exact(a.x), BT::exact(a.y), BT::exact(a.z)};
+}
+template <class BT>
+Vec3T<BT> within_low_part(const Vec3TwoTerm& d) {
+    return {{d.hi.x, std::fabs(d.lo.x)}, {d.hi.y, std::fabs(d.lo.y)}, {d.hi.z, std::fabs(d.lo.z)}};
+}
+// p - q, computed exactly (difference_exact), as its rounded value with the bound |lo|.
+template <class BT>
+Vec3T<BT> difference_bounded(Vec3 p, Vec3 q) {
+    return within_low_part<BT>(difference_exact(p, q));
+}
+
+} // namespace detail
 
 } // namespace linequad

@@ -30,7 +30,6 @@ struct Format<double> {
     static constexpr int precision = 53; // significand bits, the hidden one included
     static constexpr double u = 0x1p-53; // unit roundoff: |fl(x) - x| <= u |x| in the normal range
     static constexpr double denorm_min = 0x1p-1074; // the spacing of the subnormals
-    static constexpr double min_normal = 0x1p-1022;
     static constexpr double max = std::numeric_limits<double>::max();
     static constexpr double inf = std::numeric_limits<double>::infinity();
 
@@ -61,12 +60,9 @@ struct Format<double> {
         std::memcpy(&x, &b, sizeof x);
         return x;
     }
-    static constexpr Bits sign_mask = Bits(1) << 63;
     static constexpr Bits exponent_mask = Bits(0x7ff) << 52;
     static constexpr Bits significand_mask = (Bits(1) << 52) - 1;
 
-    // |x|'s bits: an unsigned integer increasing with |x|.
-    LINEQUAD_INLINE static Bits magnitude_bits(double x) { return bits(x) & ~sign_mask; }
     // 2^e for a normal exponent e (-1022 <= e <= 1023), built from its bits.
     LINEQUAD_INLINE static double pow2(int e) { return from_bits(Bits(e + 1023) << 52); }
     // The binary exponent of x (|x| in [2^e, 2^(e+1))), read from its bits; for subnormals

@@ -6,6 +6,8 @@
 
 #include "linequad/vec3.hpp"
 
+#include <cmath>
+
 namespace linequad {
 
 template <class T>
@@ -27,6 +29,26 @@ LINEQUAD_INLINE T dot(const Vec3T<T>& a, const Vec3T<T>& b) {
 template <class T>
 LINEQUAD_INLINE Vec3T<T> cross(const Vec3T<T>& a, const Vec3T<T>& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// Componentwise |a|.
+template <class T>
+LINEQUAD_INLINE Vec3T<T> magnitudes(const Vec3T<T>& a) {
+    using std::fabs;
+    return {fabs(a.x), fabs(a.y), fabs(a.z)};
+}
+// |a_i||b_j| + |a_j||b_i| for each component k of a x b: it bounds |(a x b)_k|, and the
+// rounding of computing (a x b)_k is a few u of it.
+template <class T>
+LINEQUAD_INLINE Vec3T<T> cross_magnitudes(const Vec3T<T>& a, const Vec3T<T>& b) {
+    Vec3T<T> p = magnitudes(a), q = magnitudes(b);
+    return {p.y * q.z + p.z * q.y, p.z * q.x + p.x * q.z, p.x * q.y + p.y * q.x};
+}
+// |a| . cross_magnitudes(b, c): the same for the triple product a . (b x c).
+template <class T>
+LINEQUAD_INLINE T triple_product_magnitude(const Vec3T<T>& a, const Vec3T<T>& b,
+                                           const Vec3T<T>& c) {
+    return dot(magnitudes(a), cross_magnitudes(b, c));
 }
 
 inline Vec3 ldexp(Vec3 a, int e) {

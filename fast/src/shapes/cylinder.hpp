@@ -334,23 +334,18 @@ struct ShapeTraits<Cylinder> {
                 return s.H - s.C;
         }();
         Vec3 w = l.L0 - s.C, v = l.v;
-        Vec3 ah{std::fabs(h.x), std::fabs(h.y), std::fabs(h.z)};
-        Vec3 aw{std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)};
-        Vec3 av{std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)};
         Vec3 U0 = cross(w, h), U1 = cross(v, h);
-        auto magnitudes = [](Vec3 a, Vec3 b) { // |a_i||b_j| + |a_j||b_i|, for each k
-            return Vec3{a.y * b.z + a.z * b.y, a.z * b.x + a.x * b.z, a.x * b.y + a.y * b.x};
-        };
-        Vec3 m0 = magnitudes(aw, ah), m1 = magnitudes(av, ah);
+        Vec3 m0 = cross_magnitudes(w, h), m1 = cross_magnitudes(v, h);
         double hh = dot(h, h), K = (s.r * s.r) * hh;
         auto bounded = [](double value, double bound) {
             return BoundedDD(value, 0, bound + F::underflow_floor);
         };
         LineForm f;
-        f.U0[0] = bounded(U0.x, 5 * F::u * m0.x), f.U0[1] = bounded(U0.y, 5 * F::u * m0.y);
-        f.U0[2] = bounded(U0.z, 5 * F::u * m0.z);
-        f.U1[0] = bounded(U1.x, 4 * F::u * m1.x), f.U1[1] = bounded(U1.y, 4 * F::u * m1.y);
-        f.U1[2] = bounded(U1.z, 4 * F::u * m1.z);
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; ++k) {
+            f.U0[k] = bounded(U0[k], 5 * F::u * m0[k]);
+            f.U1[k] = bounded(U1[k], 4 * F::u * m1[k]);
+        }
         f.sigma_z = 1;
         f.K = bounded(K, 8 * F::u * K);
         cylinder_axial(f, w, h, v);

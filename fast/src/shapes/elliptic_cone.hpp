@@ -100,9 +100,7 @@ struct ConeStable {
         Cc = squares_difference(wc.x, wc.y, wc.z);
         Vec3T<T> u = cross_accurate(vl, wc);
         D = squares_difference(u.x, u.y, u.z);
-        T size = fabs(u.x) * (fabs(vl.y * wc.z) + fabs(vl.z * wc.y)) +
-                 fabs(u.y) * (fabs(vl.z * wc.x) + fabs(vl.x * wc.z)) +
-                 fabs(u.z) * (fabs(vl.x * wc.y) + fabs(vl.y * wc.x));
+        T size = triple_product_magnitude(u, vl, wc);
         near_tangent = fabs(D) <= T(0.125) * size; // and where u, and D with it, came out 0
         if constexpr (std::is_same_v<T, double>)
             if (near_tangent) D = accurate_discriminant(wcw);
@@ -157,13 +155,7 @@ struct ShapeTraits<EllipticCone> {
     static SeedForm seed_form(const Src& src, const Line& l) {
         const EllipticCone& s = src.shape;
         Vec3 w, v; // H' = 0
-        if constexpr (Src::prepared) {
-            to_seed_frame(src.facts.seed_inverse, l, w, v);
-        } else {
-            double inverse[16];
-            seed_inverse_frame(s.H, s.a, s.b, s.c(), inverse);
-            to_seed_frame(inverse, l, w, v);
-        }
+        to_seed_frame(src, s.H, s.a, s.b, s.c(), l, w, v);
         const Vec3 h{0, 0, -1};
         double vh = dot(v, h), wh = dot(w, h);
         double a = dot(v, v) - 2 * vh * vh;
@@ -299,7 +291,7 @@ struct ShapeTraits<EllipticCone> {
         using Q = QuickBounded;
         const EllipticCone& s = src.shape;
         Q d; // |det|
-        LineForm f = quick_elliptic_form(adjugate_rows(src), quick_difference(l.L0, s.H), l.v,
+        LineForm f = quick_elliptic_form(adjugate_rows(src), difference_bounded<Q>(l.L0, s.H), l.v,
                                          orientation < 0, d);
         f.sigma_z = -1;
         f.K = BoundedDD(0);

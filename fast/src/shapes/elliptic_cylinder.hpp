@@ -133,13 +133,7 @@ struct ShapeTraits<EllipticCylinder> {
     static SeedForm seed_form(const Src& src, const Line& l) {
         const EllipticCylinder& s = src.shape;
         Vec3 w, v; // C' = 0
-        if constexpr (Src::prepared) {
-            to_seed_frame(src.facts.seed_inverse, l, w, v);
-        } else {
-            double inverse[16];
-            seed_inverse_frame(s.C, s.a, s.b, s.c, inverse);
-            to_seed_frame(inverse, l, w, v);
-        }
+        to_seed_frame(src, s.C, s.a, s.b, s.c, l, w, v);
         const Vec3 h{0, 0, 1};
         double vh = dot(v, h), wh = dot(w, h);
         double a = dot(v, v) - vh * vh;
@@ -259,7 +253,7 @@ struct ShapeTraits<EllipticCylinder> {
         using Q = QuickBounded;
         const EllipticCylinder& s = src.shape;
         Q d; // |det|
-        LineForm f = quick_elliptic_form(adjugate_rows(src), quick_difference(l.L0, s.C), l.v,
+        LineForm f = quick_elliptic_form(adjugate_rows(src), difference_bounded<Q>(l.L0, s.C), l.v,
                                          orientation < 0, d);
         f.sigma_z = 0;
         f.K = quick(d * d);

@@ -1,7 +1,7 @@
 // The exact classification of a line against any shape, as one template over the number type.
-// Each shape's derivation (shapes/*.hpp, exact_form()) turns it into one quadratic in the line's
-// parameter whose coefficients are polynomials in the double inputs, plus the axial coordinate
-// that the extent test needs. Nothing here divides, takes a root or rounds.
+// Each shape's derivation (shapes/*.hpp, exact_quadratic()) turns it into one quadratic in the
+// line's parameter whose coefficients are polynomials in the double inputs, plus the axial
+// coordinate that the extent test needs. Nothing here divides, takes a root or rounds.
 //
 // The number type NT needs NT(double) (exact), +, -, * and a sign(const NT&) found by
 // argument-dependent lookup. Three instantiate it:

@@ -13,17 +13,11 @@ namespace linequad {
 
 namespace {
 
-// |a| . (|b| x |c|): Shewchuk's bound on the rounding error of a . (b x c) is (7u + 56u^2)
-// times it; 2^-49 (16u) covers that and, for the cone, the rounding of c = H - C (at most
-// u (|H| + |C|) per component, accounted for by passing |H| + |C| for |c|).
-double permanent3(Vec3 a, Vec3 b, Vec3 c) {
-    return std::fabs(a.x) * (std::fabs(b.y * c.z) + std::fabs(b.z * c.y)) +
-           std::fabs(a.y) * (std::fabs(b.z * c.x) + std::fabs(b.x * c.z)) +
-           std::fabs(a.z) * (std::fabs(b.x * c.y) + std::fabs(b.y * c.x));
-}
-
-// The sign of a . (b x c) when its floating-point value is certain, else 0. Products of two
-// may underflow even when the determinant is large: b.y c.x = 2^-1452 becomes 0, and a.z =
+// The sign of a . (b x c) when its floating-point value is certain, else 0. `permanent` is
+// triple_product_magnitude(a, b, c): Shewchuk's bound on the rounding error of a . (b x c) is
+// (7u + 56u^2) times it; 2^-49 (16u) covers that and, for the cone, the rounding of c = H - C
+// (at most u (|H| + |C|) per component, accounted for by passing |H| + |C| for |c|). Products of
+// two may underflow even when the determinant is large: b.y c.x = 2^-1452 becomes 0, and a.z =
 // 2^954 then loses 2^-498 (nor does the permanent see it). Each underflow costs at most
 // eta = 2^-1075 before the multiplication by a component of a, so (2 |a|_1 + 3) eta bounds
 // what underflow can hide, in the value and in the permanent; (|a|_1 + 2) 2^-1072 covers it.
@@ -71,7 +65,8 @@ int cone_det_sign_exact(Vec3 a, Vec3 b, Vec3 C, Vec3 H) {
     Vec3 habs{std::fabs(H.x) + std::fabs(C.x), std::fabs(H.y) + std::fabs(C.y),
               std::fabs(H.z) + std::fabs(C.z)};
     Vec3 c = H - C;
-    if (int s = filtered_sign(dot(a, cross(b, c)), permanent3(a, b, habs), a)) return s;
+    if (int s = filtered_sign(dot(a, cross(b, c)), triple_product_magnitude(a, b, habs), a))
+        return s;
     if (a == Vec3{} || b == Vec3{}) return 0;
     if (!narrow({a}) || !narrow({b}) || !narrow({C, H}))
         return sign(dot(big(a), cross(big(b), big(H) - big(C))));
@@ -85,7 +80,7 @@ int cone_det_sign_exact(Vec3 a, Vec3 b, Vec3 C, Vec3 H) {
 }
 
 int det3_sign_exact(Vec3 a, Vec3 b, Vec3 c) {
-    if (int s = filtered_sign(dot(a, cross(b, c)), permanent3(a, b, c), a)) return s;
+    if (int s = filtered_sign(dot(a, cross(b, c)), triple_product_magnitude(a, b, c), a)) return s;
     if (!narrow({a}) || !narrow({b}) || !narrow({c}))
         return sign(dot(big(a), cross(big(b), big(c))));
     a = unit_scaled(a, max_abs(a)), b = unit_scaled(b, max_abs(b)), c = unit_scaled(c, max_abs(c));

@@ -15,4 +15,18 @@ void seed_inverse_frame(Vec3 origin, Vec3 a, Vec3 b, Vec3 c, double (&inverse)[1
 // homogeneous coordinate 0 (erratum 2).
 void to_seed_frame(const double (&inverse)[16], const Line& l, Vec3& w, Vec3& v);
 
+// The same for the frame (origin, a, b, c) of a shape as a solver sees it: with the inverse
+// prepare() kept, or with one built now.
+template <class Src>
+void to_seed_frame(const Src& src, Vec3 origin, Vec3 a, Vec3 b, Vec3 c, const Line& l, Vec3& w,
+                   Vec3& v) {
+    if constexpr (Src::prepared) {
+        to_seed_frame(src.facts.seed_inverse, l, w, v);
+    } else {
+        double inverse[16];
+        seed_inverse_frame(origin, a, b, c, inverse);
+        to_seed_frame(inverse, l, w, v);
+    }
+}
+
 } // namespace linequad::detail

@@ -100,20 +100,8 @@ BT moved_origin_bounded(double hi, double lo, double tc, double v) {
 template <class BT>
 using BoundedVec3 = Vec3T<BT>;
 template <class BT>
-BoundedVec3<BT> exact(Vec3 a) {
-    return {BT::exact(a.x), BT::exact(a.y), BT::exact(a.z)};
-}
-// An exact difference p - q, as hi with the bound |lo|.
-template <class BT>
-BoundedVec3<BT> difference_bounded(Vec3 p, Vec3 q) {
-    Vec3TwoTerm d = difference_exact(p, q);
-    return {{d.hi.x, std::fabs(d.lo.x)}, {d.hi.y, std::fabs(d.lo.y)}, {d.hi.z, std::fabs(d.lo.z)}};
-}
-template <class BT>
 BoundedVec3<BT> moved_origin_bounded(const Vec3TwoTerm& w, double tc, Vec3 v) {
-    if (tc == 0) // not moved: w = hi + lo exactly, so hi is within |lo|
-        return {
-            {w.hi.x, std::fabs(w.lo.x)}, {w.hi.y, std::fabs(w.lo.y)}, {w.hi.z, std::fabs(w.lo.z)}};
+    if (tc == 0) return within_low_part<BT>(w); // not moved: hi is within |lo|
     return {moved_origin_bounded<BT>(w.hi.x, w.lo.x, tc, v.x),
             moved_origin_bounded<BT>(w.hi.y, w.lo.y, tc, v.y),
             moved_origin_bounded<BT>(w.hi.z, w.lo.z, tc, v.z)};

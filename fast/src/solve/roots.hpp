@@ -55,6 +55,17 @@ inline Roots textbook_roots(double a, double b, double c) {
     return r;
 }
 
+// A s^2 + 2 B s + Cc = 0 where D > 0: the stable pair, smaller first, for any lane type (the
+// batch kernels' lanes, and stable_roots' two roots).
+template <class T>
+void stable_pair(T A, T B, T Cc, T D, T s[2]) {
+    using std::copysign;
+    using std::sqrt;
+    T q = -(B + copysign(sqrt(D), B));
+    T t0 = q / A, t1 = Cc / q;
+    s[0] = lane_min(t0, t1), s[1] = lane_max(t0, t1);
+}
+
 // A t^2 + 2 B t + C = 0 (half-b form) solved without cancellation: the discriminant D = B^2 - AC
 // is supplied by the caller in a geometric form that is accurate near tangency, and the roots
 // are the stable pair q / A, C / q with q = -(B + sign(B) sqrt(D)).
@@ -72,22 +83,9 @@ inline Roots stable_roots(double A, double B, double C, double D) {
         r.kind = Roots::tangent, r.t[0] = -B / A;
         return r;
     }
-    double q = -(B + std::copysign(std::sqrt(D), B));
-    double t0 = q / A, t1 = C / q;
     r.kind = Roots::two;
-    r.t[0] = std::min(t0, t1), r.t[1] = std::max(t0, t1);
+    stable_pair(A, B, C, D, r.t);
     return r;
-}
-
-// A s^2 + 2 B s + Cc = 0 where D > 0: the stable pair, smaller first (stable_roots' two roots),
-// for any lane type.
-template <class T>
-void stable_pair(T A, T B, T Cc, T D, T s[2]) {
-    using std::copysign;
-    using std::sqrt;
-    T q = -(B + copysign(sqrt(D), B));
-    T t0 = q / A, t1 = Cc / q;
-    s[0] = lane_min(t0, t1), s[1] = lane_max(t0, t1);
 }
 
 // Roots t = tc + s of a quadratic whose origin was moved by tc. The root of larger magnitude
