@@ -10,13 +10,34 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <initializer_list>
 #include <random>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 #include <variant>
 
 namespace linequad::test {
+
+// The whole of a file ("" if it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// An empty directory of the test's own, under the system's temporary directory.
+inline std::filesystem::path scratch(const std::string& name) {
+    namespace fs = std::filesystem;
+    fs::path p =
+        fs::temp_directory_path() / ("linequad_test_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+}
 
 inline Result run(const std::string& solver, const Shape& s, const Line& l, Query q = {}) {
     const Solver* f = find_solver(solver);

@@ -18,14 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-    fs::path p =
-        fs::temp_directory_path() / ("linequad_test_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
-}
-
 // The parts of a row that must merge exactly (timings and the choice among equally bad worst
 // cases may differ).
 void require_same(const audit::Row& a, const audit::Row& b) {
@@ -102,17 +94,20 @@ TEST_CASE("audit: shards merge into exactly the unsharded report", "[audit]") {
         audit::Report back;
         std::string why;
         REQUIRE(audit::read_json((dir / "report.json").string(), &back, &why));
-        if (k == 0)
+        if (k == 0) {
             merged = back;
-        else
+        } else {
+            REQUIRE(audit::unmergeable(merged, back).empty());
             merged.merge(back);
+        }
         fs::remove_all(dir);
     }
     REQUIRE(merged.rows.size() == full.rows.size());
     for (const auto& [key, row] : full.rows) {
-        INFO(key);
+        INFO(key.name());
         require_same(merged.rows.at(key), row);
     }
+    CHECK(merged.complete());
     for (const auto& [key, points] : full.curves)
         for (const auto& [k, p] : points) {
             CHECK(merged.curves.at(key).at(k).cases == p.cases);
@@ -138,7 +133,7 @@ TEST_CASE("audit: grading a results file gives the in-process verdict", "[audit]
     g.results_file = (dir / "results.jsonl").string();
     audit::Report graded = audit::run(g);
     for (const auto& [key, row] : direct.rows) {
-        INFO(key);
+        INFO(key.name());
         REQUIRE(graded.rows.count(key));
         require_same(graded.rows.at(key), row);
     }
@@ -152,9 +147,9 @@ TEST_CASE("audit: the batch point is graded on every case as stable is", "[audit
     REQUIRE(r.solvers == std::vector<std::string>{"stable", "batch"});
     int rows = 0;
     for (const auto& [key, row] : r.rows) {
-        if (key.size() < 6 || key.compare(key.size() - 6, 6, "/batch") != 0) continue;
-        std::string stable = key.substr(0, key.size() - 6) + "/stable";
-        INFO(key);
+        if (key.solver != audit::batch_name) continue;
+        audit::RowKey stable{key.family, key.shape, "stable"};
+        INFO(key.name());
         REQUIRE(r.rows.count(stable));
         // Bit for bit the same results, so the same grades; and a time for every chunk.
         require_same(row, r.rows.at(stable));
@@ -168,20 +163,22 @@ TEST_CASE("audit: the batch point is graded on every case as stable is", "[audit
     CHECK(rows == int(r.rows.size() / 2));
 }
 
-TEST_CASE("audit: unanswered cases count as refused and malformed files are named", "[audit]") {
+TEST_CASE("audit: unanswered and malformed answers count as refused, malformed cases are named",
+          "[audit]") {
     fs::path dir = scratch("malformed");
     audit::Options o = small(5);
     o.families = {Family::generic};
     {
         std::ofstream cases(dir / "cases.jsonl"), results(dir / "results.jsonl");
-        bool first = true;
+        int n = 0;
         audit::for_each_case(o, [&](const Case& c) {
             cases << format_case(c) << "\n";
-            if (first)
+            if (n == 0)
                 results << format_result(c.id, "mine", run("stable", c.shape, c.line)) << "\n";
-            first = false;
+            if (n == 1) // names its case, but its hit has no t: graded as refused
+                results << "{\"id\":" << c.id << ",\"solver\":\"mine\",\"hits\":[{}]}\n";
+            ++n;
         });
-        results << "{not json\n";
     }
     o.cases_file = (dir / "cases.jsonl").string();
     o.results_file = (dir / "results.jsonl").string();
@@ -213,11 +210,12 @@ TEST_CASE("audit: a stopped run keeps what it measured", "[audit]") {
     });
     audit::Report r = audit::run(o);
     stopper.join();
-    CHECK_FALSE(r.complete);
+    CHECK(r.status == audit::Status::stopped);
+    CHECK_FALSE(r.complete());
     audit::Report saved;
     std::string why;
     REQUIRE(audit::read_json((dir / "report.json").string(), &saved, &why));
-    CHECK_FALSE(saved.complete);
+    CHECK(saved.status == audit::Status::stopped);
     CHECK(saved.total("stable").cases > 0);
     CHECK(fs::exists(dir / "report.md"));
     fs::remove_all(dir);

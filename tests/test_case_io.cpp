@@ -105,7 +105,7 @@ TEST_CASE("case format: malformed lines name the field", "[case_io]") {
          "field \"finite\""},
         {R"({"id":1,"shape":"cylinder",)", "not valid JSON"},
         {R"([1,2,3])", "not a JSON object"},
-        {R"({"id":1,"id":2})", "duplicate field"},
+        {R"({"id":1,"id":2})", "the field \"id\" appears twice"},
         {R"({"id":1,"shape":"cylinder","C":[0,0,"0x1p+"],"H":[0,0,1],"r":1,"L0":[0,0,0],"v":[1,0,0]})",
          "field \"C\""},
     };

@@ -1,144 +1,27 @@
-// report.json (exact, mergeable), report.md (for people) and the gnuplot figures.
+// report.md (for people), the gnuplot figures, and the output directory that holds them beside
+// report.json.
 #include "linequad/audit.hpp"
 
-#include "linequad/json.hpp"
+#include "jsonl.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
 #include <sstream>
+#include <stdexcept>
+#include <sys/file.h>
+#include <unistd.h>
 
 namespace linequad::audit {
 
 namespace {
 
-using json::Value;
-
 std::string num(std::uint64_t x) {
     return std::to_string(x);
-}
-std::string real(double x) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.17g", x);
-    return b;
-}
-template <class Array>
-std::string array(const Array& a) {
-    // Histograms are mostly zeros: written as [index, count] pairs.
-    std::string s = "[";
-    bool first = true;
-    for (std::size_t i = 0; i < a.size(); ++i)
-        if (a[i]) {
-            s += (first ? "[" : ",[") + num(i) + "," + num(a[i]) + "]";
-            first = false;
-        }
-    return s + "]";
-}
-std::string str(const std::string& x) {
-    std::string s;
-    json::write_string(s, x);
-    return s;
-}
-
-std::string row_json(const Row& r) {
-    std::string s = "{\"cases\":" + num(r.cases) + ",\"graded_roots\":" + num(r.graded_roots) +
-                    ",\"graded_points\":" + num(r.graded_coords) +
-                    ",\"cases_mismatched\":" + num(r.cases_mismatched) + ",\"mismatches\":{";
-    for (int m = 0; m < mismatch_kinds; ++m)
-        s += (m ? ",\"" : "\"") + std::string(mismatch_name(m)) + "\":" + num(r.mismatches[m]);
-    s += "},\"t_ulps\":{\"max\":" + num(r.t_max) +
-         ",\"mean\":" + real(r.graded_roots ? r.t_sum / double(r.graded_roots) : 0) +
-         ",\"p50\":" + real(r.t_error.quantile(0.5)) +
-         ",\"p99\":" + real(r.t_error.quantile(0.99)) +
-         ",\"p999\":" + real(r.t_error.quantile(0.999)) +
-         ",\"mean_bits\":" + real(r.graded_roots ? r.t_bits_sum / double(r.graded_roots) : 0) +
-         ",\"sum\":" + real(r.t_sum) + ",\"bits_sum\":" + real(r.t_bits_sum) +
-         ",\"histogram\":" + array(r.t_error.count) + "}";
-    s += ",\"point_ulps\":{\"max\":" + num(r.p_max) + ",\"p99\":" + real(r.p_error.quantile(0.99)) +
-         ",\"histogram\":" + array(r.p_error.count) + "}";
-    s += ",\"ns_per_solve\":{\"median\":" + real(r.ns.median()) +
-         ",\"histogram\":" + array(r.ns.count) + "}";
-    s += ",\"certified\":{\"uncertain\":" + num(r.uncertain) +
-         ",\"certain_wrong\":" + num(r.certain_wrong) +
-         ",\"bounded_roots\":" + num(r.bounded_roots) +
-         ",\"bound_violations\":" + num(r.bound_violations) +
-         ",\"tightness_p50\":" + real(r.tightness.quantile(0.5)) +
-         ",\"bound_below_half_ulp\":" + num(r.bound_below_half_ulp) +
-         ",\"tightness\":" + array(r.tightness.count) + "}";
-    s += ",\"rungs\":{\"newton\":" + num(r.rungs[std::size_t(Rung::newton)]) +
-         ",\"double_double\":" + num(r.rungs[std::size_t(Rung::double_double)]) +
-         ",\"exact\":" + num(r.rungs[std::size_t(Rung::exact)]) + "}";
-    s += ",\"worst\":[";
-    for (std::size_t i = 0; i < r.worst.size(); ++i) {
-        const Worst& w = r.worst[i];
-        s += (i ? ",{" : "{") + std::string("\"mismatch\":") + (w.mismatch ? "true" : "false") +
-             ",\"t_ulps\":" + num(w.ulps) + ",\"case\":" + str(w.case_line) +
-             ",\"solver\":" + str(w.solver_line) + ",\"oracle\":" + str(w.oracle_line) + "}";
-    }
-    return s + "]}";
-}
-
-template <class Array>
-void read_array(const Value* v, Array& a) {
-    if (!v) return;
-    for (const Value& pair : v->items)
-        if (pair.items.size() == 2) {
-            std::size_t i = std::stoull(pair.items[0].text);
-            if (i < a.size()) a[i] = std::stoull(pair.items[1].text);
-        }
-}
-std::uint64_t u64(const Value* v) {
-    return v && v->type == Value::Type::number ? std::stoull(v->text) : 0;
-}
-double dbl(const Value* v) {
-    return v && v->type == Value::Type::number ? std::stod(v->text) : 0;
-}
-std::string text(const Value* v) {
-    return v && v->type == Value::Type::string ? v->text : "";
-}
-
-Row row_from(const Value& v) {
-    Row r;
-    r.cases = u64(v.find("cases")), r.graded_roots = u64(v.find("graded_roots"));
-    r.graded_coords = u64(v.find("graded_points")),
-    r.cases_mismatched = u64(v.find("cases_mismatched"));
-    if (const Value* m = v.find("mismatches"))
-        for (int k = 0; k < mismatch_kinds; ++k)
-            r.mismatches[k] = u64(m->find(mismatch_name(k)));
-    if (const Value* t = v.find("t_ulps")) {
-        r.t_max = u64(t->find("max")), r.t_sum = dbl(t->find("sum")),
-        r.t_bits_sum = dbl(t->find("bits_sum"));
-        read_array(t->find("histogram"), r.t_error.count);
-    }
-    if (const Value* p = v.find("point_ulps")) {
-        r.p_max = u64(p->find("max"));
-        read_array(p->find("histogram"), r.p_error.count);
-    }
-    if (const Value* n = v.find("ns_per_solve")) read_array(n->find("histogram"), r.ns.count);
-    if (const Value* c = v.find("certified")) {
-        r.uncertain = u64(c->find("uncertain")), r.certain_wrong = u64(c->find("certain_wrong"));
-        r.bounded_roots = u64(c->find("bounded_roots")),
-        r.bound_violations = u64(c->find("bound_violations"));
-        read_array(c->find("tightness"), r.tightness.count);
-        r.bound_below_half_ulp = u64(c->find("bound_below_half_ulp"));
-    }
-    if (const Value* g = v.find("rungs")) {
-        r.rungs[std::size_t(Rung::newton)] = u64(g->find("newton")); // 0 in older reports
-        r.rungs[std::size_t(Rung::double_double)] = u64(g->find("double_double"));
-        r.rungs[std::size_t(Rung::exact)] = u64(g->find("exact"));
-    }
-    if (const Value* w = v.find("worst"))
-        for (const Value& x : w->items) {
-            Worst k;
-            const Value* mm = x.find("mismatch");
-            k.mismatch = mm && mm->boolean;
-            k.ulps = u64(x.find("t_ulps"));
-            k.case_line = text(x.find("case")), k.solver_line = text(x.find("solver")),
-            k.oracle_line = text(x.find("oracle"));
-            r.worst.push_back(k);
-        }
-    return r;
 }
 
 std::string fmt(double x) {
@@ -166,99 +49,44 @@ std::string replay(const Worst& w, const std::string& solver) {
     return "echo '" + quoted + "' | linequad solve --solver " + scalar + ",exact";
 }
 
-} // namespace
-
-void write_json(const Report& r, const std::string& path) {
-    std::string s =
-        "{\"format\":\"linequad-audit-1\",\"command\":" + str(r.command) +
-        ",\"machine\":" + str(r.machine) + ",\"compiler\":" + str(r.compiler) +
-        ",\"flags\":" + str(r.flags) + ",\"commit\":" + str(r.commit) + ",\"date\":" + str(r.date) +
-        ",\"seed\":" + num(r.seed) + ",\"cases_per_group\":" + num(r.cases_per_group) +
-        ",\"shard\":" + std::to_string(r.shard) + ",\"shards\":" + std::to_string(r.shards) +
-        ",\"complete\":" + (r.complete ? "true" : "false") + ",\"seconds\":" + real(r.seconds) +
-        ",\"solvers\":[";
-    for (std::size_t i = 0; i < r.solvers.size(); ++i)
-        s += (i ? "," : "") + str(r.solvers[i]);
-    s += "],\"oracle_rounding_steps\":[";
-    for (int i = 0; i < 8; ++i)
-        s += (i ? "," : "") + num(r.oracle_steps[i]);
-    s += "],\"rows\":{";
-    bool first = true;
-    for (const auto& [key, row] : r.rows) {
-        s += (first ? "" : ",\n") + str(key) + ":" + row_json(row);
-        first = false;
-    }
-    s += "},\"curves\":{";
-    first = true;
-    for (const auto& [key, points] : r.curves) {
-        s += (first ? "" : ",\n") + str(key) + ":[";
-        bool f2 = true;
-        for (const auto& [k, p] : points) {
-            s += (f2 ? "" : ",") + std::string("{\"k\":") + std::to_string(k) +
-                 ",\"cases\":" + num(p.cases) + ",\"mismatched\":" + num(p.mismatched) +
-                 ",\"t_max\":" + num(p.t_max) + ",\"histogram\":" + array(p.t_error.count) + "}";
-            f2 = false;
-        }
-        s += "]";
-        first = false;
-    }
-    s += "}}\n";
-    // Written to a temporary file and renamed: a reader never sees half a report.
-    std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << s;
-        if (!out) throw std::runtime_error("cannot write " + tmp);
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-        throw std::runtime_error("cannot write " + path);
+// One solver's rows of one family, merged.
+Row family_total(const Report& r, const std::string& family, const std::string& solver) {
+    Row t;
+    for (const auto& [key, row] : r.rows)
+        if (key.family == family && key.solver == solver) t.merge(row);
+    return t;
 }
 
-bool read_json(const std::string& path, Report* r, std::string* why) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return *why = "cannot open " + path, false;
-    std::stringstream ss;
-    ss << in.rdbuf();
-    Value v;
-    std::string err;
-    if (!json::parse(ss.str(), &v, &err)) return *why = path + ": " + err, false;
-    if (text(v.find("format")) != "linequad-audit-1")
-        return *why = path + ": not a linequad audit report", false;
-    *r = Report{};
-    r->command = text(v.find("command")), r->machine = text(v.find("machine"));
-    r->compiler = text(v.find("compiler")), r->flags = text(v.find("flags"));
-    r->commit = text(v.find("commit")), r->date = text(v.find("date"));
-    r->seed = u64(v.find("seed")), r->cases_per_group = u64(v.find("cases_per_group"));
-    r->shard = int(u64(v.find("shard"))), r->shards = int(u64(v.find("shards")));
-    const Value* c = v.find("complete");
-    r->complete = c && c->boolean;
-    r->seconds = dbl(v.find("seconds"));
-    if (const Value* s = v.find("solvers"))
-        for (const Value& x : s->items)
-            r->solvers.push_back(x.text);
-    if (const Value* s = v.find("oracle_rounding_steps"))
-        for (std::size_t i = 0; i < s->items.size() && i < 8; ++i)
-            r->oracle_steps[i] = u64(&s->items[i]);
-    if (const Value* rows = v.find("rows"))
-        for (const auto& [key, row] : rows->members)
-            r->rows[key] = row_from(row);
-    if (const Value* curves = v.find("curves"))
-        for (const auto& [key, points] : curves->members)
-            for (const Value& p : points.items) {
-                CurvePoint& q = r->curves[key][int(std::stol(p.find("k")->text))];
-                q.cases = u64(p.find("cases")), q.mismatched = u64(p.find("mismatched")),
-                q.t_max = u64(p.find("t_max"));
-                read_array(p.find("histogram"), q.t_error.count);
-            }
-    return true;
+std::string status_line(const Report& r) {
+    std::string shards;
+    if (r.shards > 1) {
+        shards = std::to_string(r.shards_included.size()) + " of " + std::to_string(r.shards) +
+                 " shards";
+        if (r.shards_included.size() < 5) {
+            shards += " (";
+            for (std::size_t i = 0; i < r.shards_included.size(); ++i)
+                shards += (i ? ", " : "") + std::to_string(r.shards_included[i]);
+            shards += ")";
+        }
+    }
+    switch (r.status) {
+    case Status::running:
+        return "**no: running** (saved while the run goes on" +
+               (shards.empty() ? "" : "; " + shards) + ")";
+    case Status::stopped:
+        return "**no: stopped early**" + (shards.empty() ? "" : " (" + shards + ")");
+    case Status::complete:
+        if (r.complete()) return shards.empty() ? "yes" : "yes (" + shards + ")";
+        return "**no: " + shards + "**";
+    }
+    return "";
 }
 
 // How often the correct solver needed each rung of its ladder, by family.
 void write_rungs(std::ostream& md, const Report& r) {
     std::map<std::string, Row> by_family;
     for (const auto& [key, row] : r.rows)
-        if (key.size() > 8 && key.compare(key.size() - 8, 8, "/correct") == 0)
-            by_family[key.substr(0, key.find('/'))].merge(row);
+        if (key.solver == "correct") by_family[key.family].merge(row);
     if (by_family.empty()) return;
     md << "\n## The correct solver's rungs\n\n"
           "Results settled by the Newton rung, the double-double rung (each only where its bounds "
@@ -282,7 +110,9 @@ void write_rungs(std::ostream& md, const Report& r) {
            << " certified roots.\n";
 }
 
-void write_markdown(const Report& r, const std::string& dir) {
+} // namespace
+
+std::string markdown(const Report& r) {
     std::ostringstream md;
     md << "# linequad accuracy audit\n\n";
     md << "| | |\n|---|---|\n";
@@ -291,8 +121,10 @@ void write_markdown(const Report& r, const std::string& dir) {
     md << "| machine | " << r.machine << " |\n| compiler | " << r.compiler << " |\n";
     md << "| fast/ flags | `" << r.flags << "` |\n| seed | " << r.seed << " |\n";
     md << "| cases per family, shape and range | " << r.cases_per_group << " |\n";
-    md << "| shards | " << r.shards << " |\n| complete | "
-       << (r.complete ? "yes" : "**no: stopped early**") << " |\n";
+    if (r.grades_results())
+        md << "| graded | `" << r.results_file << "` against `" << r.cases_file << "` |\n";
+    md << "| linequad | " << r.version << " |\n| shards | " << r.shards << " |\n| complete | "
+       << status_line(r) << " |\n";
     md << "| run time | " << fmt(r.seconds) << " s |\n\n";
     md << "Errors are distances to the exact oracle's correctly rounded value, in units in the "
           "last "
@@ -318,12 +150,7 @@ void write_markdown(const Report& r, const std::string& dir) {
           "| mean bits | point max ulps | ns/solve (generic) |\n";
     md << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const std::string& s : r.solvers) {
-        Row t = r.total(s);
-        Row generic;
-        for (const auto& [key, row] : r.rows)
-            if (key.rfind("generic/", 0) == 0 && key.size() > s.size() &&
-                key.compare(key.size() - s.size() - 1, s.size() + 1, "/" + s) == 0)
-                generic.merge(row);
+        Row t = r.total(s), generic = family_total(r, "generic", s);
         md << "| " << s << " | " << t.cases << " | " << t.cases_mismatched << " | "
            << (t.bounded_roots || t.uncertain ? num(t.uncertain) : "-") << " | "
            << (t.bounded_roots ? num(t.bound_violations) + " of " + num(t.bounded_roots) : "-")
@@ -339,17 +166,13 @@ void write_markdown(const Report& r, const std::string& dir) {
           "bound/err p50 | t max | t p99 | t p99.9 | t mean | point max | ns/solve |\n";
     md << "|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& [key, row] : r.rows) {
-        std::string family = key.substr(0, key.find('/'));
-        std::string rest = key.substr(key.find('/') + 1);
-        std::string shape = rest.substr(0, rest.find('/')),
-                    solver = rest.substr(rest.find('/') + 1);
         std::string kinds;
         for (int m = 0; m < mismatch_kinds; ++m)
             if (row.mismatches[m])
                 kinds += (kinds.empty() ? "" : ", ") + std::string(mismatch_name(m)) + " " +
                          num(row.mismatches[m]);
-        md << "| " << family << " | " << shape << " | " << solver << " | " << row.cases << " | "
-           << row.cases_mismatched << " | " << kinds << " | "
+        md << "| " << key.family << " | " << key.shape << " | " << key.solver << " | " << row.cases
+           << " | " << row.cases_mismatched << " | " << kinds << " | "
            << (row.bounded_roots || row.uncertain ? num(row.uncertain) : "-") << " | "
            << (row.bounded_roots ? num(row.bound_violations) : "-") << " | "
            << (row.bounded_roots ? fmt(row.tightness.quantile(0.5)) : "-") << " | "
@@ -365,7 +188,7 @@ void write_markdown(const Report& r, const std::string& dir) {
     for (const char* f : {"near_tangent", "axis_parallel", "apex", "generator", "degenerate_frame",
                           "scale", "extent_edge"})
         for (const auto& [key, points] : r.curves)
-            if (key.rfind(std::string(f) + "/", 0) == 0) {
+            if (key.family == f) {
                 md << "![" << f << "](difficulty_" << f << ".svg)\n\n";
                 break;
             }
@@ -373,30 +196,29 @@ void write_markdown(const Report& r, const std::string& dir) {
     md << "## Worst cases\n\nEach replays with the command under it.\n\n";
     for (const auto& [key, row] : r.rows) {
         if (row.worst.empty()) continue;
-        std::string solver = key.substr(key.rfind('/') + 1);
-        md << "### " << key << "\n\n";
+        md << "### " << key.name() << "\n\n";
         for (const Worst& w : row.worst) {
             md << (w.mismatch ? "- **mismatch**" : "- t error " + fmt_ulps(w.ulps) + " ulps")
                << "\n\n";
             md << "  ```\n  " << w.case_line << "\n  " << w.solver_line << "\n  " << w.oracle_line
                << "\n  ```\n\n";
-            md << "  `" << replay(w, solver) << "`\n\n";
+            md << "  `" << replay(w, key.solver) << "`\n\n";
         }
     }
     md << "## Oracle rounding\n\nValues rounded at 64, 128, 256, ... bits: ";
     for (int i = 0; i < 8; ++i)
         md << (i ? ", " : "") << r.oracle_steps[i];
     md << ".\n";
-    std::ofstream(dir + "/report.md") << md.str();
+    return md.str();
 }
 
-void write_plots(const Report& r, const std::string& dir) {
+bool write_plots(const Report& r, const std::string& dir) {
     if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
         std::fprintf(stderr,
                      "linequad: gnuplot not found: no plots (apt-get install gnuplot-nox)\n");
-        return;
+        return false;
     }
-    std::ofstream gp(dir + "/plots.gp");
+    std::ostringstream gp;
     auto both_terminals = [&](const std::string& name, const std::string& body) {
         gp << "set terminal svg size 800,500 dynamic noenhanced font 'sans,11'\nset output '" << dir
            << "/" << name << ".svg'\n"
@@ -405,17 +227,14 @@ void write_plots(const Report& r, const std::string& dir) {
     };
     // Pareto: median ns per solve on generic cases against max and p99 t error over all families.
     {
-        std::ofstream dat(dir + "/pareto.dat");
+        std::ostringstream dat;
         dat << "# solver ns_generic max_ulps p99_ulps\n";
         for (const std::string& s : r.solvers) {
-            Row t = r.total(s), generic;
-            for (const auto& [key, row] : r.rows)
-                if (key.rfind("generic/", 0) == 0 &&
-                    key.compare(key.size() - s.size() - 1, s.size() + 1, "/" + s) == 0)
-                    generic.merge(row);
+            Row t = r.total(s), generic = family_total(r, "generic", s);
             dat << s << " " << generic.ns.median() << " " << 1 + double(t.t_max) << " "
                 << 1 + t.t_error.quantile(0.99) << "\n";
         }
+        jsonl::write_file(dir + "/pareto.dat", dat.str());
         both_terminals("pareto", "set title 'run time against error (every family)'\nset xlabel "
                                  "'ns per solve, median, generic cases'\n"
                                  "set ylabel '1 + t error in ulps'\nset logscale y\nset grid\nset "
@@ -430,17 +249,15 @@ void write_plots(const Report& r, const std::string& dir) {
     // Error against difficulty, one figure per family, one curve per solver.
     std::map<std::string, std::vector<std::string>> families;
     for (const auto& [key, points] : r.curves) {
-        std::string family = key.substr(0, key.find('/'));
-        if (family == "generic") continue;
-        std::string solver = key.substr(key.find('/') + 1);
-        std::string file = dir + "/difficulty_" + family + "_" + solver + ".dat";
-        std::ofstream dat(file);
+        if (key.family == "generic") continue;
+        std::ostringstream dat;
         dat << "# k cases mismatched_fraction 1+max_ulps\n";
         for (const auto& [k, p] : points)
             dat << k << " " << p.cases << " "
                 << (p.cases ? double(p.mismatched) / double(p.cases) : 0) << " "
                 << 1 + double(p.t_max) << "\n";
-        families[family].push_back(solver);
+        jsonl::write_file(dir + "/difficulty_" + key.family + "_" + key.solver + ".dat", dat.str());
+        families[key.family].push_back(key.solver);
     }
     for (const auto& [family, solvers] : families) {
         std::string plot = "set title '" + family +
@@ -458,10 +275,80 @@ void write_plots(const Report& r, const std::string& dir) {
         }
         both_terminals("difficulty_" + family, plot + "\n");
     }
-    gp.close();
+    jsonl::write_file(dir + "/plots.gp", gp.str());
     std::string cmd = "gnuplot '" + dir + "/plots.gp' 2>&1";
-    if (std::system(cmd.c_str()) != 0)
+    if (std::system(cmd.c_str()) != 0) {
         std::fprintf(stderr, "linequad: gnuplot failed on %s/plots.gp\n", dir.c_str());
+        return false;
+    }
+    return true;
+}
+
+namespace {
+
+// Files an earlier run left that would describe another report.
+bool earlier_figure(const std::string& name) {
+    auto ends = [&](const char* e) {
+        std::size_t n = std::strlen(e);
+        return name.size() >= n && name.compare(name.size() - n, n, e) == 0;
+    };
+    bool figure = ends(".svg") || ends(".png") || ends(".dat");
+    return name == "plots.gp" ||
+           (figure && (name.rfind("pareto.", 0) == 0 || name.rfind("difficulty_", 0) == 0));
+}
+
+} // namespace
+
+OutputDirectory::OutputDirectory(const std::string& dir) : dir_(dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw std::runtime_error("cannot create " + dir + ": " + ec.message());
+    if (!fs::is_directory(dir, ec)) throw std::runtime_error(dir + " is not a directory");
+    std::string lock = dir + "/.lock";
+    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd_ < 0)
+        throw std::runtime_error("cannot write " + lock + ": " + std::strerror(errno));
+    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+        char holder[32] = {};
+        ssize_t n = ::pread(lock_fd_, holder, sizeof holder - 1, 0);
+        ::close(lock_fd_);
+        lock_fd_ = -1;
+        throw std::runtime_error(dir + " is in use by another run (" + lock + " is locked" +
+                                 (n > 0 ? std::string(" by process ") + holder : "") + ")");
+    }
+    std::string pid = std::to_string(::getpid());
+    if (::ftruncate(lock_fd_, 0) != 0 || ::pwrite(lock_fd_, pid.data(), pid.size(), 0) < 0)
+        throw std::runtime_error("cannot write " + lock + ": " + std::strerror(errno));
+    for (const auto& entry : fs::directory_iterator(dir, ec))
+        if (entry.is_regular_file() && earlier_figure(entry.path().filename().string()))
+            fs::remove(entry.path(), ec);
+}
+
+OutputDirectory::~OutputDirectory() {
+    if (lock_fd_ >= 0) ::close(lock_fd_); // releases the lock
+}
+
+namespace {
+// report.json, then report.md from what was saved. Returns the report as read back.
+Report save_pair(const Report& r, const std::string& dir) {
+    std::string text = to_json(r);
+    jsonl::write_file(dir + "/report.json", text);
+    Report saved;
+    std::string why;
+    if (!from_json(text, &saved, &why))
+        throw std::logic_error("the report written does not read back: " + why);
+    jsonl::write_file(dir + "/report.md", markdown(saved));
+    return saved;
+}
+} // namespace
+
+void OutputDirectory::save(const Report& r) {
+    save_pair(r, dir_);
+}
+
+void OutputDirectory::save_with_plots(const Report& r) {
+    write_plots(save_pair(r, dir_), dir_);
 }
 
 } // namespace linequad::audit

@@ -8,14 +8,17 @@
 #include "linequad/exact.hpp"
 #include "linequad/registry.hpp"
 
+#include "jsonl.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <ctime>
-#include <filesystem>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <unistd.h>
 #include <unordered_map>
 
@@ -23,10 +26,32 @@ namespace linequad::audit {
 
 namespace {
 
+constexpr Range ranges[] = {Range::line, Range::ray, Range::segment};
+// How much work a kill -9 may cost: a running audit saves its report this often.
+constexpr double save_every_seconds = 2;
+
 std::atomic<bool> stop_requested{false};
 extern "C" void on_signal(int) {
     stop_requested = true;
 }
+
+// SIGINT and SIGTERM end the campaign early (with its report saved) while it runs.
+class StopOnSignal {
+  public:
+    StopOnSignal() {
+        stop_requested = false;
+        old_int_ = std::signal(SIGINT, on_signal);
+        old_term_ = std::signal(SIGTERM, on_signal);
+    }
+    ~StopOnSignal() {
+        std::signal(SIGINT, old_int_);
+        std::signal(SIGTERM, old_term_);
+    }
+
+  private:
+    void (*old_int_)(int);
+    void (*old_term_)(int);
+};
 
 std::string run_command(const char* cmd) {
     std::string out;
@@ -55,6 +80,7 @@ void fill_provenance(Report& r, const Options& o) {
     BuildInfo b = build_info();
     r.compiler = b.compiler;
     r.flags = b.fast_flags;
+    r.version = b.version;
     r.commit = run_command("git rev-parse --short HEAD 2>/dev/null");
     if (r.commit.empty()) r.commit = "unknown";
     if (!run_command("git status --porcelain --untracked-files=no 2>/dev/null").empty())
@@ -64,7 +90,12 @@ void fill_provenance(Report& r, const Options& o) {
     std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
     r.date = date;
     r.seed = o.seed, r.cases_per_group = o.cases_per_group;
-    r.shard = o.shard, r.shards = o.shards;
+    r.shards = o.shards;
+    r.shards_included = {o.shard};
+    for (std::size_t i = 0; i < shape_count; ++i)
+        r.shapes.emplace_back(shape_name_at(i));
+    for (Range x : ranges)
+        r.ranges.emplace_back(range_name(x));
 }
 
 // A progress bar with time left on a terminal; a plain line every tenth otherwise.
@@ -105,16 +136,20 @@ struct Group {
     Range range;
 };
 
-std::vector<Group> groups_of(const Options& o) {
+std::vector<Family> families_of(const Options& o) {
     std::vector<Family> families = o.families;
     if (families.empty())
         for (int f = 0; f < family_count; ++f)
             families.push_back(Family(f));
+    return families;
+}
+
+std::vector<Group> groups_of(const Options& o) {
     std::vector<Group> out;
-    for (Family f : families)
+    for (Family f : families_of(o))
         for (int shape = 0; shape < int(shape_count); ++shape)
             if (family_applies(f, shape))
-                for (Range r : {Range::line, Range::ray, Range::segment})
+                for (Range r : ranges)
                     out.push_back({f, shape, r});
     return out;
 }
@@ -165,82 +200,174 @@ double run_batch(const std::vector<Case>& cases, std::vector<Result>& got) {
            double(shapes * cases.size());
 }
 
-void finish(Report& rep, const Options& o, std::chrono::steady_clock::time_point start) {
-    rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const auto& st = exact::rounding_stats();
-    for (int i = 0; i < 8; ++i)
-        rep.oracle_steps[i] = st.by_steps[i];
-    if (o.out_dir.empty()) return;
-    std::filesystem::create_directories(o.out_dir);
-    write_json(rep, o.out_dir + "/report.json");
-    write_markdown(rep, o.out_dir);
-    if (o.plots) write_plots(rep, o.out_dir);
+// Where the run's report goes, if anywhere; saved as it goes.
+class Saver {
+  public:
+    explicit Saver(const Options& o) {
+        if (!o.out_dir.empty()) dir_.emplace(o.out_dir);
+    }
+    // Marks the directory as holding a run in progress, before anything is computed.
+    void begin(Report& rep) {
+        rep.status = Status::running;
+        if (dir_) dir_->save(rep);
+        last_ = std::chrono::steady_clock::now();
+    }
+    // Saves at most every few seconds: a kill -9 loses no more than that.
+    void maybe_save(Report& rep, std::chrono::steady_clock::time_point start) {
+        auto now = std::chrono::steady_clock::now();
+        if (!dir_ || std::chrono::duration<double>(now - last_).count() < save_every_seconds)
+            return;
+        last_ = now;
+        rep.seconds = std::chrono::duration<double>(now - start).count();
+        dir_->save(rep);
+    }
+    void end(Report& rep, const Options& o, std::chrono::steady_clock::time_point start) {
+        rep.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const auto& st = exact::rounding_stats();
+        for (int i = 0; i < 8; ++i)
+            rep.oracle_steps[i] = st.by_steps[i];
+        if (!dir_) return;
+        if (o.plots)
+            dir_->save_with_plots(rep);
+        else
+            dir_->save(rep);
+    }
+
+  private:
+    std::optional<OutputDirectory> dir_;
+    std::chrono::steady_clock::time_point last_;
+};
+
+bool blank(const std::string& line) {
+    return line.find_first_not_of(" \t\r") == std::string::npos;
+}
+
+// The cases of a cases file by id, in file order; duplicate ids and malformed lines refused.
+std::vector<Case> read_cases(const Options& o) {
+    jsonl::LineReader in(o.cases_file, o.max_line_bytes);
+    std::vector<Case> cases;
+    std::unordered_map<std::string, long> line_of;
+    std::string line, why;
+    auto fail = [&](const std::string& what) {
+        return std::runtime_error(o.cases_file + ": line " + std::to_string(in.number()) + ": " +
+                                  what);
+    };
+    for (;;) {
+        auto status = in.next(&line);
+        if (status == jsonl::LineReader::Status::end) break;
+        if (status == jsonl::LineReader::Status::error) throw std::runtime_error(in.error());
+        if (status == jsonl::LineReader::Status::too_long)
+            throw std::runtime_error(o.cases_file + ": " +
+                                     jsonl::too_long_message(in.number(), o.max_line_bytes));
+        if (blank(line)) continue;
+        Case c;
+        if (!parse_case(line, &c, &why)) throw fail(why);
+        if (c.id == "null") throw fail("a case needs an id, to match its answers");
+        auto [it, fresh] = line_of.emplace(c.id, in.number());
+        if (!fresh) throw fail("id " + c.id + " repeats line " + std::to_string(it->second) + "'s");
+        cases.push_back(std::move(c));
+    }
+    if (cases.empty()) throw std::runtime_error(o.cases_file + ": no cases to grade");
+    return cases;
 }
 
 Report grade_results(const Options& o) {
     Report rep;
     fill_provenance(rep, o);
+    rep.cases_file = o.cases_file, rep.results_file = o.results_file;
+    rep.cases_per_group = 0;
+    rep.families.clear();
     auto start = std::chrono::steady_clock::now();
-    std::unordered_map<std::string, Case> cases;
-    std::unordered_map<std::string, bool> answered;
-    std::ifstream in(o.cases_file);
-    if (!in) throw std::runtime_error("cannot open cases file '" + o.cases_file + "'");
-    std::string line, why;
-    long n = 0;
-    while (std::getline(in, line)) {
-        ++n;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        Case c;
-        if (!parse_case(line, &c, &why))
-            throw std::runtime_error(o.cases_file + ": line " + std::to_string(n) + ": " + why);
-        cases[c.id] = c;
+    std::vector<Case> cases = read_cases(o);
+    std::unordered_map<std::string, std::size_t> index;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        index[cases[i].id] = i;
+        std::string family = cases[i].family.empty() ? "cases" : cases[i].family;
+        if (std::find(rep.families.begin(), rep.families.end(), family) == rep.families.end())
+            rep.families.push_back(family);
     }
-    std::ifstream res(o.results_file);
-    if (!res) throw std::runtime_error("cannot open results file '" + o.results_file + "'");
-    n = 0;
-    while (std::getline(res, line)) {
-        ++n;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        ParsedResult pr;
-        if (!parse_result(line, &pr, &why)) {
-            std::fprintf(stderr, "linequad: %s: line %ld: %s (skipped)\n", o.results_file.c_str(),
-                         n, why.c_str());
-            continue;
+    Saver saver(o);
+    saver.begin(rep);
+
+    // Answers, by solver and then by case; each (case, solver) at most once.
+    struct Answer {
+        ParsedResult result;
+        long line = 0;
+        bool malformed = false;
+    };
+    std::map<std::string, std::unordered_map<std::size_t, Answer>> answers;
+    jsonl::LineReader res(o.results_file, o.max_line_bytes);
+    std::string line, why;
+    for (;;) {
+        auto status = res.next(&line);
+        if (status == jsonl::LineReader::Status::end) break;
+        if (status == jsonl::LineReader::Status::error) throw std::runtime_error(res.error());
+        std::string where = o.results_file + ": line " + std::to_string(res.number());
+        if (status == jsonl::LineReader::Status::too_long)
+            throw std::runtime_error(o.results_file + ": " +
+                                     jsonl::too_long_message(res.number(), o.max_line_bytes));
+        if (blank(line)) continue;
+        Answer a;
+        a.line = res.number();
+        if (!parse_result(line, &a.result, &why)) {
+            // An answer that names its case is graded as refused; one that does not cannot be
+            // attributed to any case.
+            if (!a.result.has_id) throw std::runtime_error(where + ": " + why);
+            std::fprintf(stderr, "linequad: %s: %s (graded as refused)\n", where.c_str(),
+                         why.c_str());
+            a.malformed = true;
         }
-        auto it = cases.find(pr.id);
-        if (it == cases.end()) {
-            std::fprintf(stderr, "linequad: %s: line %ld: no case with id %s (skipped)\n",
-                         o.results_file.c_str(), n, pr.id.c_str());
-            continue;
-        }
-        const Case& c = it->second;
-        std::string solver = pr.solver.empty() ? "results" : pr.solver;
-        if (std::find(rep.solvers.begin(), rep.solvers.end(), solver) == rep.solvers.end())
-            rep.solvers.push_back(solver);
-        answered[c.id + "/" + solver] = true;
+        auto it = index.find(a.result.id);
+        if (it == index.end())
+            throw std::runtime_error(where + ": no case in " + o.cases_file + " has id " +
+                                     a.result.id);
+        std::string solver = a.result.solver.empty() ? "results" : a.result.solver;
+        auto [prev, fresh] = answers[solver].emplace(it->second, a);
+        if (!fresh)
+            throw std::runtime_error(where + ": a second answer from " + solver + " to case " +
+                                     a.result.id + " (the first is on line " +
+                                     std::to_string(prev->second.line) + ")");
+    }
+    // An empty results file still grades one solver: every case unanswered.
+    if (answers.empty()) answers["results"];
+    for (const auto& [solver, by_case] : answers)
+        rep.solvers.push_back(solver);
+
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const Case& c = cases[i];
         Result oracle = exact::intersect(c.shape, c.line);
         std::string family = c.family.empty() ? "cases" : c.family;
-        Row& row = rep.rows[family + "/" + shape_name(c.shape) + "/" + solver];
-        grade(c, solver, pr.result, oracle, row, &rep.curves[family + "/" + solver][c.k],
-              pr.has_points);
-    }
-    // A case without an answer is a refusal.
-    for (const std::string& solver : rep.solvers)
-        for (const auto& [id, c] : cases)
-            if (!answered.count(id + "/" + solver)) {
-                std::string family = c.family.empty() ? "cases" : c.family;
-                Row& row = rep.rows[family + "/" + shape_name(c.shape) + "/" + solver];
-                // A refusal the oracle never makes (see parse_result).
-                Result missing = Result::failure(ErrorCode::out_of_range, "no answer");
-                grade(c, solver, missing, exact::intersect(c.shape, c.line), row, nullptr, false);
+        for (const auto& [solver, by_case] : answers) {
+            Row& row = rep.rows[{family, shape_name(c.shape), solver}];
+            auto a = by_case.find(i);
+            if (a == by_case.end() || a->second.malformed) {
+                // No answer, or none we can read: a refusal the oracle never makes.
+                Result none = Result::failure(ErrorCode::out_of_range,
+                                              a == by_case.end() ? "no answer" : "malformed");
+                grade(c, solver, none, oracle, row, nullptr, false);
+            } else {
+                grade(c, solver, a->second.result.result, oracle, row,
+                      &rep.curves[{family, solver}][c.k], a->second.result.has_points);
             }
-    finish(rep, o, start);
+        }
+        saver.maybe_save(rep, start);
+    }
+    rep.status = Status::complete;
+    saver.end(rep, o, start);
     return rep;
+}
+
+void check_shard(const Options& o) {
+    if (o.shards < 1 || o.shard < 0 || o.shard >= o.shards)
+        throw std::invalid_argument("audit: shard " + std::to_string(o.shard) + " of " +
+                                    std::to_string(o.shards) + " does not exist");
 }
 
 } // namespace
 
 void for_each_case(const Options& o, const std::function<void(const Case&)>& f) {
+    check_shard(o);
     std::uint64_t g = 0;
     for (const Group& grp : groups_of(o))
         for (std::uint64_t i = 0; i < o.cases_per_group; ++i, ++g)
@@ -249,6 +376,9 @@ void for_each_case(const Options& o, const std::function<void(const Case&)>& f) 
 }
 
 Report run(const Options& o) {
+    check_shard(o);
+    if (o.results_file.empty() != o.cases_file.empty())
+        throw std::invalid_argument("audit: a results file is graded against its cases file");
     if (!o.results_file.empty()) return grade_results(o);
     Report rep;
     fill_provenance(rep, o);
@@ -257,11 +387,14 @@ Report run(const Options& o) {
         rep.solvers.emplace_back(s->name);
     bool batch = batch_wanted(o);
     if (batch) rep.solvers.emplace_back(batch_name);
+    for (Family f : families_of(o))
+        rep.families.emplace_back(family_name(f));
     std::vector<Group> groups = groups_of(o);
     exact::rounding_stats() = {};
-    stop_requested = false;
-    auto old_int = std::signal(SIGINT, on_signal), old_term = std::signal(SIGTERM, on_signal);
-    auto start = std::chrono::steady_clock::now(), last_save = start;
+    auto start = std::chrono::steady_clock::now();
+    Saver saver(o);
+    saver.begin(rep);
+    StopOnSignal stop;
 
     Progress progress(groups.size() * o.cases_per_group / std::uint64_t(o.shards));
     constexpr std::uint64_t chunk = 256;
@@ -269,6 +402,7 @@ Report run(const Options& o) {
     std::vector<Result> oracle, got;
     std::uint64_t g_base = 0;
     for (const Group& grp : groups) {
+        std::string family = family_name(grp.family), shape = shape_name_at(grp.shape);
         for (std::uint64_t begin = 0; begin < o.cases_per_group && !stop_requested;
              begin += chunk) {
             std::uint64_t end = std::min(o.cases_per_group, begin + chunk);
@@ -282,47 +416,34 @@ Report run(const Options& o) {
             for (std::size_t i = 0; i < cases.size(); ++i)
                 oracle[i] = exact::intersect(cases[i].shape, cases[i].line);
             for (const Solver* s : solvers) {
-                Row& row =
-                    rep.rows[std::string(family_name(grp.family)) + "/" +
-                             shape_name_at(std::size_t(grp.shape)) + "/" + std::string(s->name)];
+                std::string name(s->name);
+                Row& row = rep.rows[{family, shape, name}];
                 auto t0 = std::chrono::steady_clock::now();
                 for (std::size_t i = 0; i < cases.size(); ++i)
                     got[i] = (*s)(cases[i].shape, cases[i].line);
                 auto t1 = std::chrono::steady_clock::now();
                 row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
                            double(cases.size()));
-                auto& curve =
-                    rep.curves[std::string(family_name(grp.family)) + "/" + std::string(s->name)];
+                auto& curve = rep.curves[{family, name}];
                 for (std::size_t i = 0; i < cases.size(); ++i)
-                    grade(cases[i], std::string(s->name), got[i], oracle[i], row,
-                          &curve[cases[i].k]);
+                    grade(cases[i], name, got[i], oracle[i], row, &curve[cases[i].k]);
             }
             if (batch) {
-                std::string family = family_name(grp.family);
-                Row& row = rep.rows[family + "/" + shape_name_at(std::size_t(grp.shape)) + "/" +
-                                    batch_name];
+                Row& row = rep.rows[{family, shape, batch_name}];
                 row.ns.add(run_batch(cases, got));
-                auto& curve = rep.curves[family + "/" + batch_name];
+                auto& curve = rep.curves[{family, batch_name}];
                 for (std::size_t i = 0; i < cases.size(); ++i)
                     grade(cases[i], batch_name, got[i], oracle[i], row, &curve[cases[i].k]);
             }
             progress.advance(cases.size());
+            saver.maybe_save(rep, start);
         }
         g_base += o.cases_per_group;
         if (stop_requested) break;
-        // A long run never loses what it has: the JSON is rewritten every few seconds.
-        auto now = std::chrono::steady_clock::now();
-        if (!o.out_dir.empty() && std::chrono::duration<double>(now - last_save).count() > 5) {
-            last_save = now;
-            std::filesystem::create_directories(o.out_dir);
-            rep.complete = false;
-            write_json(rep, o.out_dir + "/report.json");
-        }
     }
-    rep.complete = !stop_requested;
+    rep.status = stop_requested ? Status::stopped : Status::complete;
     if (stop_requested) std::fprintf(stderr, "\naudit: stopped early; writing what was measured\n");
-    std::signal(SIGINT, old_int), std::signal(SIGTERM, old_term);
-    finish(rep, o, start);
+    saver.end(rep, o, start);
     return rep;
 }
 

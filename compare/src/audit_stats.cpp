@@ -233,6 +233,53 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
     }
 }
 
+const char* status_name(Status s) {
+    switch (s) {
+    case Status::running:
+        return "running";
+    case Status::stopped:
+        return "stopped";
+    case Status::complete:
+        return "complete";
+    }
+    return "?";
+}
+
+namespace {
+std::string joined(const std::vector<std::string>& v) {
+    std::string s;
+    for (const std::string& x : v)
+        s += (s.empty() ? "" : ",") + x;
+    return "[" + s + "]";
+}
+} // namespace
+
+std::string unmergeable(const Report& a, const Report& b) {
+    if (a.grades_results() || b.grades_results())
+        return "it grades a results file; merge combines the shards of one campaign";
+    auto differ = [](const char* what, const std::string& x, const std::string& y) {
+        return std::string(what) + " differ: " + y + " here, " + x + " in the first report";
+    };
+    if (a.seed != b.seed) return differ("seeds", std::to_string(a.seed), std::to_string(b.seed));
+    if (a.cases_per_group != b.cases_per_group)
+        return differ("case counts (per family, shape and range)",
+                      std::to_string(a.cases_per_group), std::to_string(b.cases_per_group));
+    if (a.families != b.families) return differ("families", joined(a.families), joined(b.families));
+    if (a.shapes != b.shapes) return differ("shapes", joined(a.shapes), joined(b.shapes));
+    if (a.ranges != b.ranges) return differ("ranges", joined(a.ranges), joined(b.ranges));
+    if (a.solvers != b.solvers) return differ("solvers", joined(a.solvers), joined(b.solvers));
+    if (a.shards != b.shards)
+        return differ("shard counts", std::to_string(a.shards), std::to_string(b.shards));
+    if (a.version != b.version) return differ("linequad versions", a.version, b.version);
+    if (a.compiler != b.compiler) return differ("compilers", a.compiler, b.compiler);
+    if (a.flags != b.flags) return differ("fast/ compiler flags", a.flags, b.flags);
+    for (int k : b.shards_included)
+        if (std::find(a.shards_included.begin(), a.shards_included.end(), k) !=
+            a.shards_included.end())
+            return "shard " + std::to_string(k) + " is already merged";
+    return "";
+}
+
 void Report::merge(const Report& o) {
     for (const auto& [key, row] : o.rows)
         rows[key].merge(row);
@@ -245,19 +292,18 @@ void Report::merge(const Report& o) {
         }
     for (int i = 0; i < 8; ++i)
         oracle_steps[i] += o.oracle_steps[i];
-    complete = complete && o.complete;
+    // The least finished status stands for the whole.
+    status = std::min(status, o.status);
     seconds += o.seconds;
-    for (const std::string& s : o.solvers)
-        if (std::find(solvers.begin(), solvers.end(), s) == solvers.end()) solvers.push_back(s);
+    shards_included.insert(shards_included.end(), o.shards_included.begin(),
+                           o.shards_included.end());
+    std::sort(shards_included.begin(), shards_included.end());
 }
 
 Row Report::total(const std::string& solver) const {
     Row t;
-    std::string suffix = "/" + solver;
     for (const auto& [key, row] : rows)
-        if (key.size() > suffix.size() &&
-            key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
-            t.merge(row);
+        if (key.solver == solver) t.merge(row);
     return t;
 }
 

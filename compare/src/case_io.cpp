@@ -1,5 +1,6 @@
 #include "linequad/case_io.hpp"
 
+#include "jsonl.hpp"
 #include "shape_types.hpp"
 
 #include <cerrno>
@@ -21,47 +22,56 @@ std::string hex(double x) {
 
 namespace {
 
-using json::Value;
+using jsonl::Json;
 
-bool to_double(const Value& v, double* out) {
-    if (v.type != Value::Type::number && v.type != Value::Type::string) return false;
-    const std::string& s = v.text;
+// A number: a JSON number, or a string holding a C99 hex float, a decimal, "inf", "-inf" or
+// "nan". Every NaN reads as the one quiet NaN that "nan" writes back, so a case round-trips bit
+// for bit.
+bool to_double(const Json& v, double* out) {
+    if (v.is_number_float()) return *out = v.get<double>(), true;
+    if (v.is_number_integer() && !v.is_number_unsigned())
+        return *out = double(v.get<std::int64_t>()), true; // rounded once, to nearest
+    if (v.is_number_unsigned()) return *out = double(v.get<std::uint64_t>()), true;
+    if (!v.is_string()) return false;
+    const std::string& s = v.get_ref<const std::string&>();
     if (s.empty() || std::isspace(static_cast<unsigned char>(s[0]))) return false;
-    if (s == "nan" || s == "-nan") return *out = std::numeric_limits<double>::quiet_NaN(), true;
     char* end = nullptr;
-    errno = 0;
     double x = std::strtod(s.c_str(), &end); // correctly rounded for decimal and hex (glibc)
     if (end != s.c_str() + s.size()) return false;
-    *out = x; // overflow gives inf (reported later as infinite input), underflow the subnormal
+    // Overflow gives inf (reported later as infinite input), underflow the subnormal.
+    *out = std::isnan(x) ? std::numeric_limits<double>::quiet_NaN() : x;
     return true;
 }
 
 struct Reader {
-    const Value& obj;
+    const Json& obj;
     std::string* why;
 
     bool fail(std::string_view field, std::string_view what) {
         *why = "field \"" + std::string(field) + "\": " + std::string(what);
         return false;
     }
-    const Value* need(const char* field) {
-        const Value* v = obj.find(field);
+    const Json* find(const char* field) const {
+        auto it = obj.find(field);
+        return it == obj.end() ? nullptr : &*it;
+    }
+    const Json* need(const char* field) {
+        const Json* v = find(field);
         if (!v) fail(field, "missing");
         return v;
     }
     bool number(const char* field, double* out) {
-        const Value* v = need(field);
+        const Json* v = need(field);
         if (!v) return false;
         if (!to_double(*v, out)) return fail(field, "expected a number (hex-float or decimal)");
         return true;
     }
     bool vec(const char* field, Vec3* out) {
-        const Value* v = need(field);
+        const Json* v = need(field);
         if (!v) return false;
         double c[3];
-        if (v->type != Value::Type::array || v->items.size() != 3 ||
-            !to_double(v->items[0], &c[0]) || !to_double(v->items[1], &c[1]) ||
-            !to_double(v->items[2], &c[2]))
+        if (!v->is_array() || v->size() != 3 || !to_double((*v)[0], &c[0]) ||
+            !to_double((*v)[1], &c[1]) || !to_double((*v)[2], &c[2]))
             return fail(field, "expected an array of 3 numbers");
         *out = {c[0], c[1], c[2]};
         return true;
@@ -112,13 +122,13 @@ constexpr Range shorthands[] = {Range::line, Range::ray, Range::segment};
 
 // The range: a shorthand ("range"), or its ends ("t0", "t1"; either may be left out, or be
 // "inf" or "-inf"), not both.
-bool read_range(Reader& r, const Value& obj, Interval* out) {
-    const Value *range = obj.find("range"), *t0 = obj.find("t0"), *t1 = obj.find("t1");
+bool read_range(Reader& r, Interval* out) {
+    const Json *range = r.find("range"), *t0 = r.find("t0"), *t1 = r.find("t1");
     if (range && (t0 || t1)) return r.fail(t0 ? "t0" : "t1", "give either range or t0, t1");
     if (range) {
-        if (range->type != Value::Type::string) return r.fail("range", "expected a string");
+        if (!range->is_string()) return r.fail("range", "expected a string");
         for (Range x : shorthands)
-            if (range->text == range_name(x)) return *out = x, true;
+            if (range->get_ref<const std::string&>() == range_name(x)) return *out = x, true;
         return r.fail("range", "expected line, ray or segment");
     }
     Interval i;
@@ -126,6 +136,10 @@ bool read_range(Reader& r, const Value& obj, Interval* out) {
     if (t1 && !r.number("t1", &i.t1)) return false;
     *out = i;
     return true;
+}
+
+std::string json_string(std::string_view s) {
+    return jsonl::dump(Json(std::string(s)));
 }
 
 void put_field(std::string& out, const char* name, Vec3 p) {
@@ -146,52 +160,50 @@ bool shorthand(Interval i, Range* r) {
     return false;
 }
 
+// Parses a line that must be a JSON object; says why not.
+bool parse_object(std::string_view line, Json* obj, std::string* why) {
+    std::string err;
+    if (!jsonl::parse(line, obj, &err)) return *why = "not valid JSON: " + err, false;
+    if (!obj->is_object()) return *why = "not a JSON object", false;
+    return true;
+}
+
 } // namespace
 
 bool parse_case(std::string_view line, Case* c, std::string* why) {
     *c = Case{};
-    Value obj;
-    std::string err;
-    if (!json::parse(line, &obj, &err)) {
-        *why = "not valid JSON: " + err;
-        return false;
-    }
-    if (obj.type != Value::Type::object) {
-        *why = "not a JSON object";
-        return false;
-    }
-    if (const Value* id = obj.find("id")) {
-        c->id.clear();
-        json::write(c->id, *id);
-    }
+    Json obj;
+    if (!parse_object(line, &obj, why)) return false;
     Reader r{obj, why};
-    const Value* shape = r.need("shape");
+    if (const Json* id = r.find("id")) c->id = jsonl::dump(*id);
+    const Json* shape = r.need("shape");
     if (!shape) return false;
-    std::size_t kind = shape->type == Value::Type::string ? shape_index(shape->text) : shape_count;
+    std::size_t kind =
+        shape->is_string() ? shape_index(shape->get_ref<const std::string&>()) : shape_count;
     if (kind == shape_count) return r.fail("shape", "expected " + shape_names());
-    for (const auto& m : obj.members) {
+    for (const auto& m : obj.items()) {
         bool known = with_shape_type(
-            kind, [&](auto tag) { return known_field<typename decltype(tag)::type>(m.first); });
+            kind, [&](auto tag) { return known_field<typename decltype(tag)::type>(m.key()); });
         if (!known)
-            return r.fail(m.first,
+            return r.fail(m.key(),
                           std::string("not a field of a ") + shape_name_at(kind) + " case");
     }
 
     if (!r.vec("L0", &c->line.L0) || !r.vec("v", &c->line.v)) return false;
-    if (!read_range(r, obj, &c->line.range)) return false;
+    if (!read_range(r, &c->line.range)) return false;
     bool finite = true;
-    if (const Value* f = obj.find("finite")) {
-        if (f->type != Value::Type::boolean) return r.fail("finite", "expected true or false");
-        finite = f->boolean;
+    if (const Json* f = r.find("finite")) {
+        if (!f->is_boolean()) return r.fail("finite", "expected true or false");
+        finite = f->get<bool>();
     }
-    if (const Value* f = obj.find("family")) {
-        if (f->type != Value::Type::string) return r.fail("family", "expected a string");
-        c->family = f->text;
+    if (const Json* f = r.find("family")) {
+        if (!f->is_string()) return r.fail("family", "expected a string");
+        c->family = f->get<std::string>();
     }
-    if (const Value* k = obj.find("k")) {
+    if (const Json* k = r.find("k")) {
         double x;
         if (!to_double(*k, &x) || x != std::floor(x) || std::fabs(x) > 1e6)
-            return r.fail("k", "expected an integer");
+            return r.fail("k", "expected an integer from -1000000 to 1000000");
         c->k = int(x);
     }
     return with_shape_type(kind, [&](auto tag) {
@@ -218,11 +230,8 @@ std::string format_case(const Case& c) {
         if (c.line.range.has_t1()) put_field(out, "t1", c.line.range.t1);
     }
     out += finite ? ",\"finite\":true" : ",\"finite\":false";
-    if (!c.family.empty()) {
-        out += ",\"family\":";
-        json::write_string(out, c.family);
-        out += ",\"k\":" + std::to_string(c.k);
-    }
+    if (!c.family.empty()) out += ",\"family\":" + json_string(c.family);
+    if (!c.family.empty() || c.k != 0) out += ",\"k\":" + std::to_string(c.k);
     out += "}";
     return out;
 }
@@ -230,9 +239,7 @@ std::string format_case(const Case& c) {
 std::string format_result(const std::string& id, std::string_view solver, const Result& r,
                           bool points) {
     if (!r.ok()) return format_failure(id, solver, code_name(r.error_code), message(r.error()));
-    std::string out = "{\"id\":" + id + ",\"solver\":";
-    json::write_string(out, solver);
-    out += ",\"hits\":[";
+    std::string out = "{\"id\":" + id + ",\"solver\":" + json_string(solver) + ",\"hits\":[";
     for (int i = 0; i < r.count; ++i) {
         const Hit& h = r.hits[i];
         if (i) out += ",";
@@ -262,33 +269,29 @@ std::string format_result(const std::string& id, std::string_view solver, const 
 
 std::string format_failure(const std::string& id, std::string_view solver, std::string_view code,
                            std::string_view message) {
-    std::string out = "{\"id\":" + id + ",\"solver\":";
-    json::write_string(out, solver);
-    out += ",\"error\":";
-    json::write_string(out, message);
-    out += ",\"code\":";
-    json::write_string(out, code);
-    out += "}";
-    return out;
+    return "{\"id\":" + id + ",\"solver\":" + json_string(solver) +
+           ",\"error\":" + json_string(message) + ",\"code\":" + json_string(code) + "}";
 }
 
 bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
     *pr = ParsedResult{};
-    Value obj;
-    std::string err;
-    if (!json::parse(line, &obj, &err)) return *why = "not valid JSON: " + err, false;
-    if (obj.type != Value::Type::object) return *why = "not a JSON object", false;
+    Json obj;
+    if (!parse_object(line, &obj, why)) return false;
     Reader r{obj, why};
-    if (const Value* id = obj.find("id"))
-        json::write(pr->id, *id);
-    else
-        return r.fail("id", "missing");
-    if (const Value* s = obj.find("solver"); s && s->type == Value::Type::string)
-        pr->solver = s->text;
-    if (const Value* e = obj.find("error")) {
-        pr->error_message = e->type == Value::Type::string ? e->text : "error";
-        const Value* code = obj.find("code");
-        pr->error_code = code && code->type == Value::Type::string ? code->text : "error";
+    const Json* id = r.need("id");
+    if (!id) return false;
+    pr->id = jsonl::dump(*id);
+    pr->has_id = true;
+    if (const Json* s = r.find("solver")) {
+        if (!s->is_string()) return r.fail("solver", "expected a solver's name");
+        pr->solver = s->get<std::string>();
+    }
+    if (const Json* e = r.find("error")) {
+        if (!e->is_string()) return r.fail("error", "expected a message");
+        pr->error_message = e->get<std::string>();
+        const Json* code = r.find("code");
+        if (code && !code->is_string()) return r.fail("code", "expected a string");
+        pr->error_code = code ? code->get<std::string>() : "error";
         // The code names the kind of refusal. One that no solver of linequad's gives stands as
         // out_of_range, a refusal the oracle never makes: it is graded as refused.
         pr->result.error_code = ErrorCode::out_of_range;
@@ -297,48 +300,49 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
         pr->result.error_field = "";
         return true;
     }
-    const Value* hits = r.need("hits");
+    const Json* hits = r.need("hits");
     if (!hits) return false;
-    if (hits->type != Value::Type::array || hits->items.size() > 2)
+    if (!hits->is_array() || hits->size() > 2)
         return r.fail("hits", "expected an array of at most 2 hits");
-    for (const Value& h : hits->items) {
+    for (const Json& h : *hits) {
         Reader hr{h, why};
         Hit& out = pr->result.hits[pr->result.count++];
         out = Hit{0, {}, std::numeric_limits<double>::quiet_NaN(), HitKind::cross, false};
-        if (h.type != Value::Type::object || !hr.number("t", &out.t))
-            return r.fail("hits", "each hit needs t");
-        const Value* kind = h.find("kind");
-        if (!kind || kind->type != Value::Type::string ||
-            (kind->text != "cross" && kind->text != "tangent"))
+        if (!h.is_object() || !hr.number("t", &out.t))
+            return r.fail("hits", "each hit needs t, a number");
+        const Json* kind = hr.find("kind");
+        if (!kind || !kind->is_string() || (*kind != "cross" && *kind != "tangent"))
             return r.fail("hits", "kind must be cross or tangent");
-        out.kind = kind->text == "tangent" ? HitKind::tangent : HitKind::cross;
-        if (h.find("p")) {
+        out.kind = *kind == "tangent" ? HitKind::tangent : HitKind::cross;
+        if (hr.find("p")) {
             if (!hr.vec("p", &out.p)) return r.fail("hits", "p must be 3 numbers");
             pr->has_points = true;
         }
-        if (h.find("bound") && !hr.number("bound", &out.bound))
+        if (hr.find("bound") && !hr.number("bound", &out.bound))
             return r.fail("hits", "bound must be a number");
-        if (const Value* c = h.find("certain"))
-            out.certain = c->type == Value::Type::boolean && c->boolean;
+        if (const Json* c = hr.find("certain")) {
+            if (!c->is_boolean()) return r.fail("hits", "certain must be true or false");
+            out.certain = c->get<bool>();
+        }
     }
-    const Value* on = obj.find("on_surface");
-    if (on && on->type == Value::Type::array) {
-        if (on->items.size() != 2) return r.fail("on_surface", "expected [t0, t1]");
+    const Json* on = r.find("on_surface");
+    if (on && on->is_array()) {
+        if (on->size() != 2) return r.fail("on_surface", "expected [t0, t1]");
         double e[2];
         for (int i = 0; i < 2; ++i) {
-            if (on->items[i].type == Value::Type::null)
+            if ((*on)[i].is_null())
                 e[i] = i == 0 ? -INFINITY : INFINITY;
-            else if (!to_double(on->items[i], &e[i]))
+            else if (!to_double((*on)[i], &e[i]))
                 return r.fail("on_surface", "expected numbers or null");
         }
         pr->result.on_surface = true;
         pr->result.s0 = e[0], pr->result.s1 = e[1];
-    } else if (on && on->type != Value::Type::null) {
+    } else if (on && !on->is_null()) {
         return r.fail("on_surface", "expected null or [t0, t1]");
     }
-    if (const Value* c = obj.find("certain")) {
-        if (c->type != Value::Type::boolean) return r.fail("certain", "expected true or false");
-        pr->result.certainty = c->boolean ? Certainty::certain : Certainty::uncertain;
+    if (const Json* c = r.find("certain")) {
+        if (!c->is_boolean()) return r.fail("certain", "expected true or false");
+        pr->result.certainty = c->get<bool>() ? Certainty::certain : Certainty::uncertain;
     }
     return true;
 }

@@ -6,12 +6,11 @@ namespace linequad::audit {
 std::vector<std::string> broken_claims(const Report& r) {
     std::vector<std::string> broken;
     for (const auto& entry : r.rows) {
-        const std::string& key = entry.first;
+        const RowKey& key = entry.first;
         const Row& row = entry.second;
-        std::string family = key.substr(0, key.find('/'));
-        std::string solver = key.substr(key.rfind('/') + 1);
+        const std::string &family = key.family, &solver = key.solver;
         auto claim = [&](bool holds, const std::string& what) {
-            if (!holds) broken.push_back(key + ": " + what);
+            if (!holds) broken.push_back(key.name() + ": " + what);
         };
         // Every solver: no NaN or infinity where the oracle has finite values, and the same
         // verdict on bad input (validation is shared and exact).

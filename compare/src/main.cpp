@@ -1,13 +1,21 @@
 // linequad: solve cases with any solver; audit solvers against the exact oracle.
+//
+// Exit status: 0 all well; 1 the data has problems (malformed case lines, a broken claim, an
+// incomplete merge); 2 the command cannot run (bad options, unreadable input, unwritable
+// output); 130 an audit stopped early by a signal (its report says so).
 #include "linequad/audit.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/registry.hpp"
 
+#include "jsonl.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <charconv>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -15,293 +23,414 @@ namespace {
 
 using namespace linequad;
 
-const char* const usage = R"(usage:
-  linequad solve [--solver NAME[,NAME...]|all] [--need any|nearest|all] [--no-points] [FILE|-]
-      Solves every case of a JSON Lines file (or standard input) and writes one result line per
-      case and solver. A malformed line gets an error result naming the line and the field.
-  linequad audit [--cases N] [--seed S] [--families F,...] [--solvers S,...] [--shard K/N]
-                 [--out DIR] [--no-plots] [--check]
-      Grades solvers against the exact oracle over the case families; writes DIR/report.json,
-      report.md and plots (default DIR: reports/latest). N cases per family, shape and range.
-      --check: exit 1 if a solver breaks a claim the README makes for it.
-  linequad audit --cases-file CASES --results RESULTS [--out DIR]
-      Grades someone else's answers (result lines whose ids match the cases).
-  linequad cases [--cases N] [--seed S] [--families F,...] [--shard K/N]
-      Writes a campaign's cases (for your own solver to answer).
-  linequad merge --out DIR REPORT.json...
-      Combines shard reports exactly (counts, maxima, histograms).
-  linequad solvers          lists the solver names
-  linequad --version        version, compiler and floating-point flags
-)";
+constexpr std::uint64_t max_cases = 1000000000; // per family, shape and range
+constexpr std::uint64_t max_shards = 1000000;
+
+// A decimal whole number in [lo, hi], or why not. CLI11's own conversion reads "-5" as 2^64 - 5
+// and "010" as octal, so numbers are read here.
+std::string whole_number(const std::string& text, std::uint64_t lo, std::uint64_t hi,
+                         std::uint64_t* out) {
+    std::uint64_t x = 0;
+    const char* end = text.data() + text.size();
+    auto [p, ec] = std::from_chars(text.data(), end, x);
+    bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+    if (!digits || ec != std::errc() || p != end || x < lo || x > hi)
+        return "expected a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+               ", not '" + text + "'";
+    if (out) *out = x;
+    return "";
+}
+
+CLI::Validator WholeNumber(std::uint64_t lo, std::uint64_t hi) {
+    return CLI::Validator(
+        [=](const std::string& text) { return whole_number(text, lo, hi, nullptr); },
+        std::to_string(lo) + ".." + std::to_string(hi));
+}
+
+std::uint64_t to_whole(const std::string& text) {
+    std::uint64_t x = 0;
+    whole_number(text, 0, UINT64_MAX, &x); // already validated
+    return x;
+}
+
+// "K/N": shard K of N.
+std::string shard_error(const std::string& text, int* k, int* n) {
+    std::size_t slash = text.find('/');
+    std::uint64_t kk = 0, nn = 0;
+    if (slash == std::string::npos ||
+        !whole_number(text.substr(slash + 1), 1, max_shards, &nn).empty() ||
+        !whole_number(text.substr(0, slash), 0, nn - 1, &kk).empty())
+        return "expected K/N with 0 <= K < N <= " + std::to_string(max_shards) + ", not '" + text +
+               "'";
+    if (k) *k = int(kk), *n = int(nn);
+    return "";
+}
+
+std::string solver_error(const std::string& name, bool batch_too) {
+    if (find_solver(name) || (batch_too && name == audit::batch_name)) return "";
+    return "no solver named '" + name + "' (see: linequad solvers)";
+}
+
+// "a,b,c": the names of a list option (one argument, so that a file after it stays a file).
+std::vector<std::string> split_list(const std::string& list) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    for (;;) {
+        std::size_t comma = list.find(',', start);
+        out.push_back(list.substr(start, comma - start));
+        if (comma == std::string::npos) return out;
+        start = comma + 1;
+    }
+}
+
+// A validator of a list option: each name must pass check (which says why not).
+template <class Check>
+CLI::Validator each_of_list(Check check) {
+    return CLI::Validator(
+        [check](const std::string& list) {
+            for (const std::string& name : split_list(list))
+                if (std::string why = check(name); !why.empty()) return why;
+            return std::string();
+        },
+        "");
+}
+
+std::string joined(int argc, char** argv) {
+    std::string s = "linequad";
+    for (int i = 1; i < argc; ++i)
+        s += std::string(" ") + argv[i];
+    return s;
+}
 
 int fail(const std::string& msg) {
     std::fprintf(stderr, "linequad: %s\n", msg.c_str());
     return 2;
 }
 
-std::vector<const Solver*> parse_solvers(const std::string& list, std::string* bad) {
-    std::vector<const Solver*> out;
-    if (list == "all") {
+// ---- solve
+
+struct SolveArgs {
+    std::string solvers = "stable", need = "all", file = "-", max_line_bytes = "1048576";
+    bool no_points = false;
+};
+
+int run_solve(const SolveArgs& a) {
+    std::vector<const Solver*> solvers;
+    if (a.solvers == "all")
         for (const Solver& s : all_solvers())
-            out.push_back(&s);
-        return out;
-    }
-    std::size_t start = 0;
-    while (start <= list.size()) {
-        std::size_t comma = list.find(',', start);
-        std::string name =
-            list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-        const Solver* s = find_solver(name);
-        if (!s) {
-            *bad = name;
-            return {};
-        }
-        out.push_back(s);
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-    }
-    return out;
-}
-
-int cmd_solve(int argc, char** argv) {
-    std::string solver_list = "stable", file = "-";
+            solvers.push_back(&s);
+    else
+        for (const std::string& name : split_list(a.solvers))
+            solvers.push_back(find_solver(name));
     Query query;
-    for (int i = 0; i < argc; ++i) {
-        std::string a = argv[i];
-        if (a == "--solver" && i + 1 < argc)
-            solver_list = argv[++i];
-        else if (a == "--need" && i + 1 < argc) {
-            std::string n = argv[++i];
-            if (n == "any")
-                query.need = Need::any;
-            else if (n == "nearest")
-                query.need = Need::nearest;
-            else if (n == "all")
-                query.need = Need::all;
-            else
-                return fail("--need takes any, nearest or all, not '" + n + "'");
-        } else if (a == "--no-points")
-            query.points = false;
-        else if (a.size() > 1 && a[0] == '-')
-            return fail("unknown option '" + a + "'\n" + usage);
-        else
-            file = a;
-    }
-    std::string bad;
-    std::vector<const Solver*> solvers = parse_solvers(solver_list, &bad);
-    if (solvers.empty()) return fail("no solver named '" + bad + "' (see: linequad solvers)");
+    query.need = a.need == "any" ? Need::any : a.need == "nearest" ? Need::nearest : Need::all;
+    query.points = !a.no_points;
+    std::size_t max_bytes = std::size_t(to_whole(a.max_line_bytes));
 
-    std::ifstream in_file;
-    std::istream* in = &std::cin;
-    if (file != "-") {
-        in_file.open(file);
-        if (!in_file) return fail("cannot open '" + file + "': " + std::strerror(errno));
-        in = &in_file;
-    }
-    // Line buffered: a long run that is stopped keeps every result it has written.
-    std::setvbuf(stdout, nullptr, _IOLBF, 1 << 16);
+    jsonl::LineReader in(a.file, max_bytes);
+    jsonl::Output out;
     std::string line, why;
-    long line_no = 0, errors = 0;
+    long errors = 0;
     Case c;
-    while (std::getline(*in, line)) {
-        ++line_no;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        bool parsed = parse_case(line, &c, &why);
-        for (const Solver* s : solvers) {
-            std::string out;
-            if (!parsed) {
-                out = format_failure(c.id, s->name, "malformed_case",
-                                     "line " + std::to_string(line_no) + ": " + why);
-            } else {
-                Result r = (*s)(c.shape, c.line, query);
-                out = format_result(c.id, s->name, r, query.points);
+    for (;;) {
+        auto status = in.next(&line);
+        if (status == jsonl::LineReader::Status::end) break;
+        if (status == jsonl::LineReader::Status::error) throw std::runtime_error(in.error());
+        bool parsed = false;
+        if (status == jsonl::LineReader::Status::too_long) {
+            c = Case{};
+            why = jsonl::too_long_message(in.number(), max_bytes);
+        } else {
+            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+            try {
+                parsed = parse_case(line, &c, &why);
+                if (!parsed) why = "line " + std::to_string(in.number()) + ": " + why;
+            } catch (const std::bad_alloc&) {
+                c = Case{};
+                why = "line " + std::to_string(in.number()) + ": out of memory while reading it";
             }
-            std::fputs(out.c_str(), stdout);
-            std::fputc('\n', stdout);
         }
+        for (const Solver* s : solvers)
+            out.line(parsed
+                         ? format_result(c.id, s->name, (*s)(c.shape, c.line, query), query.points)
+                         : format_failure(c.id, s->name, "malformed_case", why));
         if (!parsed) {
             ++errors;
-            std::fprintf(stderr, "linequad: line %ld: %s\n", line_no, why.c_str());
+            std::fprintf(stderr, "linequad: %s\n", why.c_str());
         }
     }
-    std::fflush(stdout);
+    out.finish();
     return errors ? 1 : 0;
 }
 
-// Options shared by audit and cases. Returns an error message, or "" when all is well.
-std::string parse_campaign(int argc, char** argv, audit::Options& o, bool* check) {
-    o.out_dir = "reports/latest";
-    for (int i = 0; i < argc; ++i) {
-        std::string a = argv[i];
-        auto value = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-        auto number = [&](const std::string& what, std::uint64_t* out) {
-            std::string v = value();
-            char* end = nullptr;
-            unsigned long long x = std::strtoull(v.c_str(), &end, 10);
-            if (v.empty() || *end) return what + " takes a whole number, not '" + v + "'";
-            *out = x;
-            return std::string();
-        };
-        std::string err;
-        if (a == "--cases")
-            err = number("--cases", &o.cases_per_group);
-        else if (a == "--seed")
-            err = number("--seed", &o.seed);
-        else if (a == "--out")
-            o.out_dir = value();
-        else if (a == "--no-plots")
-            o.plots = false;
-        else if (a == "--check" && check)
-            *check = true;
-        else if (a == "--results")
-            o.results_file = value();
-        else if (a == "--cases-file")
-            o.cases_file = value();
-        else if (a == "--families" || a == "--solvers") {
-            std::string list = value();
-            std::size_t start = 0;
-            while (start < list.size()) {
-                std::size_t comma = std::min(list.find(',', start), list.size());
-                std::string name = list.substr(start, comma - start);
-                start = comma + 1;
-                if (a == "--solvers") {
-                    if (!find_solver(name) && name != audit::batch_name)
-                        return "no solver named '" + name + "' (see: linequad solvers)";
-                    o.solvers.push_back(name);
-                } else {
-                    Family f;
-                    if (!parse_family(name, &f)) return "no family named '" + name + "'";
-                    o.families.push_back(f);
-                }
+// ---- audit and cases
+
+struct CampaignArgs {
+    std::string cases = "100000", seed = "1", shard = "0/1", out = "reports/latest";
+    std::string cases_file, results_file, max_line_bytes = "1048576", families, solvers;
+    bool no_plots = false, check = false;
+
+    audit::Options options() const {
+        audit::Options o;
+        o.cases_per_group = to_whole(cases);
+        o.seed = to_whole(seed);
+        shard_error(shard, &o.shard, &o.shards);
+        if (!families.empty())
+            for (const std::string& f : split_list(families)) {
+                Family x;
+                parse_family(f, &x);
+                o.families.push_back(x);
             }
-        } else if (a == "--shard") {
-            std::string v = value();
-            int k = -1, n = 0;
-            if (std::sscanf(v.c_str(), "%d/%d", &k, &n) != 2 || n < 1 || k < 0 || k >= n)
-                return "--shard takes K/N with 0 <= K < N, not '" + v + "'";
-            o.shard = k, o.shards = n;
-        } else {
-            return "unknown option '" + a + "'";
-        }
-        if (!err.empty()) return err;
+        if (!solvers.empty()) o.solvers = split_list(solvers);
+        o.out_dir = out;
+        o.plots = !no_plots;
+        o.cases_file = cases_file, o.results_file = results_file;
+        o.max_line_bytes = std::size_t(to_whole(max_line_bytes));
+        return o;
     }
-    if (o.results_file.empty() != o.cases_file.empty())
-        return "--results and --cases-file go together";
-    return "";
+};
+
+void add_campaign_options(CLI::App* app, CampaignArgs& a) {
+    app->add_option("--cases", a.cases, "cases per family, shape and range")
+        ->type_name("N")
+        ->check(WholeNumber(1, max_cases))
+        ->capture_default_str();
+    app->add_option("--seed", a.seed, "the campaign's seed")
+        ->type_name("S")
+        ->check(WholeNumber(0, UINT64_MAX))
+        ->capture_default_str();
+    app->add_option("--families", a.families, "families to run (default: all)")
+        ->type_name("F[,F...]")
+        ->check(each_of_list([](const std::string& f) {
+            Family x;
+            return parse_family(f, &x) ? std::string() : "no family named '" + f + "'";
+        }));
+    app->add_option("--shard", a.shard, "run only shard K of N (K from 0)")
+        ->type_name("K/N")
+        ->check(CLI::Validator(
+            [](const std::string& s) { return shard_error(s, nullptr, nullptr); }, ""))
+        ->capture_default_str();
 }
 
-std::string joined(int argc, char** argv) {
-    std::string s = "linequad";
-    for (int i = 0; i < argc; ++i)
-        s += std::string(" ") + argv[i];
-    return s;
-}
-
-int cmd_audit(int argc, char** argv) {
-    audit::Options o;
-    bool check = false;
-    if (std::string err = parse_campaign(argc - 1, argv + 1, o, &check); !err.empty())
-        return fail(err);
-    o.command = joined(argc, argv);
-    audit::Report r;
-    try {
-        r = audit::run(o);
-    } catch (const std::exception& e) {
-        return fail(e.what());
-    }
+int run_audit(const CampaignArgs& a, const std::string& command) {
+    audit::Options o = a.options();
+    o.command = command;
+    audit::Report r = audit::run(o);
     std::fprintf(stderr, "audit: %s/report.md (%.1f s)\n", o.out_dir.c_str(), r.seconds);
+    std::uint64_t graded = 0;
     for (const std::string& s : r.solvers) {
         audit::Row t = r.total(s);
+        graded += t.cases;
         std::printf("%-10s cases %8llu  mismatched %6llu  t max %12s ulps  p99 %8.3g\n", s.c_str(),
                     (unsigned long long)t.cases, (unsigned long long)t.cases_mismatched,
                     t.t_max == UINT64_MAX ? "inf" : std::to_string(t.t_max).c_str(),
                     t.t_error.quantile(0.99));
     }
-    if (check) {
+    if (std::fflush(stdout) != 0)
+        throw std::runtime_error(std::string("cannot write standard output: ") +
+                                 std::strerror(errno));
+    if (a.check) {
+        // A claim checked on nothing proves nothing.
+        if (graded == 0) {
+            std::fprintf(stderr, "audit --check: no case was graded, so no claim was checked\n");
+            return 1;
+        }
         std::vector<std::string> broken = audit::broken_claims(r);
         for (const std::string& b : broken)
             std::fprintf(stderr, "audit --check: %s\n", b.c_str());
         if (!broken.empty()) return 1;
-        std::printf("audit --check: every claim holds\n");
+        std::printf("audit --check: every claim holds on %llu graded results\n",
+                    (unsigned long long)graded);
     }
-    return r.complete ? 0 : 130;
+    return r.status == audit::Status::stopped ? 130 : 0;
 }
 
-int cmd_cases(int argc, char** argv) {
-    audit::Options o;
-    if (std::string err = parse_campaign(argc - 1, argv + 1, o, nullptr); !err.empty())
-        return fail(err);
-    audit::for_each_case(o, [](const Case& c) {
-        std::fputs(format_case(c).c_str(), stdout);
-        std::fputc('\n', stdout);
-    });
+int run_cases(const CampaignArgs& a) {
+    jsonl::Output out;
+    audit::for_each_case(a.options(), [&](const Case& c) { out.line(format_case(c)); });
+    out.finish();
     return 0;
 }
 
-int cmd_merge(int argc, char** argv) {
-    std::string out;
-    std::vector<std::string> inputs;
-    for (int i = 1; i < argc; ++i) {
-        std::string a = argv[i];
-        if (a == "--out" && i + 1 < argc)
-            out = argv[++i];
-        else
-            inputs.push_back(a);
-    }
-    if (out.empty() || inputs.empty())
-        return fail("usage: linequad merge --out DIR REPORT.json...");
+// ---- merge
+
+int run_merge(const std::vector<std::string>& inputs, const std::string& out,
+              const std::string& command) {
     audit::Report merged;
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         audit::Report r;
         std::string why;
         if (!audit::read_json(inputs[i], &r, &why)) return fail(why);
         if (i == 0) {
-            merged = r;
-            merged.shard = 0;
+            if (r.grades_results())
+                return fail(inputs[i] +
+                            ": it grades a results file; merge combines the shards of one "
+                            "campaign");
+            merged = std::move(r);
             continue;
         }
-        if (r.seed != merged.seed || r.cases_per_group != merged.cases_per_group ||
-            r.shards != merged.shards)
-            return fail(inputs[i] +
-                        " is from another campaign (seed, cases or shard count differ)");
+        if (std::string why = audit::unmergeable(merged, r); !why.empty())
+            return fail(inputs[i] + ": " + why + " (merging into " + inputs[0] + ")");
         merged.merge(r);
     }
-    merged.command = joined(argc, argv);
-    std::filesystem::create_directories(out);
-    audit::write_json(merged, out + "/report.json");
-    audit::write_markdown(merged, out);
-    audit::write_plots(merged, out);
+    merged.command = command;
+    audit::OutputDirectory dir(out);
+    dir.save_with_plots(merged);
     std::fprintf(stderr, "merge: %zu reports into %s/report.md\n", inputs.size(), out.c_str());
+    if (merged.complete()) return 0;
+    std::string missing;
+    for (int k = 0; k < merged.shards; ++k)
+        if (!std::binary_search(merged.shards_included.begin(), merged.shards_included.end(), k))
+            missing += (missing.empty() ? "" : ", ") + std::to_string(k);
+    std::fprintf(
+        stderr, "merge: the campaign is incomplete:%s%s\n",
+        missing.empty() ? "" : (" shards missing: " + missing + ";").c_str(),
+        merged.status == audit::Status::complete
+            ? ""
+            : (std::string(" a shard's run is ") + audit::status_name(merged.status)).c_str());
+    return 1;
+}
+
+int run_version() {
+    BuildInfo b = build_info();
+    jsonl::Output out;
+    out.line(std::string("linequad ") + b.version);
+    out.line(std::string("compiler: ") + b.compiler);
+    out.line(std::string("fast/ flags: ") + b.fast_flags);
+    out.line(std::string("FP contraction in fast/: ") +
+             (std::strstr(b.fast_flags, "-ffp-contract=off") ? "off" : "compiler default"));
+    out.finish();
     return 0;
 }
 
-int cmd_version() {
-    BuildInfo b = build_info();
-    std::printf("linequad %s\ncompiler: %s\nfast/ flags: %s\n", b.version, b.compiler,
-                b.fast_flags);
-    std::printf("FP contraction in fast/: %s\n",
-                std::strstr(b.fast_flags, "-ffp-contract=off") ? "off" : "compiler default");
+int run_solvers() {
+    jsonl::Output out;
+    for (const Solver& s : all_solvers()) {
+        std::string name(s.name);
+        out.line(name + std::string(name.size() < 8 ? 8 - name.size() : 0, ' ') + " " +
+                 std::string(s.summary));
+    }
+    out.finish();
     return 0;
+}
+
+int main_checked(int argc, char** argv) {
+    CLI::App app{"linequad: line-quadric intersection solvers, graded against an exact oracle"};
+    app.require_subcommand(0, 1);
+    bool version = false;
+    app.add_flag("--version", version, "version, compiler and floating-point flags");
+
+    SolveArgs solve;
+    CLI::App* s = app.add_subcommand(
+        "solve", "Solve every case of a JSON Lines file (or standard input): one result line per "
+                 "case and solver. A malformed line gets an error result naming the line and the "
+                 "field.");
+    s->add_option("--solver", solve.solvers, "solvers, or all")
+        ->type_name("S[,S...]")
+        ->check(each_of_list(
+            [](const std::string& n) { return n == "all" ? "" : solver_error(n, false); }))
+        ->capture_default_str();
+    s->add_option("--need", solve.need, "what to find: any, nearest or all")
+        ->type_name("WHAT")
+        ->check(CLI::IsMember({"any", "nearest", "all"}))
+        ->capture_default_str();
+    s->add_flag("--no-points", solve.no_points, "leave the hit points out");
+    s->add_option("--max-line-bytes", solve.max_line_bytes, "the longest line read")
+        ->type_name("N")
+        ->check(WholeNumber(64, std::uint64_t(1) << 30))
+        ->capture_default_str();
+    s->add_option("file", solve.file, "the cases (- or nothing: standard input)")
+        ->type_name("FILE");
+
+    CampaignArgs audit_args;
+    CLI::App* a = app.add_subcommand(
+        "audit", "Grade solvers against the exact oracle over the case families: writes "
+                 "DIR/report.json, report.md and plots. Or grade someone else's answers "
+                 "(--cases-file with --results).");
+    add_campaign_options(a, audit_args);
+    a->add_option("--solvers", audit_args.solvers, "solvers (default: every fast one and batch)")
+        ->type_name("S[,S...]")
+        ->check(each_of_list([](const std::string& n) { return solver_error(n, true); }));
+    a->add_option("--out", audit_args.out, "the report's directory")
+        ->type_name("DIR")
+        ->capture_default_str();
+    a->add_flag("--no-plots", audit_args.no_plots, "no gnuplot figures");
+    a->add_flag("--check", audit_args.check,
+                "exit 1 if a solver breaks a claim the README makes for it");
+    CLI::Option* cases_file =
+        a->add_option("--cases-file", audit_args.cases_file, "cases (JSON Lines) to grade")
+            ->type_name("FILE")
+            ->check(CLI::ExistingFile);
+    CLI::Option* results =
+        a->add_option("--results", audit_args.results_file, "answers to those cases")
+            ->type_name("FILE")
+            ->check(CLI::ExistingFile);
+    cases_file->needs(results);
+    results->needs(cases_file);
+    a->add_option("--max-line-bytes", audit_args.max_line_bytes,
+                  "the longest line read from those files")
+        ->type_name("N")
+        ->check(WholeNumber(64, std::uint64_t(1) << 30))
+        ->capture_default_str();
+
+    CampaignArgs cases_args;
+    CLI::App* c = app.add_subcommand(
+        "cases", "Write a campaign's cases (for your own solver to answer) to standard output.");
+    add_campaign_options(c, cases_args);
+
+    std::vector<std::string> inputs;
+    std::string merge_out;
+    CLI::App* m = app.add_subcommand(
+        "merge", "Combine the shard reports of one campaign exactly (counts, maxima, "
+                 "histograms); refuses reports of another campaign or a shard twice, and exits 1 "
+                 "when shards are missing.");
+    m->add_option("--out", merge_out, "the merged report's directory")
+        ->type_name("DIR")
+        ->required();
+    m->add_option("reports", inputs, "report.json files")
+        ->type_name("REPORT.json")
+        ->required()
+        ->check(CLI::ExistingFile);
+
+    CLI::App* list = app.add_subcommand("solvers", "List the solver names.");
+    CLI::App* v = app.add_subcommand("version", "Version, compiler and floating-point flags.");
+
+    try {
+        app.parse(argc, argv);
+        if (audit_args.check && !audit_args.results_file.empty())
+            throw CLI::ValidationError("--check",
+                                       "checks linequad's own claims; it cannot grade a file");
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) { // --help, on standard output
+            app.exit(e);
+            std::cout.flush();
+            if (!std::cout) throw std::runtime_error("cannot write standard output");
+            return 0;
+        }
+        std::fprintf(stderr, "linequad: %s\nrun 'linequad --help' for the commands and options\n",
+                     e.what());
+        return 2;
+    }
+    std::string command = joined(argc, argv);
+    if (version || v->parsed()) return run_version();
+    if (list->parsed()) return run_solvers();
+    if (s->parsed()) return run_solve(solve);
+    if (a->parsed()) return run_audit(audit_args, command);
+    if (c->parsed()) return run_cases(cases_args);
+    if (m->parsed()) return run_merge(inputs, merge_out, command);
+    std::fputs(app.help().c_str(), stderr);
+    return 2;
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fputs(usage, stderr);
-        return 2;
+    jsonl::guard_standard_descriptors();
+    try {
+        return main_checked(argc, argv);
+    } catch (const std::bad_alloc&) {
+        return fail("out of memory");
+    } catch (const std::exception& e) {
+        return fail(e.what());
     }
-    std::string cmd = argv[1];
-    if (cmd == "--version" || cmd == "version") return cmd_version();
-    if (cmd == "--help" || cmd == "help" || cmd == "-h") return std::fputs(usage, stdout), 0;
-    if (cmd == "solvers") {
-        for (const Solver& s : all_solvers())
-            std::printf("%-8s %s\n", std::string(s.name).c_str(), std::string(s.summary).c_str());
-        return 0;
-    }
-    if (cmd == "solve") return cmd_solve(argc - 2, argv + 2);
-    if (cmd == "audit") return cmd_audit(argc - 1, argv + 1);
-    if (cmd == "cases") return cmd_cases(argc - 1, argv + 1);
-    if (cmd == "merge") return cmd_merge(argc - 1, argv + 1);
-    return fail("unknown command '" + cmd + "'\n" + usage);
 }

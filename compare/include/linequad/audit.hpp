@@ -12,6 +12,8 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <string_view>
+#include <tuple>
 #include <vector>
 
 namespace linequad::audit {
@@ -87,24 +89,65 @@ struct CurvePoint {
     Histogram t_error;
 };
 
+// What a row of the report is about. Rows are kept in this order (family, shape, solver).
+struct RowKey {
+    std::string family, shape, solver;
+    bool operator<(const RowKey& o) const {
+        return std::tie(family, shape, solver) < std::tie(o.family, o.shape, o.solver);
+    }
+    bool operator==(const RowKey& o) const {
+        return family == o.family && shape == o.shape && solver == o.solver;
+    }
+    std::string name() const { return family + "/" + shape + "/" + solver; } // for people
+};
+
+// A curve of error against k: one per (family, solver), over all shapes and ranges.
+struct CurveKey {
+    std::string family, solver;
+    bool operator<(const CurveKey& o) const {
+        return std::tie(family, solver) < std::tie(o.family, o.solver);
+    }
+    bool operator==(const CurveKey& o) const { return family == o.family && solver == o.solver; }
+};
+
+enum class Status {
+    running,  // saved while the run goes on: what it holds so far
+    stopped,  // ended early by a stop request: what it measured
+    complete, // every case of its shards graded
+};
+const char* status_name(Status s);
+
 struct Report {
     // Provenance.
-    std::string command, machine, compiler, flags, commit, date;
-    std::uint64_t seed = 0, cases_per_group = 0;
-    int shard = 0, shards = 1;
-    bool complete = true;
+    std::string command, machine, compiler, flags, version, commit, date;
     double seconds = 0;
-    std::vector<std::string> solvers;
-    // "family/shape/solver" -> statistics.
-    std::map<std::string, Row> rows;
-    // "family/solver" -> k -> point.
-    std::map<std::string, std::map<int, CurvePoint>> curves;
+    // The campaign. Shards of one campaign agree on all of it (merge checks).
+    std::uint64_t seed = 0, cases_per_group = 0;
+    std::vector<std::string> families, shapes, ranges, solvers;
+    int shards = 1;
+    std::vector<int> shards_included{0}; // the shards whose cases this report holds, ascending
+    // Set instead when the report grades a results file (not a campaign: it does not merge).
+    std::string cases_file, results_file;
+    Status status = Status::complete;
+    // Statistics.
+    std::map<RowKey, Row> rows;
+    std::map<CurveKey, std::map<int, CurvePoint>> curves;
     // Oracle rounding: values resolved at 64, 128, ... bits.
     std::array<std::uint64_t, 8> oracle_steps{};
 
+    // Every case of the campaign graded: each shard present and complete.
+    bool complete() const {
+        return status == Status::complete && int(shards_included.size()) == shards;
+    }
+    bool grades_results() const { return !results_file.empty(); }
+    // Adds another shard of the same campaign (see mergeable()).
     void merge(const Report& o);
     Row total(const std::string& solver) const; // all rows of one solver
 };
+
+// Why b cannot be merged into a (another campaign, a shard twice, a results grading), naming
+// the difference; empty when it can.
+std::string unmergeable(const Report& a, const Report& b);
 
 // Grades one solver result against the oracle's for one case, into a row and a curve point.
 // points: whether the solver's result carries hit points to grade.
@@ -120,14 +163,18 @@ struct Options {
     std::vector<Family> families;     // empty: all
     std::vector<std::string> solvers; // empty: every fast solver, and batch
     int shard = 0, shards = 1;
-    std::string out_dir;                  // reports/<run>
+    std::string out_dir;                  // reports/<run>; empty: nothing written
     std::string results_file, cases_file; // grade someone else's answers
     std::string command;                  // how it was invoked, for the report
     bool plots = true;
+    std::size_t max_line_bytes = std::size_t(1) << 20; // per line of a cases or results file
 };
 
-// Runs the campaign (or grades a results file) and writes the report; returns it.
-// A stop request (SIGINT, SIGTERM) ends the run early with what it has, marked incomplete.
+// Runs the campaign (or grades a results file) and writes the report; returns it. The output
+// directory is locked and marked in progress first, and saved every few seconds: a run that is
+// killed loses at most those seconds. A stop request (SIGINT, SIGTERM) ends the run early with
+// what it has, marked stopped. Throws std::runtime_error on input it must refuse (a malformed
+// cases file, duplicate ids) and on output it cannot write.
 Report run(const Options& o);
 
 // Every case of a campaign, in order (the shard's share only).
@@ -137,9 +184,35 @@ void for_each_case(const Options& o, const std::function<void(const Case&)>& f);
 // is described in one line. Empty: every claim holds.
 std::vector<std::string> broken_claims(const Report& r);
 
-void write_json(const Report& r, const std::string& path);
-bool read_json(const std::string& path, Report* r, std::string* why);
-void write_markdown(const Report& r, const std::string& dir);
-void write_plots(const Report& r, const std::string& dir); // gnuplot: SVG and PNG
+// report.json: the exact, mergeable record (format "linequad-audit-2").
+std::string to_json(const Report& r);
+// Reads report.json text, checking the schema and every value's range; on failure returns false
+// with *why naming the field by its path (rows[3].t_ulps.max) and what is wrong with it.
+bool from_json(std::string_view text, Report* r, std::string* why);
+bool read_json(const std::string& path, Report* r, std::string* why); // why names the file too
+void write_json(const Report& r, const std::string& path);            // atomic; throws
+std::string markdown(const Report& r);
+// gnuplot: SVG and PNG beside the report. Returns false (and says why on stderr) if it could
+// not plot; throws if it cannot write its files.
+bool write_plots(const Report& r, const std::string& dir);
+
+// An output directory held by one run: locked (a second run into it is refused, naming the
+// lock), marked as in progress before anything is computed, and saved atomically: report.json,
+// then report.md written from the saved JSON, so the two always agree. Plots of an earlier run
+// are removed at the start: they would describe another report.
+class OutputDirectory {
+  public:
+    explicit OutputDirectory(const std::string& dir); // throws, naming the path and the reason
+    ~OutputDirectory();
+    OutputDirectory(const OutputDirectory&) = delete;
+    OutputDirectory& operator=(const OutputDirectory&) = delete;
+    void save(const Report& r);            // report.json and report.md
+    void save_with_plots(const Report& r); // and the figures
+    const std::string& path() const { return dir_; }
+
+  private:
+    std::string dir_;
+    int lock_fd_ = -1;
+};
 
 } // namespace linequad::audit

@@ -1,0 +1,78 @@
+// libFuzzer target: compare/'s readers and writers. Whatever the bytes, nothing crashes, and what
+// is read is written back faithfully:
+// - JSON: parse -> write -> parse gives the same value, and writing it again the same text;
+// - a case: parse -> format -> parse gives the same case, bit for bit (the formatted text of
+//   every double is exact, so equal text is equal bits);
+// - a result line and a report: format(parse(x)) is a fixed point of format(parse(.)).
+// A failure aborts with the input and what broke.
+#include "linequad/audit.hpp"
+#include "linequad/case_io.hpp"
+
+#include "jsonl.hpp"
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+using namespace linequad;
+
+namespace {
+
+[[noreturn]] void broken(const char* what, std::string_view input, const std::string& detail) {
+    std::fprintf(stderr, "invariant broken: %s\ninput: %.*s\n%s\n", what, int(input.size()),
+                 input.data(), detail.c_str());
+    std::abort();
+}
+
+void json_round_trip(std::string_view text) {
+    jsonl::Json a, b;
+    std::string why;
+    if (!jsonl::parse(text, &a, &why)) return;
+    std::string written = jsonl::dump(a);
+    if (!jsonl::parse(written, &b, &why)) broken("written JSON does not parse", text, why);
+    if (!(a == b)) broken("JSON changed through write and parse", text, written);
+    if (jsonl::dump(b) != written) broken("JSON written twice differs", text, written);
+}
+
+void case_round_trip(std::string_view text) {
+    Case c, d;
+    std::string why;
+    if (!parse_case(text, &c, &why)) return;
+    std::string formatted = format_case(c);
+    if (!parse_case(formatted, &d, &why)) broken("a formatted case does not parse", text, why);
+    if (format_case(d) != formatted || d.id != c.id || d.family != c.family || d.k != c.k)
+        broken("a case changed through format and parse", text, formatted);
+}
+
+void result_round_trip(std::string_view text) {
+    ParsedResult a, b;
+    std::string why;
+    if (!parse_result(text, &a, &why)) return;
+    std::string once = format_result(a.id, a.solver, a.result, a.has_points);
+    if (!parse_result(once, &b, &why)) broken("a formatted result does not parse", text, why);
+    std::string twice = format_result(b.id, b.solver, b.result, b.has_points);
+    if (twice != once) broken("a result line is not a fixed point", text, once + "\n" + twice);
+}
+
+void report_round_trip(std::string_view text) {
+    audit::Report a, b;
+    std::string why;
+    if (!audit::from_json(text, &a, &why)) return;
+    std::string once = audit::to_json(a);
+    if (!audit::from_json(once, &b, &why)) broken("a written report does not read", text, why);
+    if (audit::to_json(b) != once) broken("a report is not a fixed point", text, once);
+    audit::markdown(b); // renders whatever it holds
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    std::string_view text(reinterpret_cast<const char*>(data), size);
+    json_round_trip(text);
+    case_round_trip(text);
+    result_round_trip(text);
+    report_round_trip(text);
+    return 0;
+}

@@ -1,0 +1,419 @@
+// report.json: written exactly, read strictly. Every value read back is checked for its type and
+// its range, and the statistics for their consistency (a histogram holds as many errors as the
+// row graded), so a damaged or hand-edited report is refused with the path of the bad field
+// instead of being merged into a wrong total.
+#include "linequad/audit.hpp"
+
+#include "jsonl.hpp"
+#include "shape_types.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace linequad::audit {
+
+namespace {
+
+using jsonl::Json;
+using jsonl::OrderedJson;
+
+constexpr const char* format_name = "linequad-audit-2";
+constexpr int max_shards = 1000000;
+
+// ---- writing
+
+template <class Array>
+OrderedJson pairs(const Array& a) {
+    // Histograms are mostly zeros: written as [index, count] pairs.
+    OrderedJson out = OrderedJson::array();
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i]) out.push_back({i, a[i]});
+    return out;
+}
+
+double mean(double sum, std::uint64_t n) {
+    return n ? sum / double(n) : 0;
+}
+
+OrderedJson row_json(const RowKey& key, const Row& r) {
+    OrderedJson mismatches = OrderedJson::object();
+    for (int m = 0; m < mismatch_kinds; ++m)
+        mismatches[mismatch_name(m)] = r.mismatches[m];
+    OrderedJson worst = OrderedJson::array();
+    for (const Worst& w : r.worst)
+        worst.push_back({{"mismatch", w.mismatch},
+                         {"t_ulps", w.ulps},
+                         {"case", w.case_line},
+                         {"solver", w.solver_line},
+                         {"oracle", w.oracle_line}});
+    // mean, p50, p99, ... are for people reading the file; only the exact fields are read back.
+    return {{"family", key.family},
+            {"shape", key.shape},
+            {"solver", key.solver},
+            {"cases", r.cases},
+            {"graded_roots", r.graded_roots},
+            {"graded_points", r.graded_coords},
+            {"cases_mismatched", r.cases_mismatched},
+            {"mismatches", mismatches},
+            {"t_ulps",
+             {{"max", r.t_max},
+              {"mean", mean(r.t_sum, r.graded_roots)},
+              {"p50", r.t_error.quantile(0.5)},
+              {"p99", r.t_error.quantile(0.99)},
+              {"p999", r.t_error.quantile(0.999)},
+              {"mean_bits", mean(r.t_bits_sum, r.graded_roots)},
+              {"sum", r.t_sum},
+              {"bits_sum", r.t_bits_sum},
+              {"histogram", pairs(r.t_error.count)}}},
+            {"point_ulps",
+             {{"max", r.p_max},
+              {"p99", r.p_error.quantile(0.99)},
+              {"histogram", pairs(r.p_error.count)}}},
+            {"ns_per_solve", {{"median", r.ns.median()}, {"histogram", pairs(r.ns.count)}}},
+            {"certified",
+             {{"uncertain", r.uncertain},
+              {"certain_wrong", r.certain_wrong},
+              {"bounded_roots", r.bounded_roots},
+              {"bound_violations", r.bound_violations},
+              {"tightness_p50", r.tightness.quantile(0.5)},
+              {"bound_below_half_ulp", r.bound_below_half_ulp},
+              {"tightness", pairs(r.tightness.count)}}},
+            {"rungs",
+             {{"newton", r.rungs[std::size_t(Rung::newton)]},
+              {"double_double", r.rungs[std::size_t(Rung::double_double)]},
+              {"exact", r.rungs[std::size_t(Rung::exact)]}}},
+            {"worst", worst}};
+}
+
+OrderedJson curve_json(const CurveKey& key, const std::map<int, CurvePoint>& points) {
+    OrderedJson list = OrderedJson::array();
+    for (const auto& [k, p] : points)
+        list.push_back({{"k", k},
+                        {"cases", p.cases},
+                        {"mismatched", p.mismatched},
+                        {"t_max", p.t_max},
+                        {"histogram", pairs(p.t_error.count)}});
+    return {{"family", key.family}, {"solver", key.solver}, {"points", list}};
+}
+
+// ---- reading
+
+struct Invalid : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// A value with the path that names it in errors ("rows[3].t_ulps.max").
+struct Node {
+    const Json& v;
+    std::string path;
+
+    [[noreturn]] void fail(const std::string& what) const { throw Invalid(path + ": " + what); }
+
+    const Json* find(const char* key) const {
+        auto it = v.find(key);
+        return it == v.end() ? nullptr : &*it;
+    }
+    Node at(const char* key) const {
+        if (!v.is_object()) fail("expected an object");
+        const Json* x = find(key);
+        std::string p = path.empty() ? key : path + "." + key;
+        if (!x) throw Invalid(p + ": missing");
+        return {*x, p};
+    }
+    Node item(std::size_t i) const { return {v[i], path + "[" + std::to_string(i) + "]"}; }
+    std::size_t size(std::size_t at_most = SIZE_MAX) const {
+        if (!v.is_array()) fail("expected an array");
+        if (v.size() > at_most) fail("more than " + std::to_string(at_most) + " entries");
+        return v.size();
+    }
+    std::uint64_t count(std::uint64_t at_most = UINT64_MAX) const {
+        if (v.is_number_unsigned()) {
+            std::uint64_t x = v.get<std::uint64_t>();
+            if (x > at_most) fail(std::to_string(x) + " is above " + std::to_string(at_most));
+            return x;
+        }
+        fail("expected a whole number >= 0, not " + jsonl::dump(v));
+    }
+    long integer(long lo, long hi) const {
+        if (!v.is_number_integer()) fail("expected a whole number, not " + jsonl::dump(v));
+        long x = v.is_number_unsigned()
+                     ? long(std::min<std::uint64_t>(v.get<std::uint64_t>(), std::uint64_t(hi) + 1))
+                     : long(v.get<std::int64_t>());
+        if (x < lo || x > hi)
+            fail(std::to_string(x) + " is outside " + std::to_string(lo) + ".." +
+                 std::to_string(hi));
+        return x;
+    }
+    double real() const { // finite and >= 0: sums of errors, seconds
+        if (!v.is_number()) fail("expected a number, not " + jsonl::dump(v));
+        double x = v.get<double>();
+        if (!std::isfinite(x) || x < 0)
+            fail("expected a finite number >= 0, not " + jsonl::dump(v));
+        return x;
+    }
+    std::string text() const {
+        if (!v.is_string()) fail("expected a string, not " + jsonl::dump(v));
+        return v.get<std::string>();
+    }
+    bool flag() const {
+        if (!v.is_boolean()) fail("expected true or false, not " + jsonl::dump(v));
+        return v.get<bool>();
+    }
+    // A list of distinct strings, each accepted by known (which says what it expects).
+    template <class Known>
+    std::vector<std::string> names(Known known) const {
+        std::vector<std::string> out;
+        for (std::size_t i = 0, n = size(); i < n; ++i) {
+            std::string s = item(i).text();
+            if (std::string expected = known(s); !expected.empty())
+                item(i).fail("'" + s + "' is not " + expected);
+            if (std::find(out.begin(), out.end(), s) != out.end())
+                item(i).fail("'" + s + "' is listed twice");
+            out.push_back(s);
+        }
+        return out;
+    }
+};
+
+template <class Array>
+std::uint64_t read_pairs(const Node& n, Array& a) {
+    std::uint64_t total = 0;
+    long last = -1;
+    for (std::size_t i = 0, size = n.size(); i < size; ++i) {
+        Node pair = n.item(i);
+        if (pair.size() != 2) pair.fail("expected [index, count]");
+        long index = pair.item(0).integer(0, long(a.size()) - 1);
+        if (index <= last) pair.fail("indices must increase");
+        last = index;
+        std::uint64_t c = pair.item(1).count();
+        if (c == 0) pair.fail("a zero count is not written");
+        if (c > UINT64_MAX - total) pair.fail("the counts overflow");
+        a[std::size_t(index)] = c;
+        total += c;
+    }
+    return total;
+}
+
+// The largest error of a histogram must lie in its top bucket (maxima and histograms are kept
+// together, so a report whose two disagree was edited or damaged).
+void check_max(const Node& n, std::uint64_t max, const Histogram& h, std::uint64_t graded) {
+    int top = -1;
+    for (int b = 0; b < Histogram::bins; ++b)
+        if (h.count[b]) top = b;
+    bool fits = graded == 0 ? max == 0 : Histogram::bucket(max) == top;
+    if (!fits) n.fail(std::to_string(max) + " does not lie in the histogram's top bucket");
+}
+
+void check_total(const Node& n, std::uint64_t total, std::uint64_t want, const char* what) {
+    if (total != want)
+        n.fail("holds " + std::to_string(total) + " values, but " + what + " is " +
+               std::to_string(want));
+}
+
+Row read_row(const Node& n) {
+    Row r;
+    r.cases = n.at("cases").count();
+    auto at_most_cases = [&](const char* key) { return n.at(key).count(r.cases); };
+    r.graded_roots = n.at("graded_roots").count();
+    r.graded_coords = n.at("graded_points").count();
+    r.cases_mismatched = at_most_cases("cases_mismatched");
+    Node m = n.at("mismatches");
+    for (int k = 0; k < mismatch_kinds; ++k)
+        r.mismatches[k] = m.at(mismatch_name(k)).count(r.cases);
+    Node t = n.at("t_ulps");
+    r.t_max = t.at("max").count();
+    r.t_sum = t.at("sum").real();
+    r.t_bits_sum = t.at("bits_sum").real();
+    check_total(t.at("histogram"), read_pairs(t.at("histogram"), r.t_error.count), r.graded_roots,
+                "graded_roots");
+    check_max(t.at("max"), r.t_max, r.t_error, r.graded_roots);
+    Node p = n.at("point_ulps");
+    r.p_max = p.at("max").count();
+    check_total(p.at("histogram"), read_pairs(p.at("histogram"), r.p_error.count), r.graded_coords,
+                "graded_points");
+    check_max(p.at("max"), r.p_max, r.p_error, r.graded_coords);
+    read_pairs(n.at("ns_per_solve").at("histogram"), r.ns.count);
+    Node c = n.at("certified");
+    r.uncertain = c.at("uncertain").count(r.cases);
+    r.certain_wrong = c.at("certain_wrong").count(r.cases);
+    r.bounded_roots = c.at("bounded_roots").count(r.graded_roots);
+    r.bound_violations = c.at("bound_violations").count(r.bounded_roots);
+    r.bound_below_half_ulp = c.at("bound_below_half_ulp").count(r.bounded_roots);
+    check_total(c.at("tightness"), read_pairs(c.at("tightness"), r.tightness.count),
+                r.bounded_roots, "bounded_roots");
+    Node g = n.at("rungs");
+    r.rungs[std::size_t(Rung::newton)] = g.at("newton").count(r.cases);
+    r.rungs[std::size_t(Rung::double_double)] = g.at("double_double").count(r.cases);
+    r.rungs[std::size_t(Rung::exact)] = g.at("exact").count(r.cases);
+    Node w = n.at("worst");
+    for (std::size_t i = 0, size = w.size(Row::keep_worst); i < size; ++i) {
+        Node x = w.item(i);
+        Worst k;
+        k.mismatch = x.at("mismatch").flag();
+        k.ulps = x.at("t_ulps").count();
+        k.case_line = x.at("case").text();
+        k.solver_line = x.at("solver").text();
+        k.oracle_line = x.at("oracle").text();
+        r.worst.push_back(k);
+    }
+    return r;
+}
+
+std::string expect_in(const std::vector<std::string>& list, const std::string& s,
+                      const char* what) {
+    if (std::find(list.begin(), list.end(), s) != list.end()) return "";
+    return "'" + s + "' is not one of the report's " + what;
+}
+
+void read_report(const Json& root, Report* r) {
+    Node top{root, ""};
+    if (!root.is_object()) throw Invalid("not a JSON object");
+    std::string format = top.at("format").text();
+    if (format == "linequad-audit-1")
+        throw Invalid("format: linequad-audit-1 is an older report format; run the audit again "
+                      "with this linequad");
+    if (format != format_name) top.at("format").fail("not a linequad audit report");
+    *r = Report{};
+    std::string status = top.at("status").text();
+    bool known_status = false;
+    for (Status s : {Status::running, Status::stopped, Status::complete})
+        if (status == status_name(s)) r->status = s, known_status = true;
+    if (!known_status) top.at("status").fail("expected running, stopped or complete");
+    r->command = top.at("command").text(), r->machine = top.at("machine").text();
+    r->compiler = top.at("compiler").text(), r->flags = top.at("flags").text();
+    r->version = top.at("version").text(), r->commit = top.at("commit").text();
+    r->date = top.at("date").text();
+    r->seconds = top.at("seconds").real();
+    r->seed = top.at("seed").count();
+    r->cases_per_group = top.at("cases_per_group").count();
+    if (top.find("results_file")) {
+        r->results_file = top.at("results_file").text();
+        r->cases_file = top.at("cases_file").text();
+    }
+    auto any = [](const std::string&) { return std::string(); };
+    r->families = top.at("families").names([&](const std::string& f) {
+        Family x;
+        return r->grades_results() || parse_family(f, &x) ? "" : "a family";
+    });
+    r->shapes = top.at("shapes").names(
+        [](const std::string& s) { return shape_index(s) < shape_count ? "" : "a shape"; });
+    r->ranges = top.at("ranges").names([](const std::string& s) {
+        return s == "line" || s == "ray" || s == "segment" ? "" : "line, ray or segment";
+    });
+    r->solvers = top.at("solvers").names(any);
+    r->shards = int(top.at("shards").integer(1, max_shards));
+    Node included = top.at("shards_included");
+    r->shards_included.clear();
+    for (std::size_t i = 0, n = included.size(); i < n; ++i) {
+        int k = int(included.item(i).integer(0, r->shards - 1));
+        if (!r->shards_included.empty() && k <= r->shards_included.back())
+            included.item(i).fail("shards must be listed once each, ascending");
+        r->shards_included.push_back(k);
+    }
+    if (r->shards_included.empty()) included.fail("names no shard");
+    Node steps = top.at("oracle_rounding_steps");
+    if (steps.size() != r->oracle_steps.size()) steps.fail("expected 8 counts");
+    for (std::size_t i = 0; i < r->oracle_steps.size(); ++i)
+        r->oracle_steps[i] = steps.item(i).count();
+
+    Node rows = top.at("rows");
+    for (std::size_t i = 0, n = rows.size(); i < n; ++i) {
+        Node x = rows.item(i);
+        RowKey key{x.at("family").text(), x.at("shape").text(), x.at("solver").text()};
+        if (auto e = expect_in(r->families, key.family, "families"); !e.empty())
+            x.at("family").fail(e);
+        if (auto e = expect_in(r->shapes, key.shape, "shapes"); !e.empty()) x.at("shape").fail(e);
+        if (auto e = expect_in(r->solvers, key.solver, "solvers"); !e.empty())
+            x.at("solver").fail(e);
+        if (r->rows.count(key)) x.fail(key.name() + " appears twice");
+        r->rows[key] = read_row(x);
+    }
+    Node curves = top.at("curves");
+    for (std::size_t i = 0, n = curves.size(); i < n; ++i) {
+        Node x = curves.item(i);
+        CurveKey key{x.at("family").text(), x.at("solver").text()};
+        if (auto e = expect_in(r->families, key.family, "families"); !e.empty())
+            x.at("family").fail(e);
+        if (auto e = expect_in(r->solvers, key.solver, "solvers"); !e.empty())
+            x.at("solver").fail(e);
+        if (r->curves.count(key)) x.fail(key.family + "/" + key.solver + " appears twice");
+        auto& points = r->curves[key];
+        Node list = x.at("points");
+        for (std::size_t j = 0, m = list.size(); j < m; ++j) {
+            Node p = list.item(j);
+            int k = int(p.at("k").integer(-1000000, 1000000));
+            if (points.count(k)) p.at("k").fail("k = " + std::to_string(k) + " appears twice");
+            CurvePoint& q = points[k];
+            q.cases = p.at("cases").count();
+            q.mismatched = p.at("mismatched").count(q.cases);
+            q.t_max = p.at("t_max").count();
+            read_pairs(p.at("histogram"), q.t_error.count);
+        }
+    }
+}
+
+} // namespace
+
+std::string to_json(const Report& r) {
+    OrderedJson head = {{"format", format_name},  {"status", status_name(r.status)},
+                        {"command", r.command},   {"machine", r.machine},
+                        {"compiler", r.compiler}, {"flags", r.flags},
+                        {"version", r.version},   {"commit", r.commit},
+                        {"date", r.date},         {"seconds", r.seconds},
+                        {"seed", r.seed},         {"cases_per_group", r.cases_per_group},
+                        {"families", r.families}, {"shapes", r.shapes},
+                        {"ranges", r.ranges},     {"solvers", r.solvers},
+                        {"shards", r.shards},     {"shards_included", r.shards_included}};
+    if (r.grades_results()) {
+        head["cases_file"] = r.cases_file;
+        head["results_file"] = r.results_file;
+    }
+    head["oracle_rounding_steps"] = r.oracle_steps;
+    // One row and one curve per line, so that two reports diff line by line.
+    std::string s = jsonl::dump(head);
+    s.pop_back(); // the closing brace
+    s += ",\"rows\":[";
+    bool first = true;
+    for (const auto& [key, row] : r.rows) {
+        s += (first ? "\n" : ",\n") + jsonl::dump(row_json(key, row));
+        first = false;
+    }
+    s += "],\n\"curves\":[";
+    first = true;
+    for (const auto& [key, points] : r.curves) {
+        s += (first ? "\n" : ",\n") + jsonl::dump(curve_json(key, points));
+        first = false;
+    }
+    return s + "]}\n";
+}
+
+bool from_json(std::string_view text, Report* r, std::string* why) {
+    Json root;
+    std::string err;
+    if (!jsonl::parse(text, &root, &err)) return *why = "not valid JSON: " + err, false;
+    try {
+        read_report(root, r);
+    } catch (const Invalid& e) {
+        *why = e.what();
+        return false;
+    }
+    return true;
+}
+
+bool read_json(const std::string& path, Report* r, std::string* why) {
+    std::string text;
+    try {
+        text = jsonl::read_file(path);
+    } catch (const std::runtime_error& e) {
+        return *why = e.what(), false;
+    }
+    if (!from_json(text, r, why)) return *why = path + ": " + *why, false;
+    return true;
+}
+
+void write_json(const Report& r, const std::string& path) {
+    jsonl::write_file(path, to_json(r));
+}
+
+} // namespace linequad::audit
