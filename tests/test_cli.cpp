@@ -334,3 +334,36 @@ TEST_CASE("cli: a killed audit leaves a report that says it is running and holds
     CHECK_THAT(slurp(dir / "out" / "report.md"), Catch::Contains("**no: running**"));
     fs::remove_all(dir);
 }
+
+TEST_CASE("cli: diff exits 1 when a report got worse and writes JUnit XML", "[cli]") {
+    fs::path dir = scratch("cli_diff");
+    three_shards(dir);
+    // shard 1 against itself: nothing changed; against a copy with a mismatch more: worse.
+    fs::path worse =
+        edited(dir / "shard1" / "report.json", dir / "worse" / "report.json", [](json& j) {
+            for (json& row : j["rows"])
+                if (row["solver"] == "correct" && row["cases"] > 0) {
+                    row["cases_mismatched"] = 1;
+                    row["mismatches"]["hit_count"] = 1;
+                    break;
+                }
+        });
+    Ran same = program("diff shard1/report.json shard1/report.json --junit same.xml", dir);
+    CHECK(same.status == 0);
+    CHECK_THAT(same.out, Catch::Contains("No measure changed"));
+    CHECK_THAT(slurp(dir / "same.xml"), Catch::Contains("failures=\"0\""));
+    Ran got_worse = program("diff shard1/report.json worse/report.json --junit worse.xml "
+                            "--markdown summary.md",
+                            dir);
+    CHECK(got_worse.status == 1);
+    CHECK(got_worse.out.empty());
+    CHECK_THAT(slurp(dir / "summary.md"),
+               Catch::Contains("| correct | mismatched | 0 of") && Catch::Contains("**worse**"));
+    CHECK_THAT(slurp(dir / "worse.xml"), Catch::Contains("failures=\"1\""));
+    Ran reverse = program("diff worse/report.json shard1/report.json", dir);
+    CHECK(reverse.status == 0);
+    Ran bad = program("diff shard1/report.json worse/report.json --max-growth -1", dir);
+    CHECK(bad.status == 2);
+    CHECK_THAT(bad.err, Catch::Contains("--max-growth"));
+    fs::remove_all(dir);
+}

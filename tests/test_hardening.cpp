@@ -217,3 +217,59 @@ TEST_CASE("output directory: a second run into it is refused by its lock", "[rep
     CHECK(error_of(o).empty()); // released with its holder
     fs::remove_all(dir);
 }
+
+TEST_CASE("diff: a report made worse is caught and the reverse is better", "[diff]") {
+    audit::Report before = audit::run(small_campaign()), after = before;
+    const audit::RowKey key = after.rows.begin()->first;
+    after.rows.begin()->second.cases_mismatched += 1;
+    after.rows.begin()->second.t_max += 5;
+    // Every chunk of this family and solver: 2.4 times as slow (20 buckets of 1/16 octave).
+    auto of_pair = [&](const audit::RowKey& k) {
+        return k.family == key.family && k.solver == key.solver;
+    };
+    for (audit::Report* r : {&before, &after})
+        for (auto& [k, row] : r->rows)
+            if (of_pair(k)) {
+                row.ns.count.fill(0);
+                row.ns.count[r == &before ? 180 : 200] = 1;
+            }
+
+    auto measures = [](const audit::Diff& d, audit::Change::Verdict v) {
+        std::vector<std::string> out;
+        for (const audit::Change& c : d.changes)
+            if (c.verdict == v) out.push_back(c.measure);
+        return out;
+    };
+    audit::Diff worse = audit::diff(before, after, {});
+    CHECK(worse.worse());
+    CHECK(measures(worse, audit::Change::worse) ==
+          std::vector<std::string>{"mismatched", "t max ulps"});
+    CHECK(measures(worse, audit::Change::changed) == std::vector<std::string>{"median ns"});
+    CHECK(worse.changes.front().family == key.family);
+    CHECK(worse.changes.front().solver == key.solver);
+
+    audit::Diff better = audit::diff(after, before, {});
+    CHECK_FALSE(better.worse());
+    CHECK(measures(better, audit::Change::better) ==
+          std::vector<std::string>{"mismatched", "t max ulps"});
+
+    // Thresholds: the max may grow by 10^6, the time by half (it grew 2.4 times).
+    audit::DiffThresholds loose;
+    loose.max_growth = 1e6, loose.time_growth = 0.5;
+    audit::Diff gated = audit::diff(before, after, loose);
+    CHECK(measures(gated, audit::Change::worse) ==
+          std::vector<std::string>{"mismatched", "median ns"});
+    CHECK(measures(gated, audit::Change::worse_within_threshold) ==
+          std::vector<std::string>{"t max ulps"});
+
+    std::string junit = audit::diff_junit(worse, "a", "b");
+    CHECK_THAT(junit, Catch::Contains("failures=\"1\"") && Catch::Contains("<failure"));
+    CHECK_THAT(audit::diff_markdown(worse, "a", "b"), Catch::Contains("**Worse**"));
+    CHECK_THAT(audit::diff_markdown(better, "b", "a"), Catch::Contains("**Not worse**"));
+    CHECK(audit::diff(before, before, loose).changes.empty());
+    // A family and solver no longer graded is worse.
+    audit::Report fewer = before;
+    for (auto it = fewer.rows.begin(); it != fewer.rows.end();)
+        it = of_pair(it->first) ? fewer.rows.erase(it) : std::next(it);
+    CHECK(audit::diff(before, fewer, {}).worse());
+}

@@ -1,8 +1,8 @@
 // linequad: solve cases with any solver; audit solvers against the exact oracle.
 //
 // Exit status: 0 all well; 1 the data has problems (malformed case lines, a broken claim, an
-// incomplete merge); 2 the command cannot run (bad options, unreadable input, unwritable
-// output); 130 an audit stopped early by a signal (its report says so).
+// incomplete merge, a diff that got worse); 2 the command cannot run (bad options, unreadable
+// input, unwritable output); 130 an audit stopped early by a signal (its report says so).
 #include "linequad/audit.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/registry.hpp"
@@ -12,7 +12,9 @@
 #include <CLI/CLI.hpp>
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <new>
@@ -291,6 +293,40 @@ int run_merge(const std::vector<std::string>& inputs, const std::string& out,
     return 1;
 }
 
+// ---- diff
+
+struct DiffArgs {
+    std::string old_report, new_report, markdown_file = "-", junit_file;
+    std::string max_growth = "0", p99_growth = "0", time_growth;
+};
+
+double to_real(const std::string& text) {
+    return std::strtod(text.c_str(), nullptr); // already validated
+}
+
+int run_diff(const DiffArgs& a) {
+    audit::Report old_report, new_report;
+    std::string why;
+    if (!audit::read_json(a.old_report, &old_report, &why)) return fail(why);
+    if (!audit::read_json(a.new_report, &new_report, &why)) return fail(why);
+    audit::DiffThresholds t;
+    t.max_growth = to_real(a.max_growth);
+    t.p99_growth = to_real(a.p99_growth);
+    if (!a.time_growth.empty()) t.time_growth = to_real(a.time_growth);
+    audit::Diff d = audit::diff(old_report, new_report, t);
+    std::string md = audit::diff_markdown(d, a.old_report, a.new_report);
+    if (a.markdown_file == "-") {
+        jsonl::Output out;
+        out.text(md);
+        out.finish();
+    } else {
+        jsonl::write_file(a.markdown_file, md);
+    }
+    if (!a.junit_file.empty())
+        jsonl::write_file(a.junit_file, audit::diff_junit(d, a.old_report, a.new_report));
+    return d.worse() ? 1 : 0;
+}
+
 int run_version() {
     BuildInfo b = build_info();
     jsonl::Output out;
@@ -392,6 +428,47 @@ int main_checked(int argc, char** argv) {
         ->required()
         ->check(CLI::ExistingFile);
 
+    DiffArgs diff;
+    CLI::App* dcmd = app.add_subcommand(
+        "diff", "Compare two reports family by family and solver by solver: what got worse (new "
+                "misclassifications or bound violations, a larger max or p99 error, a slower "
+                "median when --time-growth is given) and what got better. Exits 1 when anything "
+                "got worse beyond the thresholds.");
+    dcmd->add_option("old", diff.old_report, "the earlier report.json")
+        ->type_name("OLD.json")
+        ->required()
+        ->check(CLI::ExistingFile);
+    dcmd->add_option("new", diff.new_report, "the later report.json")
+        ->type_name("NEW.json")
+        ->required()
+        ->check(CLI::ExistingFile);
+    auto growth = CLI::Validator(
+        [](const std::string& text) {
+            char* end = nullptr;
+            double x = std::strtod(text.c_str(), &end);
+            bool ok =
+                !text.empty() && end == text.c_str() + text.size() && std::isfinite(x) && x >= 0;
+            return ok ? std::string() : "expected a fraction >= 0, not '" + text + "'";
+        },
+        "");
+    dcmd->add_option("--max-growth", diff.max_growth,
+                     "how much larger a max error may get: new <= old * (1 + F)")
+        ->type_name("F")
+        ->check(growth)
+        ->capture_default_str();
+    dcmd->add_option("--p99-growth", diff.p99_growth, "the same for the p99 error")
+        ->type_name("F")
+        ->check(growth)
+        ->capture_default_str();
+    dcmd->add_option("--time-growth", diff.time_growth,
+                     "how much slower a median may get (default: times are shown, never fail)")
+        ->type_name("F")
+        ->check(growth);
+    dcmd->add_option("--markdown", diff.markdown_file, "where the markdown goes (- : stdout)")
+        ->type_name("FILE")
+        ->capture_default_str();
+    dcmd->add_option("--junit", diff.junit_file, "also write JUnit XML here")->type_name("FILE");
+
     CLI::App* list = app.add_subcommand("solvers", "List the solver names.");
     CLI::App* v = app.add_subcommand("version", "Version, compiler and floating-point flags.");
 
@@ -418,6 +495,7 @@ int main_checked(int argc, char** argv) {
     if (a->parsed()) return run_audit(audit_args, command);
     if (c->parsed()) return run_cases(cases_args);
     if (m->parsed()) return run_merge(inputs, merge_out, command);
+    if (dcmd->parsed()) return run_diff(diff);
     std::fputs(app.help().c_str(), stderr);
     return 2;
 }

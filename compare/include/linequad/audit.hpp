@@ -184,6 +184,34 @@ void for_each_case(const Options& o, const std::function<void(const Case&)>& f);
 // is described in one line. Empty: every claim holds.
 std::vector<std::string> broken_claims(const Report& r);
 
+// What changed from one report to another, family by family and solver by solver (each
+// solver's rows of a family merged over shapes and ranges), and whether it got worse beyond the
+// thresholds: a regression gate for CI that asks "not made worse", not a fixed tolerance.
+struct DiffThresholds {
+    // How much larger the new max and p99 errors (in ulps) may be: new <= old * (1 + growth).
+    double max_growth = 0, p99_growth = 0;
+    // How much slower the median may be, as a fraction; negative: times are shown, never fail
+    // (the default, since a noisy machine would fail a gate on them at random).
+    double time_growth = -1;
+};
+
+struct Change {
+    std::string family, solver, measure; // measure: "mismatched", "t max ulps", ...
+    std::string old_value, new_value;
+    enum Verdict { better, worse, worse_within_threshold, changed } verdict = changed;
+};
+
+struct Diff {
+    std::vector<Change> changes;
+    std::vector<std::pair<std::string, std::string>> compared; // (family, solver), in order
+    std::string campaigns; // how the two campaigns differ, if they do (their cases then differ)
+    bool worse() const;    // anything worse beyond its threshold
+};
+
+Diff diff(const Report& old_report, const Report& new_report, const DiffThresholds& t);
+std::string diff_markdown(const Diff& d, const std::string& old_name, const std::string& new_name);
+std::string diff_junit(const Diff& d, const std::string& old_name, const std::string& new_name);
+
 // report.json: the exact, mergeable record (format "linequad-audit-2").
 std::string to_json(const Report& r);
 // Reads report.json text, checking the schema and every value's range; on failure returns false
