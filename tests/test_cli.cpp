@@ -125,6 +125,7 @@ TEST_CASE("cli: numbers out of range are refused with the option's name", "[cli]
         {"solve --max-line-bytes 0", "--max-line-bytes"},
         {"solve --need some", "--need"},
         {"solve --solver stable,nope", "--solver"},
+        {"solve --solver all,stable", "--solver"},
         {"audit --families generic,nope", "--families"},
     };
     for (const Bad& b : bad) {

@@ -85,7 +85,8 @@ std::vector<std::string> split_list(const std::string& list) {
     }
 }
 
-// A validator of a list option: each name must pass check (which says why not).
+// A validator of a list option: each name must pass check (which says why not). ("all" for
+// solve's --solver stands alone: it is not a name in a list.)
 template <class Check>
 CLI::Validator each_of_list(Check check) {
     return CLI::Validator(
@@ -363,8 +364,14 @@ int main_checked(int argc, char** argv) {
                  "field.");
     s->add_option("--solver", solve.solvers, "solvers, or all")
         ->type_name("S[,S...]")
-        ->check(each_of_list(
-            [](const std::string& n) { return n == "all" ? "" : solver_error(n, false); }))
+        ->check(CLI::Validator(
+            [](const std::string& list) {
+                if (list == "all") return std::string();
+                for (const std::string& name : split_list(list))
+                    if (std::string why = solver_error(name, false); !why.empty()) return why;
+                return std::string();
+            },
+            ""))
         ->capture_default_str();
     s->add_option("--need", solve.need, "what to find: any, nearest or all")
         ->type_name("WHAT")
