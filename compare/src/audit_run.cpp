@@ -239,10 +239,6 @@ class Saver {
     std::chrono::steady_clock::time_point last_;
 };
 
-bool blank(const std::string& line) {
-    return line.find_first_not_of(" \t\r") == std::string::npos;
-}
-
 // The cases of a cases file by id, in file order; duplicate ids and malformed lines refused.
 std::vector<Case> read_cases(const Options& o) {
     jsonl::LineReader in(o.cases_file, o.max_line_bytes);
@@ -260,7 +256,7 @@ std::vector<Case> read_cases(const Options& o) {
         if (status == jsonl::LineReader::Status::too_long)
             throw std::runtime_error(o.cases_file + ": " +
                                      jsonl::too_long_message(in.number(), o.max_line_bytes));
-        if (blank(line)) continue;
+        if (jsonl::blank(line)) continue;
         Case c;
         if (!parse_case(line, &c, &why)) throw fail(why);
         if (c.id == "null") throw fail("a case needs an id, to match its answers");
@@ -307,7 +303,7 @@ Report grade_results(const Options& o) {
         if (status == jsonl::LineReader::Status::too_long)
             throw std::runtime_error(o.results_file + ": " +
                                      jsonl::too_long_message(res.number(), o.max_line_bytes));
-        if (blank(line)) continue;
+        if (jsonl::blank(line)) continue;
         Answer a;
         a.line = res.number();
         if (!parse_result(line, &a.result, &why)) {

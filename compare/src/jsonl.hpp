@@ -58,6 +58,11 @@ class LineReader {
     long number_ = 0;
 };
 
+// A line of spaces and tabs only: JSON Lines readers skip it.
+inline bool blank(std::string_view line) {
+    return line.find_first_not_of(" \t\r") == std::string_view::npos;
+}
+
 // "line 12 is longer than the limit of 1048576 bytes (--max-line-bytes)"
 std::string too_long_message(long line, std::size_t max_bytes);
 

@@ -144,7 +144,7 @@ int run_solve(const SolveArgs& a) {
             c = Case{};
             why = jsonl::too_long_message(in.number(), max_bytes);
         } else {
-            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+            if (jsonl::blank(line)) continue;
             try {
                 parsed = parse_case(line, &c, &why);
                 if (!parsed) why = "line " + std::to_string(in.number()) + ": " + why;
