@@ -125,9 +125,11 @@ inline void check_same_answer(const Result& got, const Result& want) {
     if (want.on_surface) {
         CHECK(same_bits(got.s0, want.s0));
         CHECK(same_bits(got.s1, want.s1));
+        CHECK(got.surface_part == want.surface_part);
     }
     for (int i = 0; i < want.count; ++i) {
         CHECK(got.hits[i].kind == want.hits[i].kind);
+        CHECK(got.hits[i].part == want.hits[i].part);
         CHECK(same_bits(got.hits[i].t, want.hits[i].t));
         for (int k = 0; k < 3; ++k)
             CHECK(same_bits(got.hits[i].p[k], want.hits[i].p[k]));

@@ -59,16 +59,21 @@ TEST_CASE("case format: every double round-trips exactly", "[case_io]") {
 
 TEST_CASE("result format round trip", "[case_io]") {
     Result r;
-    r.count = 2;
+    r.count = 4;
     const double no_bound = std::numeric_limits<double>::quiet_NaN();
-    r.hits[0] = {-0x1.23456789abcdep-3, {1, 2, 0x1p-1074}, no_bound, HitKind::tangent, false};
-    r.hits[1] = {1e300, {-0.0, 4, 5}, no_bound, HitKind::cross, false};
+    r.hits[0] = {-0x1.23456789abcdep-3, {1, 2, 0x1p-1074}, no_bound,
+                 HitKind::tangent,      Part::lateral,     false};
+    r.hits[1] = {1e300, {-0.0, 4, 5}, no_bound, HitKind::cross, Part::base, false};
+    r.hits[2] = {1e301, {1, 4, 5}, no_bound, HitKind::tangent, Part::lateral, false};
+    r.hits[3] = {1e302, {2, 4, 5}, no_bound, HitKind::cross, Part::top, false};
     std::string line = format_result("\"x\"", "stable", r), why;
     ParsedResult back;
     REQUIRE(parse_result(line, &back, &why));
     CHECK(back.id == "\"x\"");
     CHECK(back.solver == "stable");
-    REQUIRE(back.result.count == 2);
+    REQUIRE(back.result.count == 4);
+    CHECK(back.result.hits[1].part == Part::base);
+    CHECK(back.result.hits[3].part == Part::top);
     CHECK(back.result.hits[0].t == r.hits[0].t);
     CHECK(back.result.hits[0].kind == HitKind::tangent);
     CHECK(back.result.hits[0].p == r.hits[0].p);
@@ -78,7 +83,9 @@ TEST_CASE("result format round trip", "[case_io]") {
     on.on_surface = true;
     on.s0 = -INFINITY, on.s1 = 2.5;
     line = format_result("1", "exact", on);
-    CHECK(line == R"({"id":1,"solver":"exact","hits":[],"on_surface":[null,"0x1.4p+1"]})");
+    CHECK(
+        line ==
+        R"({"id":1,"solver":"exact","hits":[],"on_surface":[null,"0x1.4p+1"],"surface_part":"lateral"})");
     REQUIRE(parse_result(line, &back, &why));
     CHECK(back.result.on_surface);
     CHECK(back.result.s0 == -INFINITY);

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <type_traits>
 
 using namespace linequad;
 
@@ -43,12 +44,18 @@ void take_into(Vec3& x, const std::uint8_t*& p, const std::uint8_t* end) {
 
 // The shape of kind `kind` (its index in Shape), its fields from the bytes in the case format's
 // order: every shape is fuzzed, the ones added later too.
-Shape take_shape(std::size_t kind, bool finite, const std::uint8_t*& p, const std::uint8_t* end) {
+// Options: finite, caps (refused when not finite), and the cone's nappes.
+struct Options {
+    bool finite, caps;
+    int nappes;
+};
+Shape take_shape(std::size_t kind, Options o, const std::uint8_t*& p, const std::uint8_t* end) {
     return with_shape_type(kind, [&](auto tag) -> Shape {
         using S = typename decltype(tag)::type;
         S s{};
         detail::for_each_field<S>([&](const auto& f) { take_into(s.*f.member, p, end); });
-        s.finite = finite;
+        s.finite = o.finite, s.caps = o.caps;
+        if constexpr (std::is_same_v<S, EllipticCone>) s.nappes = o.nappes;
         return s;
     });
 }
@@ -67,8 +74,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::uint8_t *p = data + 1, *end = data + size;
     Case c;
     c.id = "\"fuzz\"";
-    bool finite = data[0] & 4;
-    c.shape = take_shape(data[0] % shape_count, finite, p, end);
+    Options o{(data[0] & 4) != 0, (data[0] & 0x80) != 0, data[0] & 0x40 ? 2 : 1};
+    c.shape = take_shape(data[0] % shape_count, o, p, end);
     Vec3 L0, v;
     take_into(L0, p, end), take_into(v, p, end);
     c.line = {L0, v, Range((data[0] >> 3) % 3)};

@@ -219,8 +219,11 @@ Row read_row(const Node& n) {
     r.graded_coords = n.at("graded_points").count();
     r.cases_mismatched = at_most_cases("cases_mismatched");
     Node m = n.at("mismatches");
-    for (int k = 0; k < mismatch_kinds; ++k)
+    for (int k = 0; k < mismatch_kinds; ++k) {
+        // Reports from before shapes had parts have no part_wrong: none could be.
+        if (k == part_wrong && !m.find(mismatch_name(k))) continue;
         r.mismatches[k] = m.at(mismatch_name(k)).count(r.cases);
+    }
     Node t = n.at("t_ulps");
     r.t_max = t.at("max").count();
     r.t_sum = t.at("sum").real();

@@ -77,7 +77,7 @@ void TimeHistogram::merge(const TimeHistogram& o) {
 const char* mismatch_name(int m) {
     static const char* const names[mismatch_kinds] = {
         "hit_count",           "tangent_missed", "tangent_invented", "on_surface_missed",
-        "on_surface_invented", "nonfinite",      "refused"};
+        "on_surface_invented", "nonfinite",      "refused",          "part_wrong"};
     return names[m];
 }
 
@@ -163,6 +163,13 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
         if (oracle.count != got.count) flags[hit_count] = true;
         bool classified = !flags[hit_count] && !flags[tangent_missed] && !flags[tangent_invented];
         if (classified) {
+            bool parts = !oracle.on_surface || oracle.surface_part == got.surface_part;
+            for (int i = 0; i < oracle.count; ++i)
+                parts = parts && oracle.hits[i].part == got.hits[i].part;
+            flags[part_wrong] = !parts;
+        }
+        // Hits on other parts are other roots: no t error or bound is measured between them.
+        if (classified && !flags[part_wrong]) {
             // A certified bound must cover the exact root; the oracle's t is within half an ulp
             // of it, so a bound holds when |t - t_oracle| <= bound + ulp(t_oracle) / 2.
             auto check_bound = [&](const Hit& h, double o) {

@@ -79,13 +79,18 @@ struct Reader {
 };
 
 // Fields every case may have, whatever its shape.
-const char* const common_fields[] = {"id", "shape",  "L0",     "v", "range", "t0",
-                                     "t1", "finite", "family", "k", "note"};
+const char* const common_fields[] = {"id", "shape",  "L0",   "v",      "range", "t0",
+                                     "t1", "finite", "caps", "family", "k",     "note"};
+
+// Options some shapes take.
+template <class S>
+constexpr bool has_nappes = std::is_same_v<S, EllipticCone>;
 
 template <class S>
 bool known_field(const std::string& key) {
     for (const char* f : common_fields)
         if (key == f) return true;
+    if (key == "nappes") return has_nappes<S>;
     bool known = false;
     detail::for_each_field<S>([&](const auto& f) { known = known || key == f.name; });
     return known;
@@ -106,16 +111,31 @@ bool read_field(Reader& r, const char* name, double* out) {
     return r.number(name, out);
 }
 
-// The shape's own fields, from its table.
+bool read_bool(Reader& r, const char* name, bool* out) {
+    const Json* f = r.find(name);
+    if (!f) return true;
+    if (!f->is_boolean()) return r.fail(name, "expected true or false");
+    *out = f->get<bool>();
+    return true;
+}
+
+// The shape's own fields, from its table, and its options.
 template <class S>
-bool read_shape(Reader& r, bool finite, Shape* out) {
+bool read_shape(Reader& r, Shape* out) {
     S s;
     bool ok = true;
     detail::for_each_field<S>(
         [&](const auto& f) { ok = ok && read_field(r, f.name, &(s.*f.member)); });
-    s.finite = finite;
+    if (!ok || !read_bool(r, "finite", &s.finite) || !read_bool(r, "caps", &s.caps)) return false;
+    if constexpr (has_nappes<S>) {
+        if (const Json* n = r.find("nappes")) {
+            if (!n->is_number_integer() || (*n != 1 && *n != 2))
+                return r.fail("nappes", "expected 1 or 2");
+            s.nappes = n->get<int>();
+        }
+    }
     *out = s;
-    return ok;
+    return true;
 }
 
 constexpr Range shorthands[] = {Range::line, Range::ray, Range::segment};
@@ -160,6 +180,12 @@ bool shorthand(Interval i, Range* r) {
     return false;
 }
 
+bool read_part(const Json& v, Part* out) {
+    for (Part p : {Part::lateral, Part::base, Part::top})
+        if (v.is_string() && v.get_ref<const std::string&>() == part_name(p)) return *out = p, true;
+    return false;
+}
+
 // Parses a line that must be a JSON object; says why not.
 bool parse_object(std::string_view line, Json* obj, std::string* why) {
     std::string err;
@@ -191,11 +217,6 @@ bool parse_case(std::string_view line, Case* c, std::string* why) {
 
     if (!r.vec("L0", &c->line.L0) || !r.vec("v", &c->line.v)) return false;
     if (!read_range(r, &c->line.range)) return false;
-    bool finite = true;
-    if (const Json* f = r.find("finite")) {
-        if (!f->is_boolean()) return r.fail("finite", "expected true or false");
-        finite = f->get<bool>();
-    }
     if (const Json* f = r.find("family")) {
         if (!f->is_string()) return r.fail("family", "expected a string");
         c->family = f->get<std::string>();
@@ -206,18 +227,21 @@ bool parse_case(std::string_view line, Case* c, std::string* why) {
             return r.fail("k", "expected an integer from -1000000 to 1000000");
         c->k = int(x);
     }
-    return with_shape_type(kind, [&](auto tag) {
-        return read_shape<typename decltype(tag)::type>(r, finite, &c->shape);
-    });
+    return with_shape_type(
+        kind, [&](auto tag) { return read_shape<typename decltype(tag)::type>(r, &c->shape); });
 }
 
 std::string format_case(const Case& c) {
     std::string out = "{\"id\":" + c.id + ",\"shape\":\"" + shape_name(c.shape) + "\"";
-    bool finite = std::visit(
+    std::string options = std::visit(
         [&](const auto& s) {
             using S = std::decay_t<decltype(s)>;
             detail::for_each_field<S>([&](const auto& f) { put_field(out, f.name, s.*f.member); });
-            return s.finite;
+            std::string o = s.finite ? ",\"finite\":true" : ",\"finite\":false";
+            if (s.caps) o += ",\"caps\":true";
+            if constexpr (has_nappes<S>)
+                if (s.nappes != 1) o += ",\"nappes\":" + std::to_string(s.nappes);
+            return o;
         },
         c.shape);
     put_field(out, "L0", c.line.L0);
@@ -229,7 +253,7 @@ std::string format_case(const Case& c) {
         if (c.line.range.has_t0()) put_field(out, "t0", c.line.range.t0);
         if (c.line.range.has_t1()) put_field(out, "t1", c.line.range.t1);
     }
-    out += finite ? ",\"finite\":true" : ",\"finite\":false";
+    out += options;
     if (!c.family.empty()) out += ",\"family\":" + json_string(c.family);
     if (!c.family.empty() || c.k != 0) out += ",\"k\":" + std::to_string(c.k);
     out += "}";
@@ -245,6 +269,7 @@ std::string format_result(const std::string& id, std::string_view solver, const 
         if (i) out += ",";
         out += "{\"t\":\"" + hex(h.t) + "\",\"kind\":\"";
         out += h.kind == HitKind::tangent ? "tangent\"" : "cross\"";
+        out += ",\"part\":\"" + std::string(part_name(h.part)) + "\"";
         if (points) put_field(out, "p", h.p);
         if (!std::isnan(h.bound)) {
             put_field(out, "bound", h.bound);
@@ -260,6 +285,7 @@ std::string format_result(const std::string& id, std::string_view solver, const 
             return std::isinf(t) ? std::string("null") : "\"" + hex(t) + "\"";
         };
         out += "[" + end(r.s0) + "," + end(r.s1) + "]";
+        out += ",\"surface_part\":\"" + std::string(part_name(r.surface_part)) + "\"";
     }
     if (r.certainty != Certainty::unknown)
         out += r.certainty == Certainty::certain ? ",\"certain\":true" : ",\"certain\":false";
@@ -295,25 +321,28 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
         // The code names the kind of refusal. One that no solver of linequad's gives stands as
         // out_of_range, a refusal the oracle never makes: it is graded as refused.
         pr->result.error_code = ErrorCode::out_of_range;
-        for (int c = int(ErrorCode::not_a_number); c <= int(ErrorCode::out_of_range); ++c)
+        for (int c = int(ErrorCode::not_a_number); c <= int(ErrorCode::bad_option); ++c)
             if (pr->error_code == code_name(ErrorCode(c))) pr->result.error_code = ErrorCode(c);
         pr->result.error_field = "";
         return true;
     }
     const Json* hits = r.need("hits");
     if (!hits) return false;
-    if (!hits->is_array() || hits->size() > 2)
-        return r.fail("hits", "expected an array of at most 2 hits");
+    if (!hits->is_array() || hits->size() > std::size_t(max_hits))
+        return r.fail("hits", "expected an array of at most " + std::to_string(max_hits) + " hits");
     for (const Json& h : *hits) {
         Reader hr{h, why};
         Hit& out = pr->result.hits[pr->result.count++];
-        out = Hit{0, {}, std::numeric_limits<double>::quiet_NaN(), HitKind::cross, false};
+        out = Hit{0,    {}, std::numeric_limits<double>::quiet_NaN(), HitKind::cross, Part::lateral,
+                  false};
         if (!h.is_object() || !hr.number("t", &out.t))
             return r.fail("hits", "each hit needs t, a number");
         const Json* kind = hr.find("kind");
         if (!kind || !kind->is_string() || (*kind != "cross" && *kind != "tangent"))
             return r.fail("hits", "kind must be cross or tangent");
         out.kind = *kind == "tangent" ? HitKind::tangent : HitKind::cross;
+        if (const Json* part = hr.find("part"); part && !read_part(*part, &out.part))
+            return r.fail("hits", "part must be lateral, base or top");
         if (hr.find("p")) {
             if (!hr.vec("p", &out.p)) return r.fail("hits", "p must be 3 numbers");
             pr->has_points = true;
@@ -337,6 +366,9 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
         }
         pr->result.on_surface = true;
         pr->result.s0 = e[0], pr->result.s1 = e[1];
+        if (const Json* part = r.find("surface_part");
+            part && !read_part(*part, &pr->result.surface_part))
+            return r.fail("surface_part", "expected lateral, base or top");
     } else if (on && !on->is_null()) {
         return r.fail("on_surface", "expected null or [t0, t1]");
     }

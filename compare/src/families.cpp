@@ -8,14 +8,17 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
+#include <variant>
 
 namespace linequad {
 
 namespace {
 
-const char* const names[family_count] = {"generic", "near_tangent", "axis_parallel",
-                                         "apex",    "generator",    "degenerate_frame",
-                                         "scale",   "extent_edge"};
+const char* const names[family_count] = {
+    "generic",          "near_tangent", "axis_parallel", "apex", "generator",
+    "degenerate_frame", "scale",        "extent_edge",   "rim",  "cap_plane",
+    "cap_axis",         "inside_start", "two_nappes"};
 
 std::uint64_t splitmix(std::uint64_t x) {
     x += 0x9e3779b97f4a7c15ull;
@@ -319,6 +322,191 @@ Case extent_edge(Rng& r, int k) {
     return c;
 }
 
+// ---- Closed shapes ----
+
+// The shape on f, closed by its discs; the cone with `nappes` nappes.
+template <class S>
+Shape closed_from(const Frame& f, int nappes) {
+    S s = Sampling<S>::make(f, true);
+    s.caps = true;
+    if constexpr (Sampling<S>::conical) s.nappes = nappes;
+    return s;
+}
+
+// A closed shape's discs in local z: the cylinders' at 0 and 1, the cone's at -1 (and at 1 with
+// two nappes). Both are radius 1.
+struct Closed {
+    int nappes;
+    double base, top;
+    bool has_top;
+    double middle; // a local z inside the (first) solid
+};
+template <class S>
+Closed closed_kind(Rng& r) {
+    if constexpr (Sampling<S>::conical) {
+        int n = r.integer(1, 2);
+        return {n, -1, 1, n == 2, -0.5};
+    }
+    return {1, 0, 1, true, 0.5};
+}
+template <class S>
+double end_z(Rng& r, const Closed& k) {
+    return k.has_top && r.coin() ? k.top : k.base;
+}
+
+// One of the four exact quarter turns: (cos, sin) of 0, 90, 180, 270 degrees.
+std::pair<double, double> quarter(Rng& r) {
+    static const double c[4] = {1, 0, -1, 0};
+    int q = r.integer(0, 3);
+    return {c[q], c[(q + 3) % 4]};
+}
+
+// x moved by k ulps, up or down (0 by k ulps of 1).
+double ulps_moved(double x, int k, bool up) {
+    if (x == 0) return (up ? k : -k) * 0x1p-52;
+    for (int i = 0; i < k; ++i)
+        x = std::nextafter(x, up ? INFINITY : -INFINITY);
+    return x;
+}
+
+template <class S>
+Case rim(Rng& r, int k) {
+    Frame f = frame_for<S>(r, true);
+    Closed kind = closed_kind<S>(r);
+    double z = end_z<S>(r, kind);
+    auto [cs, sn] = quarter(r);
+    Vec3 P = world(f, cs, sn, z);
+    Vec3 d;
+    switch (r.integer(0, 2)) {
+    case 0: // into the solid, through its middle
+        d = world(f, 0.25 * sn, -0.25 * cs, kind.middle) - P;
+        break;
+    case 1: // across the disc to another point of it
+        d = world(f, -0.5 * cs + 0.25 * sn, -0.5 * sn - 0.25 * cs, z) - P;
+        break;
+    default: // grazing the rim: along the circle, tilted out of the disc's plane
+        d = world_vec(f, -sn, cs, r.coin() ? 0.5 : -0.5);
+        break;
+    }
+    if (k > 0) { // the largest coordinate moved (at the origin: by k ulps of 1, not subnormals)
+        int i = std::fabs(P.x) >= std::fabs(P.y) ? 0 : 1;
+        if (std::fabs(P.z) > std::fabs(P[i])) i = 2;
+        double moved = ulps_moved(P[i], k, r.coin());
+        (i == 0 ? P.x : i == 1 ? P.y : P.z) = moved;
+    }
+    Case c;
+    c.shape = closed_from<S>(f, kind.nappes);
+    c.line = {P - 0.5 * d, d};
+    c.k = k;
+    return c;
+}
+
+template <class S>
+Case cap_plane(Rng& r, int k) {
+    Frame f = frame_for<S>(r, true);
+    Closed kind = closed_kind<S>(r);
+    double z = end_z<S>(r, kind);
+    auto [cs, sn] = quarter(r);
+    // At distance 1/2 (across the disc), 1 (grazing the rim) or 2 (beside it) from the centre,
+    // along the circle's tangent there.
+    static const double distance[3] = {0.5, 1, 2};
+    double rho = distance[r.integer(0, 2)];
+    Vec3 P = world(f, rho * cs, rho * sn, z), d = world_vec(f, -sn, cs, 0);
+    if (k > 0) {
+        double e = (r.coin() ? 1 : -1) * std::ldexp(1.0, -k);
+        if (r.coin())
+            d = d + e * f.c; // tilted through P
+        else
+            P = P + e * f.c; // lifted
+    }
+    Case c;
+    c.shape = closed_from<S>(f, kind.nappes);
+    c.line = {P - r.real(0.5, 2) * d, d};
+    c.k = k;
+    return c;
+}
+
+template <class S>
+Case cap_axis(Rng& r, int k) {
+    Frame f = frame_for<S>(r, k == 0);
+    Closed kind = closed_kind<S>(r);
+    Vec3 P = world(f, 0, 0, kind.middle), d = f.c;
+    if (k > 0) {
+        Vec3 side = std::ldexp(1.0, -k) * world_vec(f, r.real(-1, 1), r.real(-1, 1), 0);
+        if (r.coin())
+            d = d + side;
+        else
+            P = P + side;
+    }
+    Case c;
+    c.shape = closed_from<S>(f, kind.nappes);
+    // From inside (s < 1/2 of the way), on a disc or outside, either way along the axis.
+    double s = 0.25 * r.integer(-8, 8);
+    c.line = {P + s * d, (r.coin() ? 1.0 : -1.0) * d};
+    c.k = k;
+    return c;
+}
+
+template <class S>
+Case inside_start(Rng& r, int k) {
+    Frame f = frame_for<S>(r, k == 0);
+    Closed kind = closed_kind<S>(r);
+    double z = z_dyadic<S>(r), rho = radius_at<S>(z);
+    auto [cs, sn] = quarter(r);
+    Vec3 P;
+    switch (r.integer(0, 2)) {
+    case 0: // inside
+        P = world(f, 0.5 * rho * cs, 0.5 * rho * sn, z);
+        break;
+    case 1: // on the lateral surface, and 2^-k outside it
+        P = world(f, rho * cs, rho * sn, z);
+        if (k > 0) P = P + std::ldexp(1.0, -k) * world_vec(f, cs, sn, 0);
+        break;
+    default: { // on a disc, and 2^-k beyond it
+        double e = end_z<S>(r, kind);
+        P = world(f, 0.5 * cs, 0.5 * sn, e);
+        if (k > 0) P = P + (e == kind.base ? -1 : 1) * std::ldexp(1.0, -k) * f.c;
+        break;
+    }
+    }
+    Case c;
+    c.shape = closed_from<S>(f, kind.nappes);
+    c.line = {P, r.vec(2)};
+    c.k = k;
+    return c;
+}
+
+template <class S>
+Case two_nappes(Rng& r, int k) {
+    Frame f = frame_for<S>(r, k == 0);
+    bool exact = k == 0;
+    Shape shape = closed_from<S>(f, 2);
+    if (r.coin()) std::visit([](auto& s) { s.caps = false; }, shape);
+    Vec3 P, d;
+    if (r.coin()) {
+        // Through the apex (inside both nappes, outside both, or along a generator), or 2^-k
+        // beside it.
+        static const double slope[3] = {0.5, 2, 1};
+        double m = slope[r.integer(0, 2)];
+        auto [cs, sn] = quarter(r);
+        d = world_vec(f, m * cs, m * sn, 1);
+        P = f.O;
+        if (!exact) P = P + std::ldexp(1.0, -k) * world_vec(f, -sn, cs, 0);
+    } else {
+        // Parallel to the axis at a dyadic distance from it (through both solids: four hits
+        // closed), tilted by 2^-k.
+        double rho = 0.125 * r.integer(1, 7);
+        P = world(f, rho, 0, 0);
+        d = f.c;
+        if (!exact) d = d + std::ldexp(1.0, -k) * world_vec(f, r.real(-1, 1), r.real(-1, 1), 0);
+    }
+    Case c;
+    c.shape = shape;
+    c.line = {P - r.real(0.5, 2) * d, d};
+    c.k = k;
+    return c;
+}
+
 template <class S>
 Case make(Family fam, Rng& r, std::uint64_t index) {
     switch (fam) {
@@ -344,6 +532,16 @@ Case make(Family fam, Rng& r, std::uint64_t index) {
         return scale<S>(r, int(index % 64) * 8);
     case Family::extent_edge:
         return extent_edge<S>(r, index % 3 == 0 ? 0 : 40 + int(index % 14));
+    case Family::rim:
+        return rim<S>(r, int(index % 17));
+    case Family::cap_plane:
+        return cap_plane<S>(r, int(index % 61));
+    case Family::cap_axis:
+        return cap_axis<S>(r, int(index % 61));
+    case Family::inside_start:
+        return inside_start<S>(r, int(index % 61));
+    case Family::two_nappes:
+        return two_nappes<S>(r, int(index % 61));
     }
     return {};
 }
@@ -364,7 +562,7 @@ bool family_applies(Family f, int shape) {
     bool conical = with_shape_type(std::size_t(shape), [](auto tag) {
         return Sampling<typename decltype(tag)::type>::conical;
     });
-    return (f != Family::apex && f != Family::generator) || conical;
+    return (f != Family::apex && f != Family::generator && f != Family::two_nappes) || conical;
 }
 
 Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint64_t index) {

@@ -1,7 +1,8 @@
 // Invariants checked on every input, for every solver:
 //  - the verdict on bad input equals the oracle's (validation is shared and exact); a fast
 //    solver may refuse more (out_of_range) but never accept what the oracle refuses;
-//  - a result has at most two hits, sorted by t, each t and point finite (the oracle may give
+//  - a result has at most two hits (four: a closed two-nappe cone), sorted by t, each naming a
+//    part the shape has (lateral without caps), each t and point finite (the oracle may give
 //    +-inf, the correct rounding of a root beyond double's range; never NaN), each t inside the
 //    range; an on-surface interval is ordered and inside the range;
 //  - the oracle's Mpzf and Gmpq kernels agree bit for bit;
@@ -22,14 +23,25 @@
 #include "linequad/registry.hpp"
 
 #include "numeric/format.hpp"
+#include "shapes/traits.hpp"
 
 #include <cmath>
 #include <cstring>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace linequad {
 
 namespace {
+
+template <class S>
+int nappes(const S& s) {
+    if constexpr (std::is_same_v<S, EllipticCone>)
+        return s.nappes;
+    else
+        return 1;
+}
 
 bool same_bits(double a, double b) {
     return std::memcmp(&a, &b, sizeof a) == 0;
@@ -39,11 +51,13 @@ bool same_bits(double a, double b) {
 bool same_answer(const Result& a, const Result& b) {
     if (a.error_code != b.error_code || a.count != b.count || a.on_surface != b.on_surface)
         return false;
-    if (a.on_surface && !(same_bits(a.s0, b.s0) && same_bits(a.s1, b.s1))) return false;
+    if (a.on_surface &&
+        !(same_bits(a.s0, b.s0) && same_bits(a.s1, b.s1) && a.surface_part == b.surface_part))
+        return false;
     for (int i = 0; i < a.count; ++i) {
         const Hit &x = a.hits[i], &y = b.hits[i];
-        if (x.kind != y.kind || !same_bits(x.t, y.t) || !same_bits(x.p.x, y.p.x) ||
-            !same_bits(x.p.y, y.p.y) || !same_bits(x.p.z, y.p.z))
+        if (x.kind != y.kind || x.part != y.part || !same_bits(x.t, y.t) ||
+            !same_bits(x.p.x, y.p.x) || !same_bits(x.p.y, y.p.y) || !same_bits(x.p.z, y.p.z))
             return false;
     }
     return true;
@@ -60,7 +74,17 @@ struct Checker {
     }
     void shape(const std::string& name, const Result& r) {
         if (!r.ok()) return;
-        require(r.count <= 2, "at most two hits", name, r);
+        auto [closed, most] = std::visit(
+            [](const auto& s) {
+                bool two_solids = detail::closed(s) && nappes(s) == 2;
+                return std::pair{detail::closed(s), two_solids ? max_hits : 2};
+            },
+            c.shape);
+        require(r.count <= most, "at most two hits (four for a closed two-nappe cone)", name, r);
+        for (int i = 0; i < r.count; ++i)
+            require(closed || r.hits[i].part == Part::lateral, "caps only on a closed shape", name,
+                    r);
+        require(closed || r.surface_part == Part::lateral, "caps only on a closed shape", name, r);
         require(!(r.on_surface && r.count), "hits or an interval, not both", name, r);
         bool oracle = name == "exact" || name == "correct"; // infinities are correct roundings
         for (int i = 0; i < r.count; ++i) {
@@ -70,7 +94,8 @@ struct Checker {
             bool nan_p = std::isnan(h.p.x) || std::isnan(h.p.y) || std::isnan(h.p.z);
             require(oracle ? !nan_p : is_finite(h.p), "finite point", name, r);
         }
-        require(r.count < 2 || r.hits[0].t <= r.hits[1].t, "hits sorted by t", name, r);
+        for (int i = 1; i < r.count; ++i)
+            require(r.hits[i - 1].t <= r.hits[i].t, "hits sorted by t", name, r);
         if (r.on_surface) {
             require(!std::isnan(r.s0) && !std::isnan(r.s1) && r.s0 <= r.s1, "ordered interval",
                     name, r);
@@ -103,9 +128,11 @@ std::string broken_invariant(const Case& c) {
             if (!oracle.any_hit())
                 k.require(!r.on_surface, "no invented on-surface interval", name, r);
             if (r.certainty == Certainty::certain) {
-                bool same = r.count == oracle.count && r.on_surface == oracle.on_surface;
+                bool same = r.count == oracle.count && r.on_surface == oracle.on_surface &&
+                            (!r.on_surface || r.surface_part == oracle.surface_part);
                 for (int i = 0; same && i < r.count; ++i)
-                    same = r.hits[i].kind == oracle.hits[i].kind;
+                    same = r.hits[i].kind == oracle.hits[i].kind &&
+                           r.hits[i].part == oracle.hits[i].part;
                 k.require(same, "a certain classification is the oracle's", name, r);
             }
         }

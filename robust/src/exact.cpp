@@ -75,12 +75,15 @@ template <class NT>
 Result round_on_surface(const exact_form::Classification<NT>& c) {
     Result r;
     r.on_surface = true;
+    r.surface_part = c.surface_part;
     SurdRounder& rd = rounder();
     rd.clear();
-    mpz_set_ui(rd.D().m, 0);
-    NT zero(0);
-    if (c.s0.bounded) queue(rd, c.s0.num, zero, c.s0.den, zero);
-    if (c.s1.bounded) queue(rd, c.s1.num, zero, c.s1.den, zero);
+    // The ends of a disc's chord are (num + S sqrt(D)) / den; every other end is rational.
+    bool chord = c.s0.S != 0 || c.s1.S != 0;
+    NT D = chord ? c.D : NT(0);
+    to_dyadic(D, rd.D());
+    if (c.s0.bounded) queue(rd, c.s0.num, NT(c.s0.S), c.s0.den, D);
+    if (c.s1.bounded) queue(rd, c.s1.num, NT(c.s1.S), c.s1.den, D);
     rd.run();
     r.s0 = c.s0.bounded ? rd.result(0) : -INFINITY;
     r.s1 = c.s1.bounded ? rd.result(c.s0.bounded ? 1 : 0) : INFINITY;
@@ -120,6 +123,7 @@ Result solve(const ShapeT& shape, const Line& l, Query query) {
     for (int j = 0; j < c.count; ++j) {
         Hit& h = r.hits[r.count++];
         h.kind = c.roots[j].kind;
+        h.part = c.roots[j].part;
         h.t = rd.result(j * per_root);
         h.p = points ? Vec3{rd.result(j * per_root + 1), rd.result(j * per_root + 2),
                             rd.result(j * per_root + 3)}

@@ -5,6 +5,8 @@
 // MPFR through mpfr_set_z_2exp (rounded in a chosen direction, no division).
 #pragma once
 
+#include "linequad/result.hpp"
+
 #include <gmp.h>
 #include <mpfr.h>
 
@@ -66,7 +68,7 @@ class SurdRounder {
     bool try_round(Value& v);
     void set_precision(mpfr_prec_t p);
 
-    static constexpr std::size_t capacity = 8; // two roots, each with t and three coordinates
+    static constexpr std::size_t capacity = 4 * max_hits; // each hit: t and three coordinates
     Dyadic D_;
     Value values_[capacity];
     std::size_t used_ = 0;

@@ -48,8 +48,9 @@ enum Mismatch {
     tangent_invented,  // the solver says tangent, the oracle does not
     on_surface_missed, // the oracle says the line lies on the surface, the solver does not
     on_surface_invented,
-    nonfinite, // NaN or infinity returned where the oracle has finite values
-    refused,   // the solver returned an error the oracle does not (or the reverse)
+    nonfinite,  // NaN or infinity returned where the oracle has finite values
+    refused,    // the solver returned an error the oracle does not (or the reverse)
+    part_wrong, // hits classified alike, but one (or the interval) on another part of the shape
     mismatch_kinds
 };
 const char* mismatch_name(int m);

@@ -19,12 +19,21 @@ enum class Family {
     degenerate_frame, // nearly singular, very oblique, very thin, very flat frames (2^-k)
     scale,            // shapes of size 2^+-k, small shapes up to 2^50 from the origin
     extent_edge,      // hits exactly at the extent's ends, and 2^-k (k = 40..53) either side
+    // Closed shapes (caps on; the cone with one or two nappes):
+    rim,          // through a point of a disc's rim exactly (k = 0) or moved k ulps (k = 1..16):
+                  // into the solid, across the disc, or grazing the rim
+    cap_plane,    // in a disc's plane (across it, grazing its rim, beside it); tilted or lifted
+                  // out of the plane by 2^-k
+    cap_axis,     // along the axis through the discs' centres; tilted or moved by 2^-k
+    inside_start, // from a point inside the solid, on its surface, or 2^-k outside it
+    two_nappes,   // cone, two nappes (closed or not): across the apex, 2^-k from it, and lines
+                  // through both solids (four hits)
 };
 
-constexpr int family_count = 8;
+constexpr int family_count = 13;
 const char* family_name(Family f);
 bool parse_family(std::string_view name, Family* f);
-bool family_applies(Family f, int shape); // apex and generator are for the cone only
+bool family_applies(Family f, int shape); // apex, generator, two_nappes: the cone only
 
 // shape: 0 cylinder, 1 elliptic_cylinder, 2 elliptic_cone.
 Case make_case(Family f, int shape, Range range, std::uint64_t seed, std::uint64_t index);

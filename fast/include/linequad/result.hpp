@@ -8,10 +8,21 @@
 
 namespace linequad {
 
+// Without caps, the lateral surface's roots: cross for a simple root, tangent for a double one
+// (a tangent line, or a line through the cone's apex). With caps (a closed solid): cross where
+// the line passes between the solid's outside and inside (through an apex included), tangent
+// where it touches the solid without entering it (tangent to the lateral surface, grazing a
+// rim, touching an apex from outside, or passing through a two-nappe cone's apex from one solid
+// into the other).
 enum class HitKind : std::uint8_t {
-    cross,   // a simple root: the line passes through the surface
-    tangent, // a double root: a tangent line, or a line through the cone's apex
+    cross,
+    tangent,
 };
+
+// Which part of the surface a hit lies on. base: the disc at the cylinder's C, the elliptic
+// cylinder's z = 0, the cone's z = -1; top: the cylinder's H, z = 1. A hit on a rim belongs to
+// its disc; without caps every hit is lateral.
+enum class Part : std::uint8_t { lateral, base, top };
 
 // A hit is written whole by the solver that finds it; no field has a default.
 struct Hit {
@@ -21,6 +32,7 @@ struct Hit {
     // proven: from the certified and correct solvers. NaN bound: the solver gives none.
     double bound;
     HitKind kind;
+    Part part;
     bool certain;
 };
 
@@ -48,6 +60,7 @@ enum class ErrorCode : std::uint8_t {
     singular_frame,  // a, b, c linearly dependent
     empty_range,     // t0 > t1, or an end that leaves no real t (t0 = +inf, t1 = -inf)
     out_of_range,    // inputs whose products overflow or underflow double
+    bad_option,      // caps on a shape that is not finite; nappes other than 1 or 2
 };
 
 struct Error {
@@ -58,6 +71,7 @@ struct Error {
 
 std::string message(const Error& e);
 const char* code_name(ErrorCode c);
+const char* part_name(Part p); // "lateral", "base", "top"
 
 // What the caller needs; a solver does no more than that.
 enum class Need : std::uint8_t {
@@ -74,17 +88,22 @@ struct Query {
     bool points = true; // compute hit points (not for Need::any)
 };
 
-// 128 bytes (168 before the core redesign): hits and the interval share no storage, but
-// nothing is kept that no caller reads.
+// A closed two-nappe cone is two solids, which a line can meet in four points; every other
+// shape in at most two.
+inline constexpr int max_hits = 4;
+
+// 224 bytes: hits and the interval share no storage, but nothing is kept that no caller reads.
 struct Result {
-    Hit hits[2]; // hits[0..count)
-    // The line lies on the surface for t in [s0, s1] (either end may be infinite). When set,
-    // count is 0: the points of the interval are all hits.
+    Hit hits[max_hits]; // hits[0..count)
+    // The line lies on the surface for t in [s0, s1] (either end may be infinite), on the part
+    // surface_part (a cap's plane across its disc, or the lateral surface). When set, count is
+    // 0: the points of the interval are all hits.
     double s0 = 0, s1 = 0;
     const char* error_field = "";
     ErrorCode error_code = ErrorCode::none;
     std::uint8_t count = 0;
     bool on_surface = false;
+    Part surface_part = Part::lateral;
     Certainty certainty = Certainty::unknown;
     Rung rung = Rung::none; // set by the correct solver only
 

@@ -42,26 +42,40 @@ struct Line {
     Interval range = Range::line;
 };
 
+// Every finite shape may be closed: with `caps` its end discs are part of the surface, and a
+// hit on one names it (Part::base, Part::top). Without caps a finite shape is its lateral
+// surface alone, closed at its ends (a hit on a rim is a hit). Caps on a shape that is not
+// finite are refused (ErrorCode::bad_option, "caps").
+
 // Seed 001: the right circular cylinder of radius r around the axis from C to H.
-// Finite: only the lateral surface between the planes through C and H (no caps).
+// Finite: the lateral surface between the planes through C and H; caps: the discs there too
+// (base at C, top at H).
 struct Cylinder {
     Vec3 C{}, H{};
     double r = 0;
     bool finite = true;
+    bool caps = false;
 };
 
-// Seed 000: points C + x a + y b + z c with x^2 + y^2 = 1; finite keeps 0 <= z <= 1.
-// a, b, c may be any linearly independent vectors (oblique and sheared frames included).
+// Seed 000: points C + x a + y b + z c with x^2 + y^2 = 1; finite keeps 0 <= z <= 1, caps adds
+// the elliptic discs z = 0 (base) and z = 1 (top). a, b, c may be any linearly independent
+// vectors (oblique and sheared frames included).
 struct EllipticCylinder {
     Vec3 C{}, a{}, b{}, c{};
     bool finite = true;
+    bool caps = false;
 };
 
 // Seed 002: base centre C, apex H, c = H - C; points H + x a + y b + z c with x^2 + y^2 = z^2.
-// Only the nappe z <= 0 (towards the base); finite keeps -1 <= z <= 0.
+// One nappe, z <= 0 (towards the base): finite keeps -1 <= z <= 0, caps adds the base disc
+// z = -1. Two nappes (as OpenCascade's cones are) add the mirror nappe z >= 0: finite keeps
+// -1 <= z <= 1, caps adds the top disc z = 1 too, and the closed shape is two solids that meet
+// at the apex (a line can then meet it in four points).
 struct EllipticCone {
     Vec3 C{}, H{}, a{}, b{};
     bool finite = true;
+    bool caps = false;
+    int nappes = 1; // 1 or 2
     Vec3 c() const { return H - C; }
 };
 

@@ -14,7 +14,8 @@
 //  3. exact: the same template in BigFloat (exact dyadic arithmetic, no GMP), every sign exact,
 //     and each output rounded by deciding, exactly, on which side of the midpoints between
 //     neighbouring doubles it lies.
-// Result::rung says which rung answered.
+// Result::rung says which rung answered. A closed shape (caps on) starts at the double-double
+// rung: the Newton rung's proof covers the lateral roots only.
 #pragma once
 
 #include "correct/ladder.hpp"
@@ -51,18 +52,16 @@ struct Correct {
         Validity valid = check(src, l);
         if (!valid.error.ok()) return Result::failure(valid.error);
         double extent = scene_extent(src, l);
-        if (q.need == Need::any) {
-            q.points = false; // a hit test computes no point
-            // The quick rung first, where the scene's products stay in double's normal range.
-            if (moderate(extent, l)) {
-                Result r;
-                LineForm form =
-                    ShapeTraits<typename Src::Shape>::quick_line_form(src, l, valid.orientation);
-                if (hit_test_rung(form, Unit{1, 1, l}, r)) {
-                    r.certainty = Certainty::certain;
-                    r.rung = Rung::newton;
-                    return r;
-                }
+        if (q.need == Need::any) q.points = false; // a hit test computes no point
+        // The quick rung first, where the scene's products stay in double's normal range.
+        if (q.need == Need::any && !closed(src.shape) && moderate(extent, l)) {
+            Result r;
+            LineForm form =
+                ShapeTraits<typename Src::Shape>::quick_line_form(src, l, valid.orientation);
+            if (hit_test_rung(form, Unit{1, 1, l}, r)) {
+                r.certainty = Certainty::certain;
+                r.rung = Rung::newton;
+                return r;
             }
         }
         return ladder(src, valid.orientation, extent, l, q);
@@ -87,11 +86,11 @@ struct Correct {
         // The Newton rung's bounds hold at any scale (underflow is in them, overflow makes them
         // infinite), so a scene of moderate size is solved as given; others are scaled first,
         // so that tiny or huge scenes are not left to the slower rungs.
-        bool as_given = moderate(extent, l);
-        if (as_given && newton(src, Unit{1, 1, l})) return r;
+        bool as_given = moderate(extent, l), lateral_only = !closed(src.shape);
+        if (lateral_only && as_given && newton(src, Unit{1, 1, l})) return r;
         if (std::optional<Unit> u = unit_scale(src, extent, l)) {
             S unit = scaled(src.shape, 1 / u->pos_factor);
-            if (!as_given && newton(AsGiven<S>{unit}, *u)) return r;
+            if (lateral_only && !as_given && newton(AsGiven<S>{unit}, *u)) return r;
             auto dd = Traits::template exact_quadratic<BoundedDD>(unit, u->line, orientation);
             if (double_double_rung(dd, *u, q, r)) {
                 mark_certain(r, Rung::double_double);

@@ -182,6 +182,7 @@ LINEQUAD_INLINE bool add_hit(const Enclosure& en, const Unit& unit, const Line& 
     Hit& h = r.hits[r.count];
     h.t = *rounded;
     h.kind = HitKind::cross;
+    h.part = Part::lateral;
     h.p = {};
     if (q.points) {
         double p[3];
@@ -316,6 +317,7 @@ bool hit_test(const LineForm& f, const Unit& unit, Result& r) {
                          {},
                          (en->e + u * std::fabs(t)) * F::cover(8) + F::denorm_min,
                          HitKind::cross,
+                         Part::lateral,
                          true};
             r.count = 1;
             return true;

@@ -49,7 +49,10 @@ bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query 
     case Outcome::hits:
         break;
     }
-    BoundedDD sqrt_D = c.roots[0].S == 0 ? BoundedDD() : sqrt(c.D);
+    bool surd = false;
+    for (int i = 0; i < c.count; ++i)
+        surd = surd || c.roots[i].S != 0;
+    BoundedDD sqrt_D = surd ? sqrt(c.D) : BoundedDD();
     for (int i = 0; i < c.count; ++i) {
         BoundedDD t = root_value(c.roots[i], sqrt_D, q);
         std::optional<double> rounded = round_proven(t, u.t_factor);
@@ -57,6 +60,7 @@ bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query 
         Hit& h = r.hits[r.count++];
         h.t = *rounded;
         h.kind = c.roots[i].kind;
+        h.part = c.roots[i].part;
         h.p = {};
         if (!query.points) continue;
         for (int k = 0; k < 3; ++k) {
@@ -231,8 +235,12 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) 
     BigFloat zero;
     if (c.outcome == Outcome::on_surface) {
         r.on_surface = true;
-        r.s0 = c.s0.bounded ? round_exact(c.s0.num, zero, zero, c.s0.den) : -INFINITY;
-        r.s1 = c.s1.bounded ? round_exact(c.s1.num, zero, zero, c.s1.den) : INFINITY;
+        r.surface_part = c.surface_part;
+        auto end = [&](const exact_form::Fraction<BigFloat>& f) {
+            return round_exact(f.num, BigFloat(f.S), f.S == 0 ? zero : c.D, f.den);
+        };
+        r.s0 = c.s0.bounded ? end(c.s0) : -INFINITY;
+        r.s1 = c.s1.bounded ? end(c.s1) : INFINITY;
         return r;
     }
     for (int i = 0; i < c.count; ++i) {
@@ -240,6 +248,7 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) 
         BigFloat S(rt.S);
         Hit& h = r.hits[r.count++];
         h.kind = rt.kind;
+        h.part = rt.part;
         h.t = round_exact(rt.N, S, c.D, rt.Den);
         h.p = {};
         if (!query.points) continue;

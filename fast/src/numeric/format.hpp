@@ -13,8 +13,10 @@
 // costs more than their arithmetic (the batch solvers' lanes, the bounded types).
 #if defined(__GNUC__)
 #define LINEQUAD_INLINE inline __attribute__((always_inline))
+#define LINEQUAD_INLINE_LAMBDA __attribute__((always_inline))
 #else
 #define LINEQUAD_INLINE inline
+#define LINEQUAD_INLINE_LAMBDA
 #endif
 
 namespace linequad::detail {

@@ -129,8 +129,11 @@ struct CylinderStable {
     T z_lanes(T t, T s, Mask from_vieta) const {
         return select(from_vieta, z_at_origin(t), z_moved(s));
     }
-    ExtentT<T> extent(bool finite) const {
-        if (finite) return {T(0.0), hh};
+    // z = zc + s dz from the moved origin: where the line meets the discs' planes.
+    T axial_moved() const { return zc; }
+    T axial_rate() const { return dz; }
+    ExtentT<T> extent(const Cylinder& s) const {
+        if (s.finite) return {T(0.0), hh, both_ends(s.caps)};
         return {T(-Binary64::inf), T(Binary64::inf)};
     }
 };
@@ -158,6 +161,7 @@ struct ShapeTraits<Cylinder> {
     static constexpr const char* fragile_fields = "v,H-C";
 
     static Validity validate(const Cylinder& s) {
+        if (Error e = check_caps(s); !e.ok()) return {e};
         if (!(s.r > 0)) return {{ErrorCode::bad_radius, "r"}};
         if (s.H == s.C) return {{ErrorCode::degenerate_axis, "H-C"}};
         return {};
@@ -226,7 +230,8 @@ struct ShapeTraits<Cylinder> {
         double c = dot(w, w) - wh * wh - s.r * s.r;
         bool usable =
             std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && std::isfinite(axis.length);
-        Extent e = s.finite ? Extent{0, axis.length} : Extent{-Binary64::inf, Binary64::inf};
+        Extent e = s.finite ? Extent{0, axis.length, both_ends(s.caps)}
+                            : Extent{-Binary64::inf, Binary64::inf};
         return {a, b, c, wh, vh, e, usable};
     }
 
@@ -254,16 +259,20 @@ struct ShapeTraits<Cylinder> {
         B A = dot(vxh, vxh);
         // Any tc is an exact move of the origin; the closest approach to the axis' middle keeps
         // the bounded quantities small. A line exactly parallel to the axis is not moved, so
-        // that its exact zeros stay exact.
+        // that its exact zeros stay exact; nor is one exactly across it (z constant) when a disc
+        // may hold it.
         Vec3 hm{h.x.v, h.y.v, h.z.v};
-        double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * hm) / dot(v, v);
+        B dz = dot(V, h);
+        bool keep = exactly_zero(A) || (s.caps && exactly_zero(dz));
+        double tc = keep ? 0 : -dot(v, w.rounded() - 0.5 * hm) / dot(v, v);
         BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), wxh = cross(wc, h);
         B det = dot(V, wxh);
         BoundedQuadratic<B> quad{A, dot(vxh, wxh), dot(wxh, wxh) - R * R * hh,
                                  hh * (R * R * A - det * det)};
         // z = (P - C) . h / h.h
-        Extent e = s.finite ? Extent{0, 1} : Extent{-Binary64::inf, Binary64::inf};
-        return {quad, tc, dot(wc, h) / hh, dot(V, h) / hh, e};
+        Extent e =
+            s.finite ? Extent{0, 1, both_ends(s.caps)} : Extent{-Binary64::inf, Binary64::inf};
+        return {quad, tc, dot(wc, h) / hh, dz / hh, e};
     }
 
     // ---- exact ----
@@ -289,6 +298,7 @@ struct ShapeTraits<Cylinder> {
         q.C0 = dot(w, w) * hh - wh * wh - r * r * hh;
         q.Z0 = wh, q.dZ = vh, q.lo = NT(0), q.hi = hh;
         q.lo_bounded = q.hi_bounded = s.finite;
+        q.lo_capped = q.hi_capped = s.caps;
         return q;
     }
 

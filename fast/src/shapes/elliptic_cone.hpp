@@ -36,6 +36,9 @@
 // the det^2 factor drops out; -|det| <= Z <= 0.
 //
 // correct (the Newton rung): g(t) = Ux^2 + Uy^2 - Uz^2 with U(t) = adj(M)(L0 - H) + t adj(M) v.
+//
+// Two nappes (OpenCascade's cones): the same equation, with the extent -1 <= z <= 1 (finite) or
+// none; closed, each nappe is a solid of its own and they meet at the apex z = 0.
 #pragma once
 
 #include "correct/line_form.hpp"
@@ -49,6 +52,16 @@
 #include <type_traits>
 
 namespace linequad::detail {
+
+// The nappe z <= 0, down to the base z = -1 when finite; with two nappes z >= 0 too, up to z = 1.
+// Caps close the base, and the top of the second nappe.
+inline Extent cone_extent(const EllipticCone& s) {
+    constexpr double inf = Binary64::inf;
+    bool two = s.nappes == 2;
+    Extent e{s.finite ? -1.0 : -inf, two ? (s.finite ? 1.0 : inf) : 0.0};
+    e.caps = {s.caps, s.caps && two, s.caps && two};
+    return e;
+}
 
 // The arithmetic of stable's cone solve, once, for a lane type T. The cone's equation
 // x^2 + y^2 = z^2 is homogeneous: its roots do not change when every local coordinate is scaled
@@ -117,7 +130,13 @@ struct ConeStable {
     T z_at(T t) const { return f.local_z(moved_origin(w, t, v)); }
     double z_of(const Roots& r, int i) const { return z_at(r.t[i]); }
     T z_lanes(T t, T, Mask) const { return z_at(t); }
-    ExtentT<T> extent(bool finite) const { return {T(finite ? -1.0 : -Binary64::inf), T(0.0)}; }
+    // z = zc + s dz from the moved origin: where the line meets the discs' planes.
+    T axial_moved() const { return z_at(tc); }
+    T axial_rate() const { return f.local_z(v); }
+    ExtentT<T> extent(const EllipticCone& s) const {
+        Extent e = cone_extent(s);
+        return {T(e.lo), T(e.hi), e.caps};
+    }
 };
 
 template <>
@@ -130,6 +149,8 @@ struct ShapeTraits<EllipticCone> {
     static constexpr const char* fragile_fields = "v,a,b,H-C";
 
     static Validity validate(const EllipticCone& s) {
+        if (Error e = check_caps(s); !e.ok()) return {e};
+        if (s.nappes != 1 && s.nappes != 2) return {{ErrorCode::bad_option, "nappes"}};
         if (s.H == s.C) return {{ErrorCode::degenerate_axis, "H-C"}};
         int orientation = cone_det_sign_exact(s.a, s.b, s.C, s.H);
         if (orientation == 0) return {{ErrorCode::singular_frame, "a,b,H-C"}};
@@ -162,8 +183,7 @@ struct ShapeTraits<EllipticCone> {
         double b = 2 * (dot(v, w) - 2 * vh * wh);
         double c = dot(w, w) - 2 * wh * wh;
         bool usable = std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
-        Extent e{s.finite ? -1.0 : -Binary64::inf, 0};
-        return {a, b, c, w.z, v.z, e, usable};
+        return {a, b, c, w.z, v.z, cone_extent(s), usable};
     }
 
     // ---- stable ----
@@ -209,16 +229,17 @@ struct ShapeTraits<EllipticCone> {
         BoundedDualFrame<B> frame(a3, b3, c3);
         BoundedVec3<B> vl = frame.local(V);
         B A = vl.x * vl.x + vl.y * vl.y - vl.z * vl.z;
-        // Closest approach to the apex; not moved along a generator, where exact zeros decide.
-        double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded()) / dot(v, v);
+        // Closest approach to the apex; not moved along a generator, where exact zeros decide,
+        // nor across the axis when a disc may hold the line.
+        bool keep = exactly_zero(A) || (s.caps && exactly_zero(vl.z));
+        double tc = keep ? 0 : -dot(v, w.rounded()) / dot(v, v);
         BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), wl = frame.local(wc);
         BoundedVec3<B> vw = cross(V, wc);
         BoundedVec3<B> u{dot(a3, vw) / frame.det, dot(b3, vw) / frame.det, dot(c3, vw) / frame.det};
         BoundedQuadratic<B> quad{A, vl.x * wl.x + vl.y * wl.y - vl.z * wl.z,
                                  wl.x * wl.x + wl.y * wl.y - wl.z * wl.z,
                                  u.x * u.x + u.y * u.y - u.z * u.z};
-        Extent e{s.finite ? -1.0 : -Binary64::inf, 0};
-        return {quad, tc, wl.z, vl.z, e};
+        return {quad, tc, wl.z, vl.z, cone_extent(s)};
     }
 
     // ---- exact ----
@@ -232,8 +253,8 @@ struct ShapeTraits<EllipticCone> {
                         .det);
     }
 
-    // x^2 + y^2 = z^2 (homogeneous, so the det^2 factor drops out), -1 <= z <= 0 (erratum 5),
-    // with W = det M^-1 (L0 - H), V = det M^-1 v.
+    // x^2 + y^2 = z^2 (homogeneous, so the det^2 factor drops out), -1 <= z <= 0 (erratum 5;
+    // with two nappes -1 <= z <= 1), with W = det M^-1 (L0 - H), V = det M^-1 v.
     template <class NT>
     static exact_form::LineQuadratic<NT> exact_quadratic(const EllipticCone& s, const Line& l,
                                                          int orientation) {
@@ -249,9 +270,13 @@ struct ShapeTraits<EllipticCone> {
         q.C0 = W.x * W.x + W.y * W.y - W.z * W.z;
         q.Z0 = negative_det ? -W.z : W.z;
         q.dZ = negative_det ? -V.z : V.z;
-        q.lo = negative_det ? f.det : -f.det, q.hi = NT(0);
+        bool two = s.nappes == 2;
+        q.lo = negative_det ? f.det : -f.det;
+        q.hi = two ? NT(-q.lo) : NT(0);
         q.lo_bounded = s.finite;
-        q.hi_bounded = true; // the nappe z <= 0
+        q.hi_bounded = !two || s.finite; // the nappe z <= 0, or the top z = 1
+        Extent e = cone_extent(s);
+        q.lo_capped = e.caps.lo, q.hi_capped = e.caps.hi, q.two_solids = e.caps.two_solids;
         return q;
     }
 
@@ -268,6 +293,15 @@ struct ShapeTraits<EllipticCone> {
         }
     }
 
+    // The upper end from the lower one, -|det|: Z <= 0, or with two nappes Z <= |det| when
+    // finite and no bound otherwise.
+    static void nappes(const EllipticCone& s, LineForm& f) {
+        bool two = s.nappes == 2;
+        f.hi = two ? -f.lo : 0, f.e_hi = two ? f.e_lo : 0;
+        f.lo_bounded = s.finite;
+        f.hi_bounded = !two || s.finite;
+    }
+
     template <class Src>
     static LineForm line_form(const Src& src, const Line& l, int orientation) {
         const EllipticCone& s = src.shape;
@@ -278,9 +312,7 @@ struct ShapeTraits<EllipticCone> {
         f.sigma_z = -1;
         f.K = BoundedDD(0);
         f.lo = -det.hi, f.e_lo = bound_of_hi(det); // -|det| <= Z <= 0: the nappe z <= 0
-        f.hi = 0, f.e_hi = 0;
-        f.lo_bounded = s.finite;
-        f.hi_bounded = true;
+        nappes(s, f);
         return f;
     }
 
@@ -296,9 +328,7 @@ struct ShapeTraits<EllipticCone> {
         f.sigma_z = -1;
         f.K = BoundedDD(0);
         f.lo = -d.v, f.e_lo = d.bound(); // -|det| <= Z <= 0: the nappe z <= 0
-        f.hi = 0, f.e_hi = 0;
-        f.lo_bounded = s.finite;
-        f.hi_bounded = true;
+        nappes(s, f);
         return f;
     }
 };

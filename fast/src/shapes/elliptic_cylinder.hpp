@@ -91,8 +91,11 @@ struct EllipticStable {
     T z_at(T t) const { return f.local_z(moved_origin(w, t, v)); }
     double z_of(const Roots& r, int i) const { return z_at(r.t[i]); }
     T z_lanes(T t, T, Mask) const { return z_at(t); }
-    ExtentT<T> extent(bool finite) const {
-        if (finite) return {T(0.0), T(1.0)};
+    // z = zc + s dz from the moved origin: where the line meets the discs' planes.
+    T axial_moved() const { return z_at(tc); }
+    T axial_rate() const { return f.local_z(v); }
+    ExtentT<T> extent(const EllipticCylinder& s) const {
+        if (s.finite) return {T(0.0), T(1.0), both_ends(s.caps)};
         return {T(-Binary64::inf), T(Binary64::inf)};
     }
 };
@@ -107,6 +110,7 @@ struct ShapeTraits<EllipticCylinder> {
     static constexpr const char* fragile_fields = "v,a,b,c";
 
     static Validity validate(const EllipticCylinder& s) {
+        if (Error e = check_caps(s); !e.ok()) return {e};
         int orientation =
             s.a == Vec3{} || s.b == Vec3{} || s.c == Vec3{} ? 0 : det3_sign_exact(s.a, s.b, s.c);
         if (orientation == 0) return {{ErrorCode::singular_frame, "a,b,c"}};
@@ -140,7 +144,8 @@ struct ShapeTraits<EllipticCylinder> {
         double b = 2 * (dot(v, w) - vh * wh);
         double c = dot(w, w) - wh * wh - 1;
         bool usable = std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
-        Extent e = s.finite ? Extent{0, 1} : Extent{-Binary64::inf, Binary64::inf};
+        Extent e =
+            s.finite ? Extent{0, 1, both_ends(s.caps)} : Extent{-Binary64::inf, Binary64::inf};
         return {a, b, c, w.z, v.z, e, usable};
     }
 
@@ -177,12 +182,15 @@ struct ShapeTraits<EllipticCylinder> {
         BoundedDualFrame<B> frame(a3, b3, c3);
         BoundedVec3<B> vl = frame.local(V);
         B A = vl.x * vl.x + vl.y * vl.y;
-        double tc = exactly_zero(A) ? 0 : -dot(v, w.rounded() - 0.5 * c) / dot(v, v);
+        // Not moved along the axis (exact zeros decide), nor across it when a disc may hold it.
+        bool keep = exactly_zero(A) || (s.caps && exactly_zero(vl.z));
+        double tc = keep ? 0 : -dot(v, w.rounded() - 0.5 * c) / dot(v, v);
         BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), wl = frame.local(wc);
         B u = dot(c3, cross(V, wc)) / frame.det;
         BoundedQuadratic<B> quad{A, vl.x * wl.x + vl.y * wl.y,
                                  wl.x * wl.x + wl.y * wl.y - B::exact(1), A - u * u};
-        Extent e = s.finite ? Extent{0, 1} : Extent{-Binary64::inf, Binary64::inf};
+        Extent e =
+            s.finite ? Extent{0, 1, both_ends(s.caps)} : Extent{-Binary64::inf, Binary64::inf};
         return {quad, tc, wl.z, vl.z, e};
     }
 
@@ -215,6 +223,7 @@ struct ShapeTraits<EllipticCylinder> {
         q.dZ = negative_det ? -V.z : V.z;
         q.lo = NT(0), q.hi = negative_det ? -f.det : f.det;
         q.lo_bounded = q.hi_bounded = s.finite;
+        q.lo_capped = q.hi_capped = s.caps;
         return q;
     }
 

@@ -17,6 +17,17 @@
 //   A = 0, B != 0:  N = -C0, S = 0,        Den = 2B  (one crossing: parallel to a generator)
 //   A = B = 0:      on the surface if C0 = 0, else no hit
 // and every test on a root (inside the extent, inside the range) is the sign of an X + Y sqrt(D).
+//
+// A closed shape (caps on) adds its end discs. Q(t) = A t^2 + 2 B t + C0 is negative inside the
+// lateral surface (within the nappe) in every shape's form, so the disc at the end Z = e is
+// {Z = e, Q <= 0}: the line meets it at t = (e - Z0) / dZ, a rational root (N = e - Z0,
+// Den = dZ, S = 0), when A N^2 + 2 B N Den + C0 Den^2 <= 0 (Q times Den^2). A lateral root counts
+// where it is strictly inside a capped end (a rim belongs to its disc). Each solid (the shape,
+// or each nappe of a closed two-nappe cone) is convex, so the line meets its boundary at the two
+// ends of a segment or touches it at one point: a point is `cross` when it ends a segment of
+// exactly one solid, `tangent` when it is a solid's only point or the apex two solids share. A
+// line in a disc's plane meets the closed shape in the chord Q <= 0 of that disc: an interval
+// with ends (-B -+ sqrt(D)) / A, or the one point where it grazes the rim.
 #pragma once
 
 #include "numeric/vector.hpp"
@@ -25,6 +36,7 @@
 #include "linequad/shapes.hpp"
 
 #include <cstdint>
+#include <utility>
 
 namespace linequad::exact_form {
 
@@ -37,6 +49,8 @@ struct LineQuadratic {
     NT A, B, C0;
     NT Z0, dZ, lo, hi;
     bool lo_bounded = true, hi_bounded = true;
+    // Discs at the bounded ends (lo: base, hi: top), and two solids meeting at Z = 0.
+    bool lo_capped = false, hi_capped = false, two_solids = false;
 };
 
 template <class NT>
@@ -99,13 +113,16 @@ struct SurdRoot {
     NT N, Den;
     int S = 0;
     HitKind kind = HitKind::cross;
+    Part part = Part::lateral;
 };
 
-// An end of the on-surface interval: num / den with den > 0, or unbounded.
+// An end of the on-surface interval: (num + S sqrt(D)) / den with den > 0, or unbounded. S is 0
+// but for a chord of a disc.
 template <class NT>
 struct Fraction {
     bool bounded = false;
     NT num, den;
+    int S = 0;
 };
 
 enum class Outcome : std::uint8_t { none, hits, on_surface, undecided };
@@ -115,13 +132,15 @@ struct Classification {
     Outcome outcome = Outcome::none;
     NT D;          // B^2 - A C0 (zero for a single rational root)
     int count = 0; // hits: roots[0..count) kept, by increasing t, as the query needs
-    SurdRoot<NT> roots[2];
+    SurdRoot<NT> roots[max_hits];
     Fraction<NT> s0, s1; // on_surface: the interval of t
+    Part surface_part = Part::lateral;
 };
 
 namespace detail {
 
-// Z(t) within [lo, hi]: Z(t) - lo = (Den (Z0 - lo) + dZ N + S dZ sqrt(D)) / Den, and so on.
+// Z(t) within [lo, hi]: Z(t) - lo = (Den (Z0 - lo) + dZ N + S dZ sqrt(D)) / Den, and so on; a
+// capped end excludes its rim (it belongs to the disc).
 template <class NT>
 int in_extent(const SurdRoot<NT>& r, const SurdSign<NT>& surd, const LineQuadratic<NT>& q,
               int sden) {
@@ -129,14 +148,31 @@ int in_extent(const SurdRoot<NT>& r, const SurdSign<NT>& surd, const LineQuadrat
     if (q.lo_bounded) {
         int s = surd(NT(r.Den * (q.Z0 - q.lo) + q.dZ * r.N), SdZ);
         if (s == undecided) return undecided;
-        if (s * sden < 0) return 0;
+        if (s * sden < 0 || (q.lo_capped && s == 0)) return 0;
     }
     if (q.hi_bounded) {
         int s = surd(NT(r.Den * (q.hi - q.Z0) - q.dZ * r.N), NT(-SdZ));
         if (s == undecided) return undecided;
-        if (s * sden < 0) return 0;
+        if (s * sden < 0 || (q.hi_capped && s == 0)) return 0;
     }
     return 1;
+}
+
+// sgn Z(t) at a root: which solid of a closed two-nappe cone it is on (0: the apex, both).
+template <class NT>
+int axial_sign(const SurdRoot<NT>& r, const SurdSign<NT>& surd, const LineQuadratic<NT>& q,
+               int sden) {
+    NT SdZ = r.S > 0 ? q.dZ : r.S < 0 ? NT(-q.dZ) : NT(0);
+    int s = surd(NT(r.Den * q.Z0 + q.dZ * r.N), SdZ);
+    return s == undecided ? undecided : s * sden;
+}
+
+// sgn(x - y) for two roots over one D: (Nx Dy - Ny Dx + (Sx Dy - Sy Dx) sqrt(D)) / (Dx Dy).
+template <class NT>
+int compare(const SurdRoot<NT>& x, int sx, const SurdRoot<NT>& y, int sy,
+            const SurdSign<NT>& surd) {
+    int s = surd(NT(x.N * y.Den - y.N * x.Den), NT(NT(x.S) * y.Den - NT(y.S) * x.Den));
+    return s == undecided ? undecided : s * sx * sy;
 }
 
 // t0 <= t <= t1: t - t0 = (N - Den t0 + S sqrt(D)) / Den, t1 - t = (Den t1 - N - S sqrt(D)) / Den.
@@ -202,6 +238,112 @@ Classification<NT> on_surface(const LineQuadratic<NT>& q, const ParameterRange<N
     return c;
 }
 
+// A root at t = num / den, num / -den as the interval's end (den > 0).
+template <class NT>
+Fraction<NT> end_at(const SurdRoot<NT>& r, int sden) {
+    if (sden > 0) return {true, r.N, r.Den, r.S};
+    return {true, NT(-r.N), NT(-r.Den), -r.S};
+}
+
+// The line in the plane of a disc (dZ = 0, Z0 at a capped end): it meets the closed shape in
+// the chord Q <= 0 of the disc. A > 0 there (v has no axial part, so Q's leading form is
+// positive definite), and the chord is the interval between Q's roots, or the one point where
+// the line grazes the rim (D = 0).
+template <class NT>
+Classification<NT> in_disc_plane(const LineQuadratic<NT>& q, const ParameterRange<NT>& range,
+                                 Part part) {
+    Classification<NT> c;
+    c.outcome = Outcome::undecided;
+    int sa = sign(q.A);
+    if (sa == undecided) return c;
+    if (sa <= 0) return c.outcome = Outcome::none, c; // not a line of a disc's plane
+    c.D = q.B * q.B - q.A * q.C0;
+    int sd = sign(c.D);
+    if (sd == undecided) return c;
+    if (sd < 0) return c.outcome = Outcome::none, c;
+    SurdSign<NT> surd(c.D);
+    if (sd == 0) {
+        SurdRoot<NT> rim{-q.B, q.A, 0, HitKind::tangent, part};
+        int inside = in_range(rim, surd, range, 1);
+        if (inside == undecided) return c;
+        c.outcome = Outcome::none;
+        if (inside) c.roots[c.count++] = rim, c.outcome = Outcome::hits;
+        return c;
+    }
+    SurdRoot<NT> lo{-q.B, q.A, -1}, hi{-q.B, q.A, 1};
+    // Each end of the chord, or the range's end where that is nearer; empty when they cross.
+    SurdRoot<NT> first = lo, last = hi;
+    int sfirst = 1, slast = 1;
+    if (range.has_t0) {
+        SurdRoot<NT> t0{range.t0, NT(1)};
+        int before = compare(lo, 1, t0, 1, surd);
+        if (before == undecided) return c;
+        if (before < 0) first = t0;
+    }
+    if (range.has_t1) {
+        SurdRoot<NT> t1{range.t1, NT(1)};
+        int after = compare(hi, 1, t1, 1, surd);
+        if (after == undecided) return c;
+        if (after > 0) last = t1;
+    }
+    int order = compare(first, sfirst, last, slast, surd);
+    if (order == undecided) return c;
+    if (order > 0) return c.outcome = Outcome::none, c;
+    c.outcome = Outcome::on_surface;
+    c.s0 = end_at(first, sfirst), c.s1 = end_at(last, slast);
+    c.surface_part = part;
+    return c;
+}
+
+// The closed shape's boundary points: the lateral roots kept (strictly inside a capped end),
+// then the discs the line crosses, each with the sign of its Den; their kinds from the solids.
+template <class NT>
+bool close(const LineQuadratic<NT>& q, const SurdSign<NT>& surd, SurdRoot<NT>* roots, int* sden,
+           int& n, int sdz) {
+    if (sdz != 0) {
+        auto disc = [&](const NT& end, Part part) {
+            NT N = end - q.Z0;
+            int inside = sign(NT((q.A * N + NT(2) * q.B * q.dZ) * N + q.C0 * q.dZ * q.dZ));
+            if (inside == undecided) return false;
+            if (inside <= 0) sden[n] = sdz, roots[n++] = {N, q.dZ, 0, HitKind::cross, part};
+            return true;
+        };
+        if (q.lo_capped && !disc(q.lo, Part::base)) return false;
+        if (q.hi_capped && !disc(q.hi, Part::top)) return false;
+    }
+    // Which solid each point is on (bit 0: Z <= 0, bit 1: Z >= 0, both at the apex), and how
+    // many points each solid has.
+    int solids[max_hits], count[2] = {0, 0};
+    for (int i = 0; i < n; ++i) {
+        if (!q.two_solids) {
+            solids[i] = 1;
+        } else if (roots[i].part != Part::lateral) {
+            solids[i] = roots[i].part == Part::base ? 1 : 2;
+        } else {
+            int z = axial_sign(roots[i], surd, q, sden[i]);
+            if (z == undecided) return false;
+            solids[i] = z < 0 ? 1 : z > 0 ? 2 : 3;
+        }
+        for (int b = 0; b < 2; ++b)
+            count[b] += (solids[i] >> b) & 1;
+    }
+    for (int i = 0; i < n; ++i) {
+        bool one = solids[i] != 3;
+        bool ends_segment = one && count[solids[i] == 1 ? 0 : 1] == 2;
+        roots[i].kind = ends_segment ? HitKind::cross : HitKind::tangent;
+    }
+    // In order of t: at most four, so insertion.
+    for (int i = 1; i < n; ++i)
+        for (int j = i; j > 0; --j) {
+            int order = compare(roots[j - 1], sden[j - 1], roots[j], sden[j], surd);
+            if (order == undecided) return false;
+            if (order <= 0) break;
+            std::swap(roots[j - 1], roots[j]);
+            std::swap(sden[j - 1], sden[j]);
+        }
+    return true;
+}
+
 } // namespace detail
 
 // Which roots of q are hits of a line over `range`, in the order of t, as many as `need` asks
@@ -211,10 +353,23 @@ Classification<NT> classify(const LineQuadratic<NT>& q, const ParameterRange<NT>
                             Need need) {
     Classification<NT> c;
     c.outcome = Outcome::undecided;
+    bool closed = q.lo_capped || q.hi_capped;
+    int sdz = 0;
+    if (closed) {
+        sdz = sign(q.dZ);
+        if (sdz == undecided) return c;
+        for (int end = 0; sdz == 0 && end < 2; ++end) {
+            if (!(end == 0 ? q.lo_capped : q.hi_capped)) continue;
+            int at = sign(NT(q.Z0 - (end == 0 ? q.lo : q.hi)));
+            if (at == undecided) return c;
+            if (at == 0) return detail::in_disc_plane(q, range, end == 0 ? Part::base : Part::top);
+        }
+    }
     int sa = sign(q.A);
     if (sa == undecided) return c;
-    SurdRoot<NT> roots[2];
-    int n = 0, sden = sa; // the sign of the roots' Den: A, or 2B
+    SurdRoot<NT> roots[max_hits];
+    int sden[max_hits];
+    int n = 0;
     if (sa == 0) {
         int sb = sign(q.B);
         if (sb == undecided) return c;
@@ -222,29 +377,36 @@ Classification<NT> classify(const LineQuadratic<NT>& q, const ParameterRange<NT>
             int sc = sign(q.C0);
             if (sc == undecided) return c;
             if (sc == 0) return detail::on_surface(q, range);
-            return c.outcome = Outcome::none, c;
+        } else {
+            c.D = NT(0);
+            sden[n] = sb, roots[n++] = {-q.C0, NT(2) * q.B, 0, HitKind::cross};
         }
-        c.D = NT(0);
-        sden = sb;
-        roots[n++] = {-q.C0, NT(2) * q.B, 0, HitKind::cross};
     } else {
         c.D = q.B * q.B - q.A * q.C0;
         int sd = sign(c.D);
         if (sd == undecided) return c;
         if (sd > 0) {
             int first = sa > 0 ? -1 : 1; // the smaller root first
-            roots[n++] = {-q.B, q.A, first, HitKind::cross};
-            roots[n++] = {-q.B, q.A, -first, HitKind::cross};
+            sden[n] = sa, roots[n++] = {-q.B, q.A, first, HitKind::cross};
+            sden[n] = sa, roots[n++] = {-q.B, q.A, -first, HitKind::cross};
         } else if (sd == 0) {
-            roots[n++] = {-q.B, q.A, 0, HitKind::tangent};
+            sden[n] = sa, roots[n++] = {-q.B, q.A, 0, HitKind::tangent};
         } else {
-            return c.outcome = Outcome::none, c;
+            c.D = NT(0); // no irrational root
         }
     }
+    if (n == 0 && !closed) return c.outcome = Outcome::none, c;
     SurdSign<NT> surd(c.D);
+    int kept = 0;
     for (int i = 0; i < n; ++i) {
-        int inside = detail::in_extent(roots[i], surd, q, sden);
-        if (inside == 1) inside = detail::in_range(roots[i], surd, range, sden);
+        int inside = detail::in_extent(roots[i], surd, q, sden[i]);
+        if (inside == undecided) return c;
+        if (inside) sden[kept] = sden[i], roots[kept++] = roots[i];
+    }
+    n = kept;
+    if (closed && !detail::close(q, surd, roots, sden, n, sdz)) return c;
+    for (int i = 0; i < n; ++i) {
+        int inside = detail::in_range(roots[i], surd, range, sden[i]);
         if (inside == undecided) return c;
         if (!inside) continue;
         c.roots[c.count++] = roots[i];

@@ -182,11 +182,38 @@ AsPrepared<S> source(const Prepared<S>& p) {
     return AsPrepared<S>(p);
 }
 
-// The axial extent lo <= z <= hi in a derivation's own units (infinite ends when unbounded);
-// for any lane type.
+// Which ends of a shape's axial extent a disc closes (lo: the base, hi: the top), and whether the
+// closed shape is two solids meeting at z = 0 (a two-nappe cone's apex).
+struct Closure {
+    bool lo = false, hi = false;
+    bool two_solids = false;
+    bool any() const { return lo || hi; }
+};
+
+// A cylinder's discs: one at each end, when it has caps.
+inline Closure both_ends(bool caps) {
+    return {caps, caps, false};
+}
+
+// Whether the shape is a closed solid (its discs are part of the surface).
+template <class S>
+bool closed(const S& s) {
+    return s.caps;
+}
+
+// The options every shape checks before its geometry: caps close a finite shape only.
+template <class S>
+Error check_caps(const S& s) {
+    if (s.caps && !s.finite) return {ErrorCode::bad_option, "caps"};
+    return {};
+}
+
+// The axial extent lo <= z <= hi in a derivation's own units (infinite ends when unbounded),
+// for any lane type, and the discs that close it.
 template <class T>
 struct ExtentT {
     T lo, hi;
+    Closure caps{};
 };
 using Extent = ExtentT<double>;
 

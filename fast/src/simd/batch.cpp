@@ -30,8 +30,8 @@ void solve_batch(const S& shape, const LineArrays& lines, Query q, Result* out) 
     std::size_t i = 0;
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
     // The shape is checked once, and the range; a bad line goes to the scalar solver, which
-    // names it.
-    bool shape_ok = src.validity().error.ok() &&
+    // names it. A closed shape's discs are the scalar solver's too.
+    bool shape_ok = src.validity().error.ok() && !detail::closed(src.shape) &&
                     detail::check_line(Line{{0, 0, 0}, {1, 0, 0}, lines.range}).ok();
     if (batch_uses_avx2() && shape_ok) {
         const double* const soa[6] = {lines.x, lines.y, lines.z, lines.vx, lines.vy, lines.vz};

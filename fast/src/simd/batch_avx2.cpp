@@ -128,7 +128,7 @@ void stable_x4(const S& s, double shape_extent, const double* const soa[6], std:
     M4 generic = ln.ok & !k.too_small() & (fabs(k.A) >= tiny);
     k.discriminant();
     generic = generic & !k.scalar_only() & (fabs(k.D) >= tiny);
-    finish_lanes(k, generic, ln, k.extent(s.finite), range, out);
+    finish_lanes(k, generic, ln, k.extent(s), range, out);
 }
 
 #define LINEQUAD_INSTANTIATE_KERNEL(S)                                                             \

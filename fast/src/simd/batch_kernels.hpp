@@ -26,6 +26,7 @@ struct LaneResult {
 
     double t(int i) const { return root[i].t; }
     HitKind kind(int i) const { return root[i].kind; }
+    Part part(int) const { return Part::lateral; } // closed shapes take the scalar solver
     bool bad(int i) const { return root[i].bad; }
     bool keep(int i) const { return root[i].keep; }
     Vec3 point(int i) const { return root[i].p; }

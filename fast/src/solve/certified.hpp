@@ -7,8 +7,10 @@
 #include "numeric/bounded.hpp"
 #include "numeric/eft.hpp"
 #include "shapes/frame.hpp"
+#include "solve/closure.hpp"
 #include "solve/finish.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -107,16 +109,6 @@ BoundedVec3<BT> moved_origin_bounded(const Vec3TwoTerm& w, double tc, Vec3 v) {
             moved_origin_bounded<BT>(w.hi.z, w.lo.z, tc, v.z)};
 }
 
-// t = tc + s in the caller's units: exact scaling by a power of two, unless the result falls
-// below the normal range, where it rounds: then the bound grows by a subnormal ulp.
-template <class BT>
-BT caller_t(double tc, const BT& s, double t_scale) {
-    BT t = BT::exact(tc) + s;
-    double v = t.v * t_scale, e = t.bound() * t_scale;
-    if (std::fabs(v) < 0x1p-1020 && (t.v != 0 || t.e != 0)) e += Binary64::denorm_min;
-    return {v, e};
-}
-
 // Candidates (t in the caller's units, its axial coordinate) to a Result: a hit is kept when its
 // computed value is inside the extent and the range, and is certain when the root is and every
 // one of those signs is; the result is certain when every decision, kept or not, is.
@@ -125,6 +117,7 @@ struct CertifiedCandidate {
     BT t, z;
     HitKind kind;
     bool certain;
+    Part part = Part::lateral;
 };
 template <class BT>
 Result finish_certified(CertifiedCandidate<BT>* c, int n, bool classification_certain, Extent e,
@@ -135,7 +128,9 @@ Result finish_certified(CertifiedCandidate<BT>* c, int n, bool classification_ce
             fail(r, ErrorCode::out_of_range, "t");
             return r;
         }
-    if (n == 2 && c[1].t.v < c[0].t.v) std::swap(c[0], c[1]);
+    for (int i = 1; i < n; ++i) // at most four: insertion
+        for (int j = i; j > 0 && c[j].t.v < c[j - 1].t.v; --j)
+            std::swap(c[j], c[j - 1]);
     bool all_certain = classification_certain, points = q.points && q.need != Need::any;
     const Interval& range = l.range;
     for (int i = 0; i < n; ++i) {
@@ -158,6 +153,7 @@ Result finish_certified(CertifiedCandidate<BT>* c, int n, bool classification_ce
         h.t = c[i].t.v;
         h.bound = c[i].t.bound();
         h.kind = c[i].kind;
+        h.part = c[i].part;
         h.certain = certain;
         h.p = points ? point_at(l, h.t) : Vec3{};
         if (points && !is_finite(h.p)) {
@@ -169,16 +165,60 @@ Result finish_certified(CertifiedCandidate<BT>* c, int n, bool classification_ce
     return r;
 }
 
+// A closed shape (caps on). A line in a disc's plane (proven by exact zeros) meets it in the
+// chord between the quadratic's roots there, or grazes the rim; otherwise the lateral roots and
+// the discs (solve/closure.hpp).
+template <class BT>
+[[gnu::noinline]] Result certified_closed(const CertifiedRoots<BT>& cr,
+                                          const AxialQuadratic<BT>& aq, Extent e, const Line& l,
+                                          Query q) {
+    CertifiedCandidate<BT> c[max_hits];
+    if (Part plane = plane_holding(aq, e); plane != Part::lateral) {
+        BT end = exactly<BT>(plane == Part::base ? e.lo : e.hi);
+        if (cr.count == 2) {
+            double t0 = caller_t(aq.tc, cr.root[0].s, aq.t_scale).v;
+            double t1 = caller_t(aq.tc, cr.root[1].s, aq.t_scale).v;
+            Result r;
+            r.certainty = cr.certain ? Certainty::certain : Certainty::uncertain;
+            double s0 = std::max(t0, l.range.t0), s1 = std::min(t1, l.range.t1);
+            if (!(s0 <= s1)) return r;
+            if (!std::isfinite(t0) || !std::isfinite(t1)) {
+                fail(r, ErrorCode::out_of_range, "t");
+                return r;
+            }
+            r.on_surface = true, r.surface_part = plane;
+            r.s0 = s0 + 0.0, r.s1 = s1; // +0, never -0, at t0 = 0
+            return r;
+        }
+        for (int i = 0; i < cr.count; ++i)
+            c[i] = {caller_t(aq.tc, cr.root[i].s, aq.t_scale), end, HitKind::tangent,
+                    cr.root[i].certain, plane};
+        return finish_certified(c, cr.count, cr.certain, e, l, q);
+    }
+    BoundaryPoint<BT> lateral[2];
+    for (int i = 0; i < cr.count; ++i)
+        lateral[i] = {caller_t(aq.tc, cr.root[i].s, aq.t_scale), aq.z0 + cr.root[i].s * aq.dz,
+                      Part::lateral, cr.root[i].kind, cr.root[i].certain};
+    ClosedPoints<BT> cp = close(lateral, cr.count, aq, e);
+    for (int i = 0; i < cp.n; ++i)
+        c[i] = {cp.p[i].t, cp.p[i].z, cp.p[i].kind, cp.p[i].certain, cp.p[i].part};
+    return finish_certified(c, cp.n, cr.certain && cp.certain, e, l, q);
+}
+
 // The last step of every certified solve: the roots s (moved by tc), their axial coordinate
 // z0 + s dz, and the result; a line on the surface only from exact zeros (certified_roots).
 template <class BT>
-Result certified_result(const CertifiedRoots<BT>& cr, double tc, BT z0, BT dz, double t_scale,
+Result certified_result(const BoundedQuadratic<BT>& quad, double tc, BT z0, BT dz, double t_scale,
                         Extent e, const Line& l, Query q) {
+    CertifiedRoots<BT> cr = certified_roots(quad);
     if (cr.on_surface) {
         Result r = finish_on_surface(z0.v - tc * dz.v, dz.v, t_scale, e, l);
         r.certainty = Certainty::certain;
         return r;
     }
+    if (e.caps.any())
+        return certified_closed(cr, {quad.A, BT::exact(2) * quad.B, quad.C, z0, dz, tc, t_scale}, e,
+                                l, q);
     CertifiedCandidate<BT> c[2];
     for (int i = 0; i < cr.count; ++i)
         c[i] = {caller_t(tc, cr.root[i].s, t_scale), z0 + cr.root[i].s * dz, cr.root[i].kind,

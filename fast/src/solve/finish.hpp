@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace linequad::detail {
 
@@ -19,6 +20,7 @@ struct Candidate {
     double t;
     HitKind kind;
     double z;
+    Part part = Part::lateral;
 };
 
 // r becomes an error result (its hits are no longer read).
@@ -53,9 +55,9 @@ LINEQUAD_INLINE void assemble(const Candidates& c, int n, Query q, Result& r) {
     int count = 0;
     // Hit i as the next one; false when its point lies beyond double's range (refused, not
     // returned as inf).
-    auto put = [&](int i) {
+    auto put = [&](int i) LINEQUAD_INLINE_LAMBDA {
         Hit& h = r.hits[count++];
-        h.t = c.t(i), h.kind = c.kind(i), h.bound = no_bound, h.certain = false;
+        h.t = c.t(i), h.kind = c.kind(i), h.part = c.part(i), h.bound = no_bound, h.certain = false;
         h.p = points ? c.point(i) : Vec3{};
         return !points || is_finite(h.p);
     };
@@ -75,6 +77,7 @@ struct CandidateFacts {
     const Line& l;
     double t(int i) const { return c[i].t; }
     HitKind kind(int i) const { return c[i].kind; }
+    Part part(int i) const { return c[i].part; }
     bool bad(int i) const { return !(std::fabs(c[i].t) <= Binary64::max) | (c[i].z != c[i].z); }
     bool keep(int i) const {
         return (c[i].z >= e.lo) & (c[i].z <= e.hi) & (c[i].t >= l.range.t0) &
@@ -83,9 +86,34 @@ struct CandidateFacts {
     Vec3 point(int i) const { return point_at(l, c[i].t); }
 };
 
-inline Result finish(const Candidate* c, int n, Extent e, const Line& l, Query q) {
+// More than two candidates (a closed shape's): sorted by t first, then kept in that order. Out
+// of line: the usual path's finish stays small.
+[[gnu::noinline]] inline void assemble_sorted(Candidate* c, int n, Extent e, const Line& l, Query q,
+                                              Result& r) {
+    for (int i = 1; i < n; ++i)
+        for (int j = i; j > 0 && c[j].t < c[j - 1].t; --j)
+            std::swap(c[j], c[j - 1]);
+    CandidateFacts facts{c, e, l};
+    bool points = q.points && q.need != Need::any;
+    for (int i = 0; i < n; ++i)
+        if (facts.bad(i)) return fail(r, ErrorCode::out_of_range, "t");
+    for (int i = 0; i < n; ++i) {
+        if (!facts.keep(i)) continue;
+        Hit& h = r.hits[r.count++];
+        h.t = c[i].t, h.kind = c[i].kind, h.part = c[i].part, h.bound = no_bound;
+        h.certain = false;
+        h.p = points ? facts.point(i) : Vec3{};
+        if (points && !is_finite(h.p)) return fail(r, ErrorCode::out_of_range, "p");
+        if (q.need != Need::all) return;
+    }
+}
+
+LINEQUAD_INLINE Result finish(Candidate* c, int n, Extent e, const Line& l, Query q) {
     Result r;
-    assemble(CandidateFacts{c, e, l}, n, q, r);
+    if (n <= 2)
+        assemble(CandidateFacts{c, e, l}, n, q, r);
+    else
+        assemble_sorted(c, n, e, l, q, r);
     return r;
 }
 

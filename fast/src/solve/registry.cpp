@@ -17,6 +17,18 @@ const char* range_name(Range r) {
     return "?";
 }
 
+const char* part_name(Part p) {
+    switch (p) {
+    case Part::lateral:
+        return "lateral";
+    case Part::base:
+        return "base";
+    case Part::top:
+        return "top";
+    }
+    return "?";
+}
+
 const char* code_name(ErrorCode c) {
     switch (c) {
     case ErrorCode::none:
@@ -37,6 +49,8 @@ const char* code_name(ErrorCode c) {
         return "empty_range";
     case ErrorCode::out_of_range:
         return "out_of_range";
+    case ErrorCode::bad_option:
+        return "bad_option";
     }
     return "?";
 }
@@ -62,6 +76,9 @@ std::string message(const Error& e) {
         return f + ": the range holds no t (t0 > t1, or an end at the wrong infinity)";
     case ErrorCode::out_of_range:
         return f + ": magnitudes too far apart for double evaluation (overflow or underflow)";
+    case ErrorCode::bad_option:
+        return f == "caps" ? std::string("caps: only a finite shape has end discs to close it")
+                           : f + ": not an option this shape takes (nappes is 1 or 2)";
     }
     return "?";
 }

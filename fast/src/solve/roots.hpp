@@ -69,7 +69,7 @@ void stable_pair(T A, T B, T Cc, T D, T s[2]) {
 // A t^2 + 2 B t + C = 0 (half-b form) solved without cancellation: the discriminant D = B^2 - AC
 // is supplied by the caller in a geometric form that is accurate near tangency, and the roots
 // are the stable pair q / A, C / q with q = -(B + sign(B) sqrt(D)).
-inline Roots stable_roots(double A, double B, double C, double D) {
+LINEQUAD_INLINE Roots stable_roots(double A, double B, double C, double D) {
     Roots r;
     if (A == 0) {
         if (B != 0)

@@ -5,6 +5,7 @@
 
 #include "shapes/all.hpp"
 #include "solve/certified.hpp"
+#include "solve/closure.hpp"
 #include "solve/finish.hpp"
 #include "solve/roots.hpp"
 
@@ -55,8 +56,7 @@ Result Certified::solve(const Src& src, const Line& l, Query q) {
     return quick_then_bounded([&](auto number) {
         using B = decltype(number);
         CertifiedForm<B> f = Traits::template certified_form<B>(src, ps, l);
-        return certified_result(certified_roots(f.quad), f.tc, f.z0, f.dz, ps.t_scale(), f.extent,
-                                l, q);
+        return certified_result(f.quad, f.tc, f.z0, f.dz, ps.t_scale(), f.extent, l, q);
     });
 }
 
@@ -79,8 +79,12 @@ Result Seed::solve(const Src& src, const Line& l, Query q) {
     if (seed_undecidable(roots, f.a, f.b * f.b - 4 * f.a * f.c, magnitudes))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
     // A line on the surface is a claim of infinitely many hits: only with proof.
-    if (roots.kind == Roots::on_surface) return without_certification(Certified::solve(src, l, q));
+    auto on_surface = [&] { return without_certification(Certified::solve(src, l, q)); };
+    if (roots.kind == Roots::on_surface) return on_surface();
     auto z_of = [&](const Roots& r, int i) { return f.z0 + r.t[i] * f.dz; };
+    if (f.extent.caps.any())
+        return finish_closed(roots, z_of, {f.a, f.b, f.c, f.z0, f.dz, 0, 1}, f.extent, l, q,
+                             on_surface);
     return finish_roots(roots, 1, z_of, f.extent, l, q);
 }
 
@@ -102,22 +106,31 @@ Result Stable::solve(const Src& src, const Line& l, Query q) {
     if (k.too_small()) return Result::failure(ErrorCode::out_of_range, Traits::scale_fields);
     auto fragile = [&] { return fragile_scene(src, extent, l); };
     auto on_surface = [&] { return without_certification(Certified::solve(src, l, q)); };
+    auto e = k.extent(src.shape);
     Roots roots;
     if (k.parallel_is_miss && k.A == 0) {
         double C0 = k.C0_at_origin();
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
         if (undecidable(roots, fragile, k.A, C0))
             return Result::failure(ErrorCode::out_of_range, Traits::fragile_fields);
-        return roots.kind == Roots::on_surface ? on_surface() : Result{};
+        if (roots.kind == Roots::on_surface) return on_surface();
+        if (!e.caps.any()) return Result{};
+        k.discriminant(); // along the axis, inside: through the discs, from the moved origin
+        roots = Roots{};
+    } else {
+        k.discriminant();
+        roots = stable_roots(k.A, k.B, k.Cc, k.D);
+        if (undecidable(roots, fragile, k.A, k.D) || (k.A == 0 && fragile()))
+            return Result::failure(ErrorCode::out_of_range, Traits::fragile_fields);
+        if (roots.kind == Roots::on_surface) return on_surface();
+        shift_back(roots, k.tc, [&] { return k.C0_at_origin() / k.A; });
     }
-    k.discriminant();
-    roots = stable_roots(k.A, k.B, k.Cc, k.D);
-    if (undecidable(roots, fragile, k.A, k.D) || (k.A == 0 && fragile()))
-        return Result::failure(ErrorCode::out_of_range, Traits::fragile_fields);
-    if (roots.kind == Roots::on_surface) return on_surface();
-    shift_back(roots, k.tc, [&] { return k.C0_at_origin() / k.A; });
     auto z_of = [&](const Roots& r, int i) { return k.z_of(r, i); };
-    return finish_roots(roots, ps.t_scale(), z_of, k.extent(src.shape.finite), l, q);
+    if (e.caps.any())
+        return finish_closed(
+            roots, z_of, {k.A, 2 * k.B, k.Cc, k.axial_moved(), k.axial_rate(), k.tc, ps.t_scale()},
+            e, l, q, on_surface);
+    return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }
 
 } // namespace linequad::detail
