@@ -272,8 +272,7 @@ Classification<NT> in_disc_plane(const LineQuadratic<NT>& q, const ParameterRang
     }
     SurdRoot<NT> lo{-q.B, q.A, -1}, hi{-q.B, q.A, 1};
     // Each end of the chord, or the range's end where that is nearer; empty when they cross.
-    SurdRoot<NT> first = lo, last = hi;
-    int sfirst = 1, slast = 1;
+    SurdRoot<NT> first = lo, last = hi; // every Den here is positive (A > 0, 1)
     if (range.has_t0) {
         SurdRoot<NT> t0{range.t0, NT(1)};
         int before = compare(lo, 1, t0, 1, surd);
@@ -286,11 +285,11 @@ Classification<NT> in_disc_plane(const LineQuadratic<NT>& q, const ParameterRang
         if (after == undecided) return c;
         if (after > 0) last = t1;
     }
-    int order = compare(first, sfirst, last, slast, surd);
+    int order = compare(first, 1, last, 1, surd);
     if (order == undecided) return c;
     if (order > 0) return c.outcome = Outcome::none, c;
     c.outcome = Outcome::on_surface;
-    c.s0 = end_at(first, sfirst), c.s1 = end_at(last, slast);
+    c.s0 = end_at(first, 1), c.s1 = end_at(last, 1);
     c.surface_part = part;
     return c;
 }
