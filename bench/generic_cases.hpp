@@ -43,6 +43,14 @@ struct Generic<EllipticCone> {
     }
 };
 
+template <>
+struct Generic<Frustum> {
+    template <class Real>
+    static Frustum make(Vec3 C, Vec3, Vec3, Vec3 c, Real& real) {
+        return {C, real(0.5, 2), C + c, real(0.25, 2)};
+    }
+};
+
 // The generic instance of the shape with index `index` in Shape.
 template <std::size_t I = 0, class Real>
 Shape generic_shape(int index, Vec3 C, Vec3 a, Vec3 b, Vec3 c, Real& real) {

@@ -37,7 +37,7 @@ if [ -z "$rows" ]; then
   for solver in seed stable correct; do rows="$rows $solver:elliptic_cone:all:points:prepared"; done
   rows="$rows correct:elliptic_cone:any:no_points:prepared"
   rows="$rows correct:elliptic_cone:nearest:no_points:prepared correct:elliptic_cone:any:no_points:direct"
-  for shape in elliptic_cylinder elliptic_cone; do
+  for shape in elliptic_cylinder elliptic_cone frustum; do
     for solver in seed stable certified correct; do rows="$rows $solver:$shape:all:points:direct"; done
   done
   rows="$rows certified:cylinder:all:points:direct"

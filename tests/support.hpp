@@ -115,6 +115,37 @@ inline void check_through_two_points(const Shape& shape, Vec3 p, Vec3 q,
     }
 }
 
+// A hit as a hand-built test expects it.
+struct Want {
+    double t;
+    HitKind kind;
+    Part part;
+};
+
+// Every solver's hits: their kinds and parts, t bit for bit from the exact solvers and within
+// 4 ulps from the others (the callers' inputs are dyadic and every answer a small dyadic or a
+// root of a small quadratic, so seed and stable are within 4 ulps of it; the same reason as
+// fast_tolerance's, on smaller numbers).
+inline void check_hits(const Shape& s, const Line& l, std::initializer_list<Want> want) {
+    for (const char* solver : every_solver) {
+        Result r = run(solver, s, l);
+        INFO(solver << ": " << describe(r));
+        REQUIRE(r.ok());
+        REQUIRE(!r.on_surface);
+        REQUIRE(r.count == int(want.size()));
+        int i = 0;
+        for (const Want& w : want) {
+            const Hit& h = r.hits[i++];
+            CHECK(h.kind == w.kind);
+            CHECK(h.part == w.part);
+            if (exact_solver(solver))
+                CHECK(h.t == w.t);
+            else
+                CHECK(std::fabs(h.t - w.t) <= 4 * 0x1p-52 * std::fmax(1.0, std::fabs(w.t)));
+        }
+    }
+}
+
 // The same answer bit for bit (signed zeros, infinities): the classification, t, points and
 // interval ends; bounds and certainty aside (the oracle gives none).
 inline void check_same_answer(const Result& got, const Result& want) {

@@ -20,13 +20,15 @@ struct Generic : RandomReals {
         for (;;) {
             Vec3 C = vec(2), a = vec(2), b = vec(2), c = vec(2);
             if (!well_shaped(a, b, c)) continue;
-            switch (rng() % 3) {
+            switch (rng() % 4) {
             case 0:
                 return Cylinder{C, C + c, real(0.5, 2), true};
             case 1:
                 return EllipticCylinder{C, a, b, c, true};
-            default:
+            case 2:
                 return EllipticCone{C, C + c, a, b, true};
+            default:
+                return Frustum{C, real(0.5, 2), C + c, real(0.25, 2), true};
             }
         }
     }
@@ -64,6 +66,8 @@ TEST_CASE("fast solvers agree with the oracle on well-conditioned generic cases"
                 using T = std::decay_t<decltype(x)>;
                 if constexpr (std::is_same_v<T, EllipticCylinder>)
                     return x.C + 0.5 * x.c;
+                else if constexpr (std::is_same_v<T, Frustum>)
+                    return 0.5 * (x.C0 + x.C1);
                 else
                     return 0.5 * (x.C + x.H);
             },

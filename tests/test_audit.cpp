@@ -115,6 +115,75 @@ TEST_CASE("audit: shards merge into exactly the unsharded report", "[audit]") {
         }
 }
 
+TEST_CASE("families: --frames builds circular or axis-aligned frames, --shapes the shapes asked",
+          "[audit]") {
+    // Every family's cases for the elliptic shapes and the frustum, on circular and on axis
+    // frames: the elliptic shapes' a and b orthogonal to c and of one length, and with axis
+    // frames along a coordinate axis. Random frames are built by rounded normalisation, so
+    // orthogonality and equal lengths hold to a few ulps of the products: 2^-40 of |a||c| is
+    // far above that and far below any oblique frame the families build (degenerate_frame's
+    // tilts on circular frames are at most 2^-k of c, which keeps them round). The cone's axis
+    // H - C is a difference of rounded positions (the scale family moves them up to 2^50 away):
+    // each coordinate within 2 ulps of the largest position, so 2^-40 of |a| times that too.
+    auto near_zero = [](double x, double scale) { return std::fabs(x) <= 0x1p-40 * scale; };
+    int checked = 0;
+    for (Frames frames : {Frames::circular, Frames::axis})
+        for (int f = 0; f < family_count; ++f)
+            for (int shape = 1; shape < shape_kinds; ++shape) {
+                if (!family_applies(Family(f), shape)) continue;
+                for (std::uint64_t i = 0; i < 30; ++i) {
+                    Case c = make_case(Family(f), shape, Range::line, 3, i, frames);
+                    INFO(format_case(c));
+                    REQUIRE(c.id.find(std::string("/") + frames_name(frames)) != std::string::npos);
+                    Vec3 a{}, b{}, axis{};
+                    double position = 0; // the largest coordinate the axis was rounded from
+                    if (const auto* e = std::get_if<EllipticCylinder>(&c.shape))
+                        a = e->a, b = e->b, axis = e->c;
+                    else if (const auto* k = std::get_if<EllipticCone>(&c.shape))
+                        a = k->a, b = k->b, axis = k->H - k->C,
+                        position = std::fmax(max_abs(k->H), max_abs(k->C));
+                    else
+                        axis = std::get<Frustum>(c.shape).C1 - std::get<Frustum>(c.shape).C0;
+                    if (a != Vec3{}) {
+                        double scale = norm(a) * (norm(axis) + position);
+                        CHECK(near_zero(dot(a, axis), scale));
+                        CHECK(near_zero(dot(b, axis), scale));
+                        CHECK(near_zero(dot(a, b), norm(a) * norm(b)));
+                        CHECK(near_zero(norm(a) - norm(b), norm(a)));
+                    }
+                    if (frames == Frames::axis) {
+                        int zeros = (axis.x == 0) + (axis.y == 0) + (axis.z == 0);
+                        CHECK(zeros == 2);
+                    }
+                    ++checked;
+                }
+            }
+    CHECK(checked > 1000);
+
+    // The audit builds only the shapes asked, on the frames asked, and says so.
+    audit::Options o = small(4);
+    o.families = {Family::generic, Family::apex};
+    o.shapes = {3};
+    o.frames = Frames::axis;
+    audit::Report r = audit::run(o);
+    CHECK(r.shapes == std::vector<std::string>{"frustum"});
+    CHECK(r.frames == "axis");
+    for (const auto& [key, row] : r.rows) {
+        CHECK(key.shape == "frustum");
+        CHECK(row.cases == 12); // 4 cases x 3 ranges
+    }
+    fs::path dir = scratch("frames");
+    audit::write_json(r, (dir / "report.json").string());
+    audit::Report back;
+    std::string why;
+    REQUIRE(audit::read_json((dir / "report.json").string(), &back, &why));
+    CHECK(back.frames == "axis");
+    back.frames = "circular";
+    back.shards_included = {1};
+    CHECK(audit::unmergeable(r, back).rfind("frames differ", 0) == 0);
+    fs::remove_all(dir);
+}
+
 TEST_CASE("audit: grading a results file gives the in-process verdict", "[audit]") {
     fs::path dir = scratch("results");
     audit::Options o = small(40);
@@ -184,8 +253,9 @@ TEST_CASE("audit: unanswered and malformed answers count as refused, malformed c
     o.results_file = (dir / "results.jsonl").string();
     audit::Report r = audit::run(o);
     audit::Row t = r.total("mine");
-    CHECK(t.cases == 45); // 5 cases x 3 shapes x 3 ranges
-    CHECK(t.mismatches[audit::refused] == 44);
+    std::uint64_t cases = 5 * shape_kinds * 3; // 5 cases x every shape x 3 ranges
+    CHECK(t.cases == cases);
+    CHECK(t.mismatches[audit::refused] == cases - 1);
 
     std::ofstream(dir / "bad_cases.jsonl")
         << format_case(make_case(Family::generic, 0, Range::line, 1, 0))

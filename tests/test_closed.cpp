@@ -9,47 +9,14 @@
 #include <random>
 
 using namespace linequad;
+using test::check_hits;
 using test::run;
+using test::Want;
 
 namespace {
 
-const char* const solvers[] = {"seed", "stable", "certified", "correct", "exact"};
-const char* const exact_solvers[] = {"correct", "exact"};
-
 // The unit-radius cylinder around the z axis from z = 0 to z = 2, closed.
 const Cylinder drum{{0, 0, 0}, {0, 0, 2}, 1, true, true};
-
-struct Want {
-    double t;
-    HitKind kind;
-    Part part;
-};
-
-// Every solver's hits: the exact ones bit for bit, the others to a few ulps (every input below
-// is dyadic and every answer a small dyadic or a root of a small quadratic, so seed and stable
-// are within 4 ulps of it; a bound with the same reason as test_cylinder's).
-void check_hits(const Shape& s, const Line& l, std::initializer_list<Want> want) {
-    for (const char* solver : solvers) {
-        Result r = run(solver, s, l);
-        INFO(solver << ": " << test::describe(r));
-        REQUIRE(r.ok());
-        REQUIRE(!r.on_surface);
-        REQUIRE(r.count == int(want.size()));
-        int i = 0;
-        for (const Want& w : want) {
-            const Hit& h = r.hits[i++];
-            CHECK(h.kind == w.kind);
-            CHECK(h.part == w.part);
-            CHECK(std::fabs(h.t - w.t) <= 4 * 0x1p-52 * std::fmax(1.0, std::fabs(w.t)));
-        }
-    }
-    for (const char* solver : exact_solvers) {
-        Result r = run(solver, s, l);
-        int i = 0;
-        for (const Want& w : want)
-            CHECK(r.hits[i++].t == w.t);
-    }
-}
 
 } // namespace
 
@@ -60,7 +27,7 @@ TEST_CASE("closed cylinder: hits name their part and cross where the line enters
     // The same line without caps: inside the lateral surface, it meets nothing.
     Cylinder open = drum;
     open.caps = false;
-    for (const char* solver : solvers)
+    for (const char* solver : test::every_solver)
         CHECK(!run(solver, open, {{0.5, 0, -1}, {0, 0, 1}}).any_hit());
     // From rim to rim, (1, 0, 0) to (-1, 0, 2): each rim belongs to its disc.
     check_hits(drum, {{1, 0, 0}, {-2, 0, 2}},
@@ -100,7 +67,7 @@ TEST_CASE("closed cylinder: a line in a disc's plane meets it in the chord, or g
     CHECK(want.surface_part == Part::base);
     CHECK(want.s0 == 1.2); // 2 - 0.8, the nearest doubles as strtod gives them
     CHECK(want.s1 == 2.8);
-    for (const char* solver : solvers) {
+    for (const char* solver : test::every_solver) {
         Result r = run(solver, drum, chord);
         INFO(solver << ": " << test::describe(r));
         REQUIRE(r.on_surface);
@@ -117,7 +84,7 @@ TEST_CASE("closed cylinder: a line in a disc's plane meets it in the chord, or g
     CHECK(ray.s0 == 0);
     CHECK(ray.s1 == 0.8);
     // Beside the disc, in its plane: nothing.
-    for (const char* solver : solvers)
+    for (const char* solver : test::every_solver)
         CHECK(!run(solver, drum, {{-2, 1.5, 2}, {1, 0, 0}}).any_hit());
     // Along a generator: the interval as without caps, now from rim to rim.
     Result gen = exact::intersect(drum, {{1, 0, -1}, {0, 0, 1}});
@@ -182,7 +149,7 @@ TEST_CASE("options a shape cannot take are refused by name") {
     Cylinder infinite = drum;
     infinite.finite = false;
     EllipticCone three{{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, true, false, 3};
-    for (const char* solver : solvers) {
+    for (const char* solver : test::every_solver) {
         Result r = run(solver, infinite, {{0, 0, 0}, {1, 0, 0}});
         CHECK(r.error_code == ErrorCode::bad_option);
         CHECK(std::string(r.error_field) == "caps");
@@ -207,7 +174,7 @@ TEST_CASE("disc hits agree with an independent plane intersection in exact ratio
     for (int i = 0; i < 300; ++i) {
         Vec3 O = ivec(5), a = ivec(3), b = ivec(3), c = ivec(3);
         if (dot(a, cross(b, c)) == 0) continue;
-        int kind = i % 3;
+        int kind = i % 4;
         bool top = integer(0, 1) == 1;
         Shape shape;
         Vec3 centre;
@@ -218,9 +185,14 @@ TEST_CASE("disc hits agree with an independent plane intersection in exact ratio
         } else if (kind == 1) {
             shape = EllipticCylinder{O, a, b, c, true, true};
             centre = top ? O + c : O;
-        } else { // the cone's base z = -1 at C = O - c, its top z = 1 at O + c (two nappes)
+        } else if (kind == 2) { // the cone's base z = -1 at C = O - c, its top z = 1 at O + c
             shape = EllipticCone{O - c, O, a, b, true, true, 2};
             centre = top ? O + c : O - c;
+        } else { // a frustum whose discs (radii 2 and 3) hold every point x a + y b below
+            a = {2, 0, 0}, b = {0, 2, 0}, c = {0, 0, double(integer(1, 4))};
+            bool wider_top = integer(0, 1) == 1;
+            shape = Frustum{O, wider_top ? 2.0 : 3.0, O + c, wider_top ? 3.0 : 2.0, true, true};
+            centre = top ? O + c : O;
         }
         double x = integer(-4, 4) * 0.25, y = integer(-4, 4) * 0.25;
         if (x * x + y * y > 1) x = 0.5, y = 0.5;

@@ -223,6 +223,7 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
                 INFO(format_case(c) << "\nscaled by " << f);
                 using detail::AsGiven;
                 using detail::ShapeTraits;
+                if (std::holds_alternative<Frustum>(c.shape)) continue; // no Newton form
                 if (const auto* p = std::get_if<Cylinder>(&c.shape)) {
                     Cylinder s{f * p->C, f * p->H, f * p->r, true};
                     check_form(ShapeTraits<Cylinder>::line_form(AsGiven<Cylinder>{s}, l, 0),
@@ -260,16 +261,21 @@ namespace {
 // built as the ladder builds it; false when the case is invalid.
 bool run_rung(const Shape& shape, const Line& l, Query q, Result& r, bool& answered) {
     if (validate(shape, l).code != ErrorCode::none) return false;
-    // The orientation as the ladder has it: what validation decided.
-    detail::LineForm form = std::visit(
+    // The orientation as the ladder has it: what validation decided; shapes without a Newton
+    // form (the frustum) never reach the rung.
+    return std::visit(
         [&](const auto& s) {
-            using S = std::decay_t<decltype(s)>;
-            detail::Validity valid = detail::validity_of(s);
-            return detail::ShapeTraits<S>::line_form(detail::AsGiven<S>{s}, l, valid.orientation);
+            using Traits = detail::ShapeTraits<std::decay_t<decltype(s)>>;
+            if constexpr (Traits::has_line_form) {
+                detail::Validity valid = detail::validity_of(s);
+                detail::LineForm form = Traits::line_form(
+                    detail::AsGiven<std::decay_t<decltype(s)>>{s}, l, valid.orientation);
+                answered = detail::newton_rung(form, detail::Unit{1, 1, l}, l, q, r);
+                return true;
+            }
+            return false;
         },
         shape);
-    answered = detail::newton_rung(form, detail::Unit{1, 1, l}, l, q, r);
-    return true;
 }
 
 Shape scaled_shape(const Shape& s, double f) {

@@ -301,6 +301,12 @@ void read_report(const Json& root, Report* r) {
     });
     r->shapes = top.at("shapes").names(
         [](const std::string& s) { return shape_index(s) < shape_count ? "" : "a shape"; });
+    // Reports from before the frames option were built on any frames.
+    if (top.find("frames")) {
+        Frames x;
+        r->frames = top.at("frames").text();
+        if (!parse_frames(r->frames, &x)) top.at("frames").fail("expected any, circular or axis");
+    }
     r->ranges = top.at("ranges").names([](const std::string& s) {
         return s == "line" || s == "ray" || s == "segment" ? "" : "line, ray or segment";
     });
@@ -359,15 +365,25 @@ void read_report(const Json& root, Report* r) {
 } // namespace
 
 std::string to_json(const Report& r) {
-    OrderedJson head = {{"format", format_name},  {"status", status_name(r.status)},
-                        {"command", r.command},   {"machine", r.machine},
-                        {"compiler", r.compiler}, {"flags", r.flags},
-                        {"version", r.version},   {"commit", r.commit},
-                        {"date", r.date},         {"seconds", r.seconds},
-                        {"seed", r.seed},         {"cases_per_group", r.cases_per_group},
-                        {"families", r.families}, {"shapes", r.shapes},
-                        {"ranges", r.ranges},     {"solvers", r.solvers},
-                        {"shards", r.shards},     {"shards_included", r.shards_included}};
+    OrderedJson head = {{"format", format_name},
+                        {"status", status_name(r.status)},
+                        {"command", r.command},
+                        {"machine", r.machine},
+                        {"compiler", r.compiler},
+                        {"flags", r.flags},
+                        {"version", r.version},
+                        {"commit", r.commit},
+                        {"date", r.date},
+                        {"seconds", r.seconds},
+                        {"seed", r.seed},
+                        {"cases_per_group", r.cases_per_group},
+                        {"families", r.families},
+                        {"shapes", r.shapes},
+                        {"frames", r.frames},
+                        {"ranges", r.ranges},
+                        {"solvers", r.solvers},
+                        {"shards", r.shards},
+                        {"shards_included", r.shards_included}};
     if (r.grades_results()) {
         head["cases_file"] = r.cases_file;
         head["results_file"] = r.results_file;

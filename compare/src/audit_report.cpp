@@ -121,6 +121,10 @@ std::string markdown(const Report& r) {
     md << "| machine | " << r.machine << " |\n| compiler | " << r.compiler << " |\n";
     md << "| fast/ flags | `" << r.flags << "` |\n| seed | " << r.seed << " |\n";
     md << "| cases per family, shape and range | " << r.cases_per_group << " |\n";
+    md << "| shapes | ";
+    for (const std::string& s : r.shapes)
+        md << s << (&s == &r.shapes.back() ? "" : ", ");
+    md << " (frames: " << r.frames << ") |\n";
     if (r.grades_results())
         md << "| graded | `" << r.results_file << "` against `" << r.cases_file << "` |\n";
     md << "| linequad | " << r.version << " |\n| shards | " << r.shards << " |\n| complete | "

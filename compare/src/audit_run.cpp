@@ -66,6 +66,15 @@ std::string run_command(const char* cmd) {
     return out;
 }
 
+// The shapes a campaign builds, by index in linequad::Shape.
+std::vector<int> shapes_of(const Options& o) {
+    std::vector<int> shapes = o.shapes;
+    if (shapes.empty())
+        for (int s = 0; s < int(shape_count); ++s)
+            shapes.push_back(s);
+    return shapes;
+}
+
 void fill_provenance(Report& r, const Options& o) {
     r.command = o.command;
     std::ifstream cpu("/proc/cpuinfo");
@@ -92,8 +101,9 @@ void fill_provenance(Report& r, const Options& o) {
     r.seed = o.seed, r.cases_per_group = o.cases_per_group;
     r.shards = o.shards;
     r.shards_included = {o.shard};
-    for (std::size_t i = 0; i < shape_count; ++i)
-        r.shapes.emplace_back(shape_name_at(i));
+    for (int s : shapes_of(o))
+        r.shapes.emplace_back(shape_name_at(std::size_t(s)));
+    r.frames = frames_name(o.frames);
     for (Range x : ranges)
         r.ranges.emplace_back(range_name(x));
 }
@@ -147,7 +157,7 @@ std::vector<Family> families_of(const Options& o) {
 std::vector<Group> groups_of(const Options& o) {
     std::vector<Group> out;
     for (Family f : families_of(o))
-        for (int shape = 0; shape < int(shape_count); ++shape)
+        for (int shape : shapes_of(o))
             if (family_applies(f, shape))
                 for (Range r : ranges)
                     out.push_back({f, shape, r});
@@ -368,7 +378,7 @@ void for_each_case(const Options& o, const std::function<void(const Case&)>& f) 
     for (const Group& grp : groups_of(o))
         for (std::uint64_t i = 0; i < o.cases_per_group; ++i, ++g)
             if (g % std::uint64_t(o.shards) == std::uint64_t(o.shard))
-                f(make_case(grp.family, grp.shape, grp.range, o.seed, i));
+                f(make_case(grp.family, grp.shape, grp.range, o.seed, i, o.frames));
 }
 
 Report run(const Options& o) {
@@ -405,7 +415,8 @@ Report run(const Options& o) {
             cases.clear();
             for (std::uint64_t i = begin; i < end; ++i)
                 if ((g_base + i) % std::uint64_t(o.shards) == std::uint64_t(o.shard))
-                    cases.push_back(make_case(grp.family, grp.shape, grp.range, o.seed, i));
+                    cases.push_back(
+                        make_case(grp.family, grp.shape, grp.range, o.seed, i, o.frames));
             if (cases.empty()) continue;
             oracle.resize(cases.size());
             got.resize(cases.size());

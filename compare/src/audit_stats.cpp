@@ -273,6 +273,7 @@ std::string unmergeable(const Report& a, const Report& b) {
                       std::to_string(a.cases_per_group), std::to_string(b.cases_per_group));
     if (a.families != b.families) return differ("families", joined(a.families), joined(b.families));
     if (a.shapes != b.shapes) return differ("shapes", joined(a.shapes), joined(b.shapes));
+    if (a.frames != b.frames) return differ("frames", a.frames, b.frames);
     if (a.ranges != b.ranges) return differ("ranges", joined(a.ranges), joined(b.ranges));
     if (a.solvers != b.solvers) return differ("solvers", joined(a.solvers), joined(b.solvers));
     if (a.shards != b.shards)

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <random>
+#include <type_traits>
 #include <utility>
 #include <variant>
 
@@ -19,6 +20,7 @@ const char* const names[family_count] = {
     "generic",          "near_tangent", "axis_parallel", "apex", "generator",
     "degenerate_frame", "scale",        "extent_edge",   "rim",  "cap_plane",
     "cap_axis",         "inside_start", "two_nappes"};
+const char* const frame_names[3] = {"any", "circular", "axis"};
 
 std::uint64_t splitmix(std::uint64_t x) {
     x += 0x9e3779b97f4a7c15ull;
@@ -41,10 +43,14 @@ struct Rng {
     } // [0, 1)
 };
 
-// A frame: origin, a, b, c. Every shape is described by one: the cylinder's a, b are
-// orthogonal to c = H - C with length r (approximately, when not integer).
+// A frame: origin, a, b, c, and the shape's profile in it: points O + x a + y b + z c, the
+// extent z0 <= z <= z0 + 1, and the surface's radius at z, |rho0 + (rho1 - rho0)(z - z0)| (the
+// cylinders 1; the cone |z|, z0 = -1; a frustum rho0 at its base, rho1 at its top). `round`: a
+// and b orthogonal to c and of one length (the circular shapes' radius unit).
 struct Frame {
     Vec3 O, a, b, c;
+    double z0 = 0, rho0 = 1, rho1 = 1;
+    bool round = false;
 };
 
 bool well_shaped(Vec3 a, Vec3 b, Vec3 c, double ratio) {
@@ -67,68 +73,152 @@ Frame integer_frame(Rng& r) {
     }
 }
 
-// An integer frame for the circular cylinder: the axis along a coordinate axis (permuted and
-// signed), a and b the other two axes times the integer radius.
-Frame integer_circular_frame(Rng& r) {
-    int axis = r.integer(0, 2);
-    double len = r.integer(1, 12) * (r.coin() ? 1 : -1), radius = r.integer(1, 6);
+// A round frame along a coordinate axis (permuted and signed).
+Frame axis_frame(Vec3 O, int axis, double length, double radius) {
     Vec3 e[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    Frame f;
-    f.O = r.ivec(6);
-    f.c = len * e[axis];
-    f.a = radius * e[(axis + 1) % 3];
-    f.b = radius * e[(axis + 2) % 3];
-    return f;
+    return {O,   radius * e[(axis + 1) % 3], radius * e[(axis + 2) % 3], length * e[axis], 0, 1, 1,
+            true};
 }
 
-// A cylinder frame with a, b orthogonal to c and of equal length (rounded).
+// A round integer frame: along a coordinate axis, or turned by the rotation of an integer
+// quaternion q, whose matrix times N = |q|^2 is an integer matrix with orthogonal columns of
+// length N (so the radius N times an integer is exact too).
+Frame integer_round_frame(Rng& r, bool axis_aligned) {
+    double len = r.integer(1, 12) * (r.coin() ? 1 : -1), radius = r.integer(1, 6);
+    Vec3 O = r.ivec(6);
+    if (axis_aligned || r.coin()) return axis_frame(O, r.integer(0, 2), len, radius);
+    double q[4];
+    do {
+        for (double& x : q)
+            x = r.integer(-2, 2);
+    } while (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] == 0);
+    auto [w, x, y, z] = q;
+    Vec3 col0{w * w + x * x - y * y - z * z, 2 * (x * y + w * z), 2 * (x * z - w * y)};
+    Vec3 col1{2 * (x * y - w * z), w * w - x * x + y * y - z * z, 2 * (y * z + w * x)};
+    Vec3 col2{2 * (x * z + w * y), 2 * (y * z - w * x), w * w - x * x - y * y + z * z};
+    len = std::copysign(r.integer(1, 3), len), radius = r.integer(1, 3);
+    return {O, radius * col0, radius * col1, len * col2, 0, 1, 1, true};
+}
+
+// A round frame on the axis c with a, b of length `radius` (rounded).
 Frame circular_from(Vec3 O, Vec3 c, double radius) {
     Vec3 t = std::fabs(c.x) < std::fabs(c.y) ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
     Vec3 a = cross(c, t);
     a = (radius / norm(a)) * a;
     Vec3 b = cross(c, a);
     b = (radius / norm(b)) * b;
-    return {O, a, b, c};
+    return {O, a, b, c, 0, 1, 1, true};
 }
 
-// What the families need to know of each shape: whether its cross-section is round (its frame
-// then has orthogonal a, b of one length, the radius) and whether it is a cone (its local extent
-// is -1 <= z <= 0, its radius there |z|, and it has an apex and generators); and how to build it
-// on a frame.
+Frame random_round_frame(Rng& r, bool axis_aligned) {
+    if (axis_aligned)
+        return axis_frame(r.vec(4), r.integer(0, 2), r.real(0.5, 4) * (r.coin() ? 1 : -1),
+                          r.real(0.25, 3));
+    Vec3 c = r.vec(4);
+    while (norm(c) < 0.5)
+        c = r.vec(4);
+    return circular_from(r.vec(4), c, r.real(0.25, 3));
+}
+
+// The profile a family asks of a frustum: any, one with an apex (a zero radius), or one whose
+// radii differ (it has generators).
+enum class Profile { any, apex, slanted };
+
+// A frustum's radii in units of the frame's radius: unequal, an apex at one end, nearly equal,
+// equal (a cylinder) or one tiny; in integer frames, dyadics of two bits (so that every
+// construction stays exact).
+void frustum_profile(Rng& r, Frame& f, bool integer, Profile want) {
+    double rho0, rho1;
+    int kind = want == Profile::apex ? 1 : r.integer(0, want == Profile::slanted ? 3 : 4);
+    if (integer) {
+        rho0 = 0.25 * r.integer(2, 8);
+        switch (kind) {
+        case 1:
+            rho1 = 0;
+            break;
+        case 4:
+            rho1 = rho0;
+            break;
+        default:
+            do
+                rho1 = 0.25 * r.integer(1, 8);
+            while (rho1 == rho0);
+        }
+    } else {
+        rho0 = r.real(0.25, 2);
+        switch (kind) {
+        case 1:
+            rho1 = 0;
+            break;
+        case 2:
+            rho1 = rho0 * (1 + (r.coin() ? 1 : -1) * std::ldexp(1.0, -r.integer(1, 52)));
+            break;
+        case 3:
+            rho1 = rho0 * std::ldexp(1.0, -r.integer(1, 60));
+            break;
+        case 4:
+            rho1 = rho0;
+            break;
+        default:
+            rho1 = r.real(0.25, 2);
+        }
+    }
+    if (r.coin()) std::swap(rho0, rho1);
+    f.z0 = 0, f.rho0 = rho0, f.rho1 = rho1;
+}
+
+// What the families need to know of each shape: whether its cross-section is round, whether it
+// can have an apex and generators, its profile in a frame, and how to build it on a frame.
 template <class S>
 struct Sampling;
 template <>
 struct Sampling<Cylinder> {
-    static constexpr bool circular = true, conical = false;
+    static constexpr bool round = true, conical = false;
+    static void profile(Rng&, Frame&, bool, Profile) {}
     static Cylinder make(const Frame& f, bool finite) {
         return Cylinder{f.O, f.O + f.c, norm(f.a), finite};
     }
 };
 template <>
 struct Sampling<EllipticCylinder> {
-    static constexpr bool circular = false, conical = false;
+    static constexpr bool round = false, conical = false;
+    static void profile(Rng&, Frame&, bool, Profile) {}
     static EllipticCylinder make(const Frame& f, bool finite) {
         return EllipticCylinder{f.O, f.a, f.b, f.c, finite};
     }
 };
 template <>
 struct Sampling<EllipticCone> {
-    static constexpr bool circular = false, conical = true;
+    static constexpr bool round = false, conical = true;
+    static void profile(Rng&, Frame& f, bool, Profile) { f.z0 = -1, f.rho0 = 1, f.rho1 = 0; }
     static EllipticCone make(const Frame& f, bool finite) {
         return EllipticCone{f.O - f.c, f.O, f.a, f.b, finite}; // apex at O, base at O - c
     }
 };
-
-template <class S>
-Frame frame_for(Rng& r, bool integer) {
-    if constexpr (Sampling<S>::circular) {
-        if (integer) return integer_circular_frame(r);
-        Vec3 c = r.vec(4);
-        while (norm(c) < 0.5)
-            c = r.vec(4);
-        return circular_from(r.vec(4), c, r.real(0.25, 3));
+template <>
+struct Sampling<Frustum> {
+    static constexpr bool round = true, conical = true;
+    static void profile(Rng& r, Frame& f, bool integer, Profile want) {
+        frustum_profile(r, f, integer, want);
     }
-    return integer ? integer_frame(r) : random_frame(r);
+    static Frustum make(const Frame& f, bool finite) {
+        double radius = norm(f.a);
+        return Frustum{f.O, f.rho0 * radius, f.O + f.c, f.rho1 * radius, finite};
+    }
+};
+
+// A frame for the shape S: round when S or the frames asked for are, the shape's profile in it.
+template <class S>
+Frame frame_for(Rng& r, bool integer, Frames frames, Profile want = Profile::any) {
+    Frame f;
+    if (Sampling<S>::round || frames != Frames::any) {
+        bool axis_aligned = frames == Frames::axis;
+        f = integer ? integer_round_frame(r, axis_aligned) : random_round_frame(r, axis_aligned);
+    } else {
+        f = integer ? integer_frame(r) : random_frame(r);
+    }
+    Sampling<S>::profile(r, f, integer, want);
+    return f;
 }
 
 template <class S>
@@ -136,7 +226,7 @@ Shape shape_from(const Frame& f, bool finite = true) {
     return Sampling<S>::make(f, finite);
 }
 
-// The cylinder's radius must be a double: integer frames have integer radii, random frames
+// The circular shapes' radii must be doubles: integer frames have integer radii, random frames
 // use norm(a) rounded, and the surface is then the oracle's business.
 
 // A world point from local coordinates: O + x a + y b + z c (apex frame for the cone).
@@ -147,50 +237,50 @@ Vec3 world_vec(const Frame& f, double x, double y, double z) {
     return x * f.a + y * f.b + z * f.c;
 }
 
-// The local extent: cylinders z in [0, 1], the cone z in [-1, 0].
-template <class S>
-double z_inside(Rng& r) {
-    return Sampling<S>::conical ? -r.real(0.1, 0.9) : r.real(0.1, 0.9);
+// Local heights inside the extent, and at dyadics there.
+double z_inside(Rng& r, const Frame& f) {
+    return f.z0 + r.real(0.1, 0.9);
 }
-template <class S>
-double z_dyadic(Rng& r) {
-    double z = 0.125 + 0.75 * r.dyadic(6);
-    return Sampling<S>::conical ? -z : z;
+double z_dyadic(Rng& r, const Frame& f) {
+    return f.z0 + 0.125 + 0.75 * r.dyadic(6);
 }
-// Radius of the surface at local height z: 1 for cylinders, |z| for the cone.
-template <class S>
-double radius_at(double z) {
-    return Sampling<S>::conical ? std::fabs(z) : 1.0;
+// The surface's radius at local height z, and its slope d rho / dz.
+double slope(const Frame& f) {
+    return f.rho1 - f.rho0;
+}
+double radius_at(const Frame& f, double z) {
+    return std::fabs(f.rho0 + slope(f) * (z - f.z0));
+}
+// The local height of the apex (where the radius is 0); only for a slanted profile.
+double apex_z(const Frame& f) {
+    return f.z0 + f.rho0 / (f.rho0 - f.rho1);
 }
 
 template <class S>
 Line generic_line(Rng& r, const Frame& f) {
-    double z = z_inside<S>(r);
-    Vec3 target = world(f, r.real(-1, 1) * radius_at<S>(z), r.real(-1, 1) * radius_at<S>(z), z);
+    double z = z_inside(r, f), rho = radius_at(f, z);
+    Vec3 target = world(f, r.real(-1, 1) * rho, r.real(-1, 1) * rho, z);
     Vec3 from = target + r.vec(8);
     if (r.integer(0, 4) == 0) return {from, r.vec(2)}; // a fifth aim anywhere
     return {from, target - from};
 }
 
 template <class S>
-Case near_tangent(Rng& r, int k) {
+Case near_tangent(Rng& r, int k, Frames frames) {
     bool exact = k == 0;
-    Frame f = frame_for<S>(r, exact);
-    double z = exact ? z_dyadic<S>(r) : z_inside<S>(r);
-    double rho = radius_at<S>(z);
+    Frame f = frame_for<S>(r, exact, frames);
+    double z = exact ? z_dyadic(r, f) : z_inside(r, f);
+    double rho = radius_at(f, z);
     // Touch at local (rho, 0, z) (exact) or at angle theta; the tangent direction lies in the
-    // tangent plane: along the circle, plus some of the generator (or the axis).
+    // tangent plane: along the circle, plus some of the generator (local (m cos, m sin, 1) for
+    // the slope m; the axis for the cylinders).
     double theta = exact ? 0.5 * M_PI * r.integer(0, 3) : r.real(0, 2 * M_PI);
     double cs = std::cos(theta), sn = std::sin(theta);
     if (exact) cs = std::round(cs), sn = std::round(sn);
     double mu = exact ? r.dyadic(3) * (r.coin() ? 1 : -1) : r.real(-1, 1);
     double side = k == 0 ? 1 : 1 + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k);
     Vec3 P = world(f, side * rho * cs, side * rho * sn, z);
-    Vec3 d = world_vec(f, -sn, cs, 0);
-    if (Sampling<S>::conical)
-        d = d + mu * world_vec(f, cs, sn, z < 0 ? -1 : 1); // generator through P
-    else
-        d = d + mu * f.c;
+    Vec3 d = world_vec(f, -sn, cs, 0) + mu * world_vec(f, slope(f) * cs, slope(f) * sn, 1);
     Case c;
     c.shape = shape_from<S>(f);
     double back = exact ? 2 : r.real(0.5, 3);
@@ -200,13 +290,12 @@ Case near_tangent(Rng& r, int k) {
 }
 
 template <class S>
-Case axis_parallel(Rng& r, int k) {
+Case axis_parallel(Rng& r, int k, Frames frames) {
     bool on_surface = k == 0 && r.coin();
-    Frame f = frame_for<S>(r, on_surface || k == 0);
-    double z = k == 0 ? z_dyadic<S>(r) : z_inside<S>(r);
+    Frame f = frame_for<S>(r, on_surface || k == 0, frames);
+    double z = k == 0 ? z_dyadic(r, f) : z_inside(r, f);
     // k = 0: exactly parallel, inside (radius 1/2), outside (2) or on the surface (1).
-    double radius = on_surface ? 1 : (r.coin() ? 0.5 : 2);
-    if (Sampling<S>::conical) radius *= std::fabs(z);
+    double radius = (on_surface ? 1 : (r.coin() ? 0.5 : 2)) * radius_at(f, z);
     Vec3 P = world(f, radius, 0, z);
     Vec3 d = f.c;
     if (k > 0) d = d + std::ldexp(1.0, -k) * world_vec(f, r.real(-1, 1), r.real(-1, 1), 0);
@@ -218,12 +307,14 @@ Case axis_parallel(Rng& r, int k) {
 }
 
 template <class S>
-Case apex(Rng& r, int k) {
+Case apex(Rng& r, int k, Frames frames) {
     bool exact = k == 0;
-    Frame f = frame_for<S>(r, exact);
-    Vec3 d = exact ? world_vec(f, r.integer(-3, 3) * 0.25, r.integer(-3, 3) * 0.25, -1)
-                   : world_vec(f, r.real(-2, 2), r.real(-2, 2), -1);
-    Vec3 P = f.O;
+    Frame f = frame_for<S>(r, exact, frames, Profile::apex);
+    // Towards the shape from its apex, inside the cone of its generators (slope m) or outside.
+    double za = apex_z(f), m = std::fabs(slope(f)), into = za > f.z0 + 0.5 ? -1 : 1;
+    Vec3 d = exact ? world_vec(f, m * r.integer(-3, 3) * 0.25, m * r.integer(-3, 3) * 0.25, into)
+                   : world_vec(f, m * r.real(-2, 2), m * r.real(-2, 2), into);
+    Vec3 P = world(f, 0, 0, za);
     if (!exact) P = P + std::ldexp(1.0, -k) * cross(d, r.vec(1)); // 2^-k from the apex
     Case c;
     c.shape = shape_from<S>(f, r.integer(0, 3) != 0);
@@ -233,18 +324,18 @@ Case apex(Rng& r, int k) {
 }
 
 template <class S>
-Case generator(Rng& r, int k) {
-    Frame f = frame_for<S>(r, k == 0);
-    // (3/8, 1/2, -5/8) and its sign/axis variants: x^2 + y^2 = z^2 exactly.
-    double x = 0.375, y = 0.5;
+Case generator(Rng& r, int k, Frames frames) {
+    Frame f = frame_for<S>(r, k == 0, frames, Profile::slanted);
+    // m (3/8, 1/2) and its sign/axis variants over -5/8: x^2 + y^2 = (m z)^2 exactly.
+    double x = 0.375, y = 0.5, m = slope(f);
     if (r.coin()) std::swap(x, y);
     if (r.coin()) x = -x;
     if (r.coin()) y = -y;
-    Vec3 d = world_vec(f, x, y, -0.625);
+    Vec3 d = world_vec(f, m * x, m * y, -0.625);
     if (k > 0)
         d = d + std::ldexp(1.0, -k) * world_vec(f, r.real(-1, 1), r.real(-1, 1), r.real(-1, 1));
-    Vec3 from =
-        world(f, r.real(-0.5, 0.5), r.real(-0.5, 0.5), -r.real(0.2, 0.8)) - r.real(0, 2) * d;
+    double z = f.z0 + r.real(0.2, 0.8), rho = radius_at(f, z);
+    Vec3 from = world(f, rho * r.real(-0.5, 0.5), rho * r.real(-0.5, 0.5), z) - r.real(0, 2) * d;
     Case c;
     c.shape = shape_from<S>(f, r.integer(0, 3) != 0);
     c.line = {from, d};
@@ -253,11 +344,11 @@ Case generator(Rng& r, int k) {
 }
 
 template <class S>
-Case degenerate_frame(Rng& r, int k) {
-    Frame f = frame_for<S>(r, false);
+Case degenerate_frame(Rng& r, int k, Frames frames) {
+    Frame f = frame_for<S>(r, false, frames);
     double e = std::ldexp(1.0, -k);
     int kind = r.integer(0, 3);
-    if (Sampling<S>::circular) kind = kind % 2 + 2; // only thin and flat for a round section
+    if (f.round) kind = kind % 2 + 2; // only thin and flat for a round section
     switch (kind) {
     case 0:
         f.c = f.a + f.b + (e / norm(f.a)) * cross(f.a, f.b);
@@ -272,7 +363,10 @@ Case degenerate_frame(Rng& r, int k) {
         f.c = e * f.c, f.O = e * f.O;
         break; // very flat, near the origin so H - C survives
     }
-    if (Sampling<S>::circular) f = circular_from(f.O, f.c, norm(f.a));
+    if (f.round) {
+        Frame g = circular_from(f.O, f.c, norm(f.a));
+        f.a = g.a, f.b = g.b;
+    }
     Case c;
     c.shape = shape_from<S>(f);
     c.line = generic_line<S>(r, f);
@@ -281,15 +375,15 @@ Case degenerate_frame(Rng& r, int k) {
 }
 
 template <class S>
-Case scale(Rng& r, int k) {
-    Frame f = frame_for<S>(r, false);
+Case scale(Rng& r, int k, Frames frames) {
+    Frame f = frame_for<S>(r, false, frames);
     int exponent = r.coin() ? k : -k;
     double s = std::ldexp(1.0, exponent);
     Line l = generic_line<S>(r, f);
     // Half of the cases: the whole scene scaled by 2^+-k (exact). The other half: a unit
     // shape moved up to 2^50 from the origin, the line's origin with it.
     if (r.coin()) {
-        f = {s * f.O, s * f.a, s * f.b, s * f.c};
+        f.O = s * f.O, f.a = s * f.a, f.b = s * f.b, f.c = s * f.c;
         l = {s * l.L0, s * l.v};
     } else {
         Vec3 far = std::ldexp(1.0, std::min(k, 50)) * r.vec(1);
@@ -304,15 +398,15 @@ Case scale(Rng& r, int k) {
 }
 
 template <class S>
-Case extent_edge(Rng& r, int k) {
-    Frame f = frame_for<S>(r, true);
-    // A line through a point exactly on the rim (z = 0 or 1, -1 or 0 for the cone's base
-    // and... the apex rim is a point) and another surface point, then moved by 2^-k along the
-    // axis (k = 0: not moved).
-    double z_end = Sampling<S>::conical ? -1 : (r.coin() ? 0 : 1);
-    Vec3 P = world(f, 1, 0, z_end);
-    double z2 = z_dyadic<S>(r);
-    Vec3 Q = world(f, 0, radius_at<S>(z2), z2);
+Case extent_edge(Rng& r, int k, Frames frames) {
+    Frame f = frame_for<S>(r, true, frames);
+    // A line through a point exactly on a rim (an end whose radius is not 0: an apex is a
+    // point) and another surface point, then moved by 2^-k along the axis (k = 0: not moved).
+    double z_end = f.z0 + (r.coin() ? 0 : 1);
+    if (radius_at(f, z_end) == 0) z_end = 2 * f.z0 + 1 - z_end;
+    Vec3 P = world(f, radius_at(f, z_end), 0, z_end);
+    double z2 = z_dyadic(r, f);
+    Vec3 Q = world(f, 0, radius_at(f, z2), z2);
     Vec3 d = Q - P;
     if (k > 0) P = P + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k) * f.c;
     Case c;
@@ -329,29 +423,37 @@ template <class S>
 Shape closed_from(const Frame& f, int nappes) {
     S s = Sampling<S>::make(f, true);
     s.caps = true;
-    if constexpr (Sampling<S>::conical) s.nappes = nappes;
+    if constexpr (std::is_same_v<S, EllipticCone>) s.nappes = nappes;
     return s;
 }
 
-// A closed shape's discs in local z: the cylinders' at 0 and 1, the cone's at -1 (and at 1 with
-// two nappes). Both are radius 1.
+// A closed shape's discs in local z: its ends whose radius is not 0 (the cone's base at -1, and
+// its top at 1 with two nappes; an apex has no disc), and a height inside its (first) solid.
 struct Closed {
-    int nappes;
-    double base, top;
-    bool has_top;
-    double middle; // a local z inside the (first) solid
+    int nappes = 1;
+    double ends[2];
+    int discs = 0;
+    double middle;
+    bool has_disc(double z) const {
+        return (discs > 0 && ends[0] == z) || (discs > 1 && ends[1] == z);
+    }
 };
 template <class S>
-Closed closed_kind(Rng& r) {
-    if constexpr (Sampling<S>::conical) {
-        int n = r.integer(1, 2);
-        return {n, -1, 1, n == 2, -0.5};
-    }
-    return {1, 0, 1, true, 0.5};
+Closed closed_kind(Rng& r, const Frame& f) {
+    Closed k;
+    if constexpr (std::is_same_v<S, EllipticCone>) k.nappes = r.integer(1, 2);
+    double top = k.nappes == 2 ? 1 : f.z0 + 1;
+    for (double z : {f.z0, top})
+        if (radius_at(f, z) != 0) k.ends[k.discs++] = z;
+    k.middle = f.z0 + 0.5;
+    return k;
 }
-template <class S>
+// One of the discs, and its radius.
 double end_z(Rng& r, const Closed& k) {
-    return k.has_top && r.coin() ? k.top : k.base;
+    return k.discs > 1 && r.coin() ? k.ends[1] : k.ends[0];
+}
+bool is_base(const Closed& k, double z) {
+    return z == k.ends[0] && z < k.middle;
 }
 
 // One of the four exact quarter turns: (cos, sin) of 0, 90, 180, 270 degrees.
@@ -370,19 +472,19 @@ double ulps_moved(double x, int k, bool up) {
 }
 
 template <class S>
-Case rim(Rng& r, int k) {
-    Frame f = frame_for<S>(r, true);
-    Closed kind = closed_kind<S>(r);
-    double z = end_z<S>(r, kind);
+Case rim(Rng& r, int k, Frames frames) {
+    Frame f = frame_for<S>(r, true, frames);
+    Closed kind = closed_kind<S>(r, f);
+    double z = end_z(r, kind), rho = radius_at(f, z), mid = radius_at(f, kind.middle);
     auto [cs, sn] = quarter(r);
-    Vec3 P = world(f, cs, sn, z);
+    Vec3 P = world(f, rho * cs, rho * sn, z);
     Vec3 d;
     switch (r.integer(0, 2)) {
     case 0: // into the solid, through its middle
-        d = world(f, 0.25 * sn, -0.25 * cs, kind.middle) - P;
+        d = world(f, 0.25 * mid * sn, -0.25 * mid * cs, kind.middle) - P;
         break;
     case 1: // across the disc to another point of it
-        d = world(f, -0.5 * cs + 0.25 * sn, -0.5 * sn - 0.25 * cs, z) - P;
+        d = world(f, rho * (-0.5 * cs + 0.25 * sn), rho * (-0.5 * sn - 0.25 * cs), z) - P;
         break;
     default: // grazing the rim: along the circle, tilted out of the disc's plane
         d = world_vec(f, -sn, cs, r.coin() ? 0.5 : -0.5);
@@ -402,15 +504,15 @@ Case rim(Rng& r, int k) {
 }
 
 template <class S>
-Case cap_plane(Rng& r, int k) {
-    Frame f = frame_for<S>(r, true);
-    Closed kind = closed_kind<S>(r);
-    double z = end_z<S>(r, kind);
+Case cap_plane(Rng& r, int k, Frames frames) {
+    Frame f = frame_for<S>(r, true, frames);
+    Closed kind = closed_kind<S>(r, f);
+    double z = end_z(r, kind);
     auto [cs, sn] = quarter(r);
-    // At distance 1/2 (across the disc), 1 (grazing the rim) or 2 (beside it) from the centre,
-    // along the circle's tangent there.
+    // At 1/2 the disc's radius (across the disc), its radius (grazing the rim) or twice it
+    // (beside it) from the centre, along the circle's tangent there.
     static const double distance[3] = {0.5, 1, 2};
-    double rho = distance[r.integer(0, 2)];
+    double rho = distance[r.integer(0, 2)] * radius_at(f, z);
     Vec3 P = world(f, rho * cs, rho * sn, z), d = world_vec(f, -sn, cs, 0);
     if (k > 0) {
         double e = (r.coin() ? 1 : -1) * std::ldexp(1.0, -k);
@@ -427,9 +529,9 @@ Case cap_plane(Rng& r, int k) {
 }
 
 template <class S>
-Case cap_axis(Rng& r, int k) {
-    Frame f = frame_for<S>(r, k == 0);
-    Closed kind = closed_kind<S>(r);
+Case cap_axis(Rng& r, int k, Frames frames) {
+    Frame f = frame_for<S>(r, k == 0, frames);
+    Closed kind = closed_kind<S>(r, f);
     Vec3 P = world(f, 0, 0, kind.middle), d = f.c;
     if (k > 0) {
         Vec3 side = std::ldexp(1.0, -k) * world_vec(f, r.real(-1, 1), r.real(-1, 1), 0);
@@ -448,10 +550,10 @@ Case cap_axis(Rng& r, int k) {
 }
 
 template <class S>
-Case inside_start(Rng& r, int k) {
-    Frame f = frame_for<S>(r, k == 0);
-    Closed kind = closed_kind<S>(r);
-    double z = z_dyadic<S>(r), rho = radius_at<S>(z);
+Case inside_start(Rng& r, int k, Frames frames) {
+    Frame f = frame_for<S>(r, k == 0, frames);
+    Closed kind = closed_kind<S>(r, f);
+    double z = z_dyadic(r, f), rho = radius_at(f, z);
     auto [cs, sn] = quarter(r);
     Vec3 P;
     switch (r.integer(0, 2)) {
@@ -463,9 +565,9 @@ Case inside_start(Rng& r, int k) {
         if (k > 0) P = P + std::ldexp(1.0, -k) * world_vec(f, cs, sn, 0);
         break;
     default: { // on a disc, and 2^-k beyond it
-        double e = end_z<S>(r, kind);
-        P = world(f, 0.5 * cs, 0.5 * sn, e);
-        if (k > 0) P = P + (e == kind.base ? -1 : 1) * std::ldexp(1.0, -k) * f.c;
+        double e = end_z(r, kind), half = 0.5 * radius_at(f, e);
+        P = world(f, half * cs, half * sn, e);
+        if (k > 0) P = P + (is_base(kind, e) ? -1 : 1) * std::ldexp(1.0, -k) * f.c;
         break;
     }
     }
@@ -477,8 +579,8 @@ Case inside_start(Rng& r, int k) {
 }
 
 template <class S>
-Case two_nappes(Rng& r, int k) {
-    Frame f = frame_for<S>(r, k == 0);
+Case two_nappes(Rng& r, int k, Frames frames) {
+    Frame f = frame_for<S>(r, k == 0, frames);
     bool exact = k == 0;
     Shape shape = closed_from<S>(f, 2);
     if (r.coin()) std::visit([](auto& s) { s.caps = false; }, shape);
@@ -508,40 +610,40 @@ Case two_nappes(Rng& r, int k) {
 }
 
 template <class S>
-Case make(Family fam, Rng& r, std::uint64_t index) {
+Case make(Family fam, Rng& r, std::uint64_t index, Frames frames) {
     switch (fam) {
     case Family::generic: {
         bool integer = r.integer(0, 9) == 0;
-        Frame f = frame_for<S>(r, integer);
+        Frame f = frame_for<S>(r, integer, frames);
         Case c;
         c.shape = shape_from<S>(f, r.integer(0, 4) != 0);
         c.line = generic_line<S>(r, f);
         return c;
     }
     case Family::near_tangent:
-        return near_tangent<S>(r, int(index % 61));
+        return near_tangent<S>(r, int(index % 61), frames);
     case Family::axis_parallel:
-        return axis_parallel<S>(r, int(index % 61));
+        return axis_parallel<S>(r, int(index % 61), frames);
     case Family::apex:
-        return apex<S>(r, int(index % 61));
+        return apex<S>(r, int(index % 61), frames);
     case Family::generator:
-        return generator<S>(r, int(index % 61));
+        return generator<S>(r, int(index % 61), frames);
     case Family::degenerate_frame:
-        return degenerate_frame<S>(r, 1 + int(index % 60));
+        return degenerate_frame<S>(r, 1 + int(index % 60), frames);
     case Family::scale:
-        return scale<S>(r, int(index % 64) * 8);
+        return scale<S>(r, int(index % 64) * 8, frames);
     case Family::extent_edge:
-        return extent_edge<S>(r, index % 3 == 0 ? 0 : 40 + int(index % 14));
+        return extent_edge<S>(r, index % 3 == 0 ? 0 : 40 + int(index % 14), frames);
     case Family::rim:
-        return rim<S>(r, int(index % 17));
+        return rim<S>(r, int(index % 17), frames);
     case Family::cap_plane:
-        return cap_plane<S>(r, int(index % 61));
+        return cap_plane<S>(r, int(index % 61), frames);
     case Family::cap_axis:
-        return cap_axis<S>(r, int(index % 61));
+        return cap_axis<S>(r, int(index % 61), frames);
     case Family::inside_start:
-        return inside_start<S>(r, int(index % 61));
+        return inside_start<S>(r, int(index % 61), frames);
     case Family::two_nappes:
-        return two_nappes<S>(r, int(index % 61));
+        return two_nappes<S>(r, int(index % 61), frames);
     }
     return {};
 }
@@ -558,25 +660,43 @@ bool parse_family(std::string_view name, Family* f) {
     return false;
 }
 
-bool family_applies(Family f, int shape) {
-    bool conical = with_shape_type(std::size_t(shape), [](auto tag) {
-        return Sampling<typename decltype(tag)::type>::conical;
-    });
-    return (f != Family::apex && f != Family::generator && f != Family::two_nappes) || conical;
+const char* frames_name(Frames f) {
+    return frame_names[int(f)];
 }
 
-Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint64_t index) {
+bool parse_frames(std::string_view name, Frames* f) {
+    for (int i = 0; i < 3; ++i)
+        if (name == frame_names[i]) return *f = Frames(i), true;
+    return false;
+}
+
+int shape_named(std::string_view name) {
+    std::size_t i = shape_index(name);
+    return i < shape_count ? int(i) : -1;
+}
+
+bool family_applies(Family f, int shape) {
+    return with_shape_type(std::size_t(shape), [&](auto tag) {
+        using S = typename decltype(tag)::type;
+        if (f == Family::two_nappes) return std::is_same_v<S, EllipticCone>;
+        return (f != Family::apex && f != Family::generator) || Sampling<S>::conical;
+    });
+}
+
+Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint64_t index,
+               Frames frames) {
     std::uint64_t key =
         splitmix(seed) ^
         splitmix(std::uint64_t(fam) * 1000003 + std::uint64_t(shape) * 101 + std::uint64_t(range));
     Rng r{std::mt19937_64(splitmix(key ^ splitmix(index)))};
     Case c = with_shape_type(std::size_t(shape), [&](auto tag) {
-        return make<typename decltype(tag)::type>(fam, r, index);
+        return make<typename decltype(tag)::type>(fam, r, index, frames);
     });
     c.line.range = range;
     c.family = family_name(fam);
     c.id = "\"" + std::string(family_name(fam)) + "/" + std::to_string(shape) + "/" +
-           range_name(range) + "/" + std::to_string(seed) + "/" + std::to_string(index) + "\"";
+           range_name(range) + "/" + std::to_string(seed) + "/" + std::to_string(index) +
+           (frames == Frames::any ? "" : std::string("/") + frames_name(frames)) + "\"";
     return c;
 }
 

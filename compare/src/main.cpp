@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -171,6 +172,7 @@ int run_solve(const SolveArgs& a) {
 struct CampaignArgs {
     std::string cases = "100000", seed = "1", shard = "0/1", out = "reports/latest";
     std::string cases_file, results_file, max_line_bytes = "1048576", families, solvers;
+    std::string shapes, frames = "any";
     bool no_plots = false, check = false;
 
     audit::Options options() const {
@@ -184,6 +186,13 @@ struct CampaignArgs {
                 parse_family(f, &x);
                 o.families.push_back(x);
             }
+        if (!shapes.empty()) { // in the order of linequad::Shape, once each
+            for (const std::string& s : split_list(shapes))
+                o.shapes.push_back(shape_named(s));
+            std::sort(o.shapes.begin(), o.shapes.end());
+            o.shapes.erase(std::unique(o.shapes.begin(), o.shapes.end()), o.shapes.end());
+        }
+        parse_frames(frames, &o.frames);
         if (!solvers.empty()) o.solvers = split_list(solvers);
         o.out_dir = out;
         o.plots = !no_plots;
@@ -208,6 +217,22 @@ void add_campaign_options(CLI::App* app, CampaignArgs& a) {
             Family x;
             return parse_family(f, &x) ? std::string() : "no family named '" + f + "'";
         }));
+    app->add_option("--shapes", a.shapes, "shapes to build (default: all)")
+        ->type_name("S[,S...]")
+        ->check(each_of_list([](const std::string& s) {
+            return shape_named(s) >= 0 ? std::string() : "no shape named '" + s + "'";
+        }));
+    app->add_option("--frames", a.frames,
+                    "the shapes' frames: any (oblique and sheared elliptic shapes), circular "
+                    "(circular cross-sections) or axis (circular, along a coordinate axis)")
+        ->type_name("any|circular|axis")
+        ->check(CLI::Validator(
+            [](const std::string& f) {
+                Frames x;
+                return parse_frames(f, &x) ? std::string() : "expected any, circular or axis";
+            },
+            ""))
+        ->capture_default_str();
     app->add_option("--shard", a.shard, "run only shard K of N (K from 0)")
         ->type_name("K/N")
         ->check(CLI::Validator(

@@ -125,6 +125,7 @@ struct Report {
     // The campaign. Shards of one campaign agree on all of it (merge checks).
     std::uint64_t seed = 0, cases_per_group = 0;
     std::vector<std::string> families, shapes, ranges, solvers;
+    std::string frames = "any"; // the frames the shapes were built on (families.hpp)
     int shards = 1;
     std::vector<int> shards_included{0}; // the shards whose cases this report holds, ascending
     // Set instead when the report grades a results file (not a campaign: it does not merge).
@@ -161,7 +162,9 @@ inline constexpr const char* batch_name = "batch";
 
 struct Options {
     std::uint64_t seed = 1, cases_per_group = 100000;
-    std::vector<Family> families;     // empty: all
+    std::vector<Family> families; // empty: all
+    std::vector<int> shapes;      // indices in linequad::Shape; empty: all
+    Frames frames = Frames::any;
     std::vector<std::string> solvers; // empty: every fast solver, and batch
     int shard = 0, shards = 1;
     std::string out_dir;                  // reports/<run>; empty: nothing written

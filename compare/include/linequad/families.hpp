@@ -31,11 +31,25 @@ enum class Family {
 };
 
 constexpr int family_count = 13;
+
+// The frames shapes are built on: any (the elliptic shapes' frames oblique and sheared), circular
+// (a, b orthogonal to the axis and of one length: a circular cross-section) or axis (circular,
+// and the axis along a coordinate axis), because most libraries represent only those. The
+// cylinder and the frustum are circular in any case.
+enum class Frames { any, circular, axis };
+const char* frames_name(Frames f);
+bool parse_frames(std::string_view name, Frames* f);
 const char* family_name(Family f);
 bool parse_family(std::string_view name, Family* f);
-bool family_applies(Family f, int shape); // apex, generator, two_nappes: the cone only
+// The index in linequad::Shape of the shape named `name` (its case format name), or -1.
+int shape_named(std::string_view name);
 
-// shape: 0 cylinder, 1 elliptic_cylinder, 2 elliptic_cone.
-Case make_case(Family f, int shape, Range range, std::uint64_t seed, std::uint64_t index);
+// apex and generator: the cone and the frustum; two_nappes: the cone only.
+bool family_applies(Family f, int shape);
+
+// shape: its index in linequad::Shape (0 cylinder, 1 elliptic_cylinder, 2 elliptic_cone,
+// 3 frustum). The case's id names all of it, and the frames unless they are any.
+Case make_case(Family f, int shape, Range range, std::uint64_t seed, std::uint64_t index,
+               Frames frames = Frames::any);
 
 } // namespace linequad

@@ -42,10 +42,14 @@ struct FrameFacts : CommonFacts {
 
 template <class S>
 struct Facts;
+// The circular shapes' axis as seed 001 normalises it: h / |h| and |h|.
+struct AxisFacts : CommonFacts {
+    Vec3 seed_axis{};
+    double seed_length = 0;
+};
+
 template <>
-struct Facts<Cylinder> : CommonFacts {
-    Vec3 seed_axis{};             // h / |h|, as seed 001 normalises it
-    double seed_length = 0;       // |h|
+struct Facts<Cylinder> : AxisFacts {
     Vec3 h_hi{}, h_lo{};          // h = H - C in double-double
     double hh[3] = {}, K[3] = {}; // h.h and r^2 h.h: value, low part, error bound
 };
@@ -53,6 +57,8 @@ template <>
 struct Facts<EllipticCylinder> : FrameFacts {};
 template <>
 struct Facts<EllipticCone> : FrameFacts {};
+template <>
+struct Facts<Frustum> : AxisFacts {};
 
 struct PreparedAccess;
 

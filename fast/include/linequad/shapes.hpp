@@ -79,11 +79,25 @@ struct EllipticCone {
     Vec3 c() const { return H - C; }
 };
 
+// The right circular frustum (truncated cone) between the disc of radius r0 centred at C0 and
+// the disc of radius r1 centred at C1, both perpendicular to C1 - C0; r0, r1 >= 0, not both 0.
+// r0 = r1 is a cylinder, a zero radius an apex. Not finite: the whole nappe (or cylinder) that
+// holds it. Caps: the disc at each end whose radius is not 0 (base at C0, top at C1), as
+// Embree's cone curves with end discs are.
+struct Frustum {
+    Vec3 C0{};
+    double r0 = 0;
+    Vec3 C1{};
+    double r1 = 0;
+    bool finite = true;
+    bool caps = false;
+};
+
 // Every shape. The solvers, the case format, the families and the benchmarks take their list
 // of shapes from here (and each shape's derivation from fast/src/shapes/).
-using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone>;
+using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum>;
 
-// "cylinder", "elliptic_cylinder", "elliptic_cone".
+// "cylinder", "elliptic_cylinder", "elliptic_cone", "frustum".
 const char* shape_name(const Shape& s);
 template <class S>
 const char* shape_name();

@@ -15,7 +15,8 @@
 //     and each output rounded by deciding, exactly, on which side of the midpoints between
 //     neighbouring doubles it lies.
 // Result::rung says which rung answered. A closed shape (caps on) starts at the double-double
-// rung: the Newton rung's proof covers the lateral roots only.
+// rung: the Newton rung's proof covers the lateral roots only; so does a frustum, whose quadratic
+// has no Newton form (shapes/frustum.hpp).
 #pragma once
 
 #include "correct/ladder.hpp"
@@ -54,14 +55,16 @@ struct Correct {
         double extent = scene_extent(src, l);
         if (q.need == Need::any) q.points = false; // a hit test computes no point
         // The quick rung first, where the scene's products stay in double's normal range.
-        if (q.need == Need::any && !closed(src.shape) && moderate(extent, l)) {
-            Result r;
-            LineForm form =
-                ShapeTraits<typename Src::Shape>::quick_line_form(src, l, valid.orientation);
-            if (hit_test_rung(form, Unit{1, 1, l}, r)) {
-                r.certainty = Certainty::certain;
-                r.rung = Rung::newton;
-                return r;
+        using Traits = ShapeTraits<typename Src::Shape>;
+        if constexpr (Traits::has_line_form) {
+            if (q.need == Need::any && !closed(src.shape) && moderate(extent, l)) {
+                Result r;
+                LineForm form = Traits::quick_line_form(src, l, valid.orientation);
+                if (hit_test_rung(form, Unit{1, 1, l}, r)) {
+                    r.certainty = Certainty::certain;
+                    r.rung = Rung::newton;
+                    return r;
+                }
             }
         }
         return ladder(src, valid.orientation, extent, l, q);
@@ -75,18 +78,21 @@ struct Correct {
         Result r; // the one result, returned in place
         // The Newton rung on the scene as `unit` has it; r is left empty when the rung declines.
         auto newton = [&](const auto& scene, const Unit& unit) {
-            LineForm form = Traits::line_form(scene, unit.line, orientation);
-            if (newton_rung(form, unit, l, q, r)) {
-                mark_certain(r, Rung::newton);
-                return true;
+            if constexpr (Traits::has_line_form) {
+                LineForm form = Traits::line_form(scene, unit.line, orientation);
+                if (newton_rung(form, unit, l, q, r)) {
+                    mark_certain(r, Rung::newton);
+                    return true;
+                }
+                r = Result();
             }
-            r = Result();
             return false;
         };
         // The Newton rung's bounds hold at any scale (underflow is in them, overflow makes them
         // infinite), so a scene of moderate size is solved as given; others are scaled first,
         // so that tiny or huge scenes are not left to the slower rungs.
-        bool as_given = moderate(extent, l), lateral_only = !closed(src.shape);
+        bool as_given = moderate(extent, l);
+        bool lateral_only = Traits::has_line_form && !closed(src.shape);
         if (lateral_only && as_given && newton(src, Unit{1, 1, l})) return r;
         if (std::optional<Unit> u = unit_scale(src, extent, l)) {
             S unit = scaled(src.shape, 1 / u->pos_factor);

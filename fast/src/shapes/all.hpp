@@ -6,10 +6,11 @@
 #include "shapes/cylinder.hpp"
 #include "shapes/elliptic_cone.hpp"
 #include "shapes/elliptic_cylinder.hpp"
+#include "shapes/frustum.hpp"
 
 #include <variant>
 
-#define LINEQUAD_FOR_EACH_SHAPE(X) X(Cylinder) X(EllipticCylinder) X(EllipticCone)
+#define LINEQUAD_FOR_EACH_SHAPE(X) X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum)
 
 namespace linequad::detail {
 #define LINEQUAD_COUNT_SHAPE(S) +1

@@ -138,6 +138,23 @@ struct CylinderStable {
     }
 };
 
+// The axis h = to - from of a circular shape as seed 001 normalises it: h / |h| and |h|; what
+// prepare() keeps (AxisFacts), or worked out.
+struct SeedAxis {
+    Vec3 unit;
+    double length;
+};
+template <class Src>
+SeedAxis seed_axis(const Src& src, Vec3 from, Vec3 to) {
+    if constexpr (Src::prepared) {
+        return {src.facts.seed_axis, src.facts.seed_length};
+    } else {
+        Vec3 h = to - from;
+        double hn = norm(h);
+        return {(1 / hn) * h, hn};
+    }
+}
+
 // Z = (P - C).h = w.h + t v.h in double from w and h within u of their exact values (and v
 // exact): gamma_5 of the products' magnitudes for w.h (two inputs, a product, two sums), gamma_4
 // for v.h; 6u and 5u cover them with the magnitudes' own rounding. Both line forms' Z.
@@ -159,6 +176,7 @@ struct ShapeTraits<Cylinder> {
     // scene, and components too small for its zeros to be trusted.
     static constexpr const char* scale_fields = "r,H-C";
     static constexpr const char* fragile_fields = "v,H-C";
+    static constexpr bool has_line_form = true;
 
     static Validity validate(const Cylinder& s) {
         if (Error e = check_caps(s); !e.ok()) return {e};
@@ -169,19 +187,9 @@ struct ShapeTraits<Cylinder> {
 
     // ---- What prepare() keeps ----
 
-    struct SeedAxis {
-        Vec3 unit;
-        double length;
-    };
     template <class Src>
     static SeedAxis seed_axis(const Src& src) {
-        if constexpr (Src::prepared) {
-            return {src.facts.seed_axis, src.facts.seed_length};
-        } else {
-            Vec3 h = src.shape.H - src.shape.C;
-            double hn = norm(h);
-            return {(1 / hn) * h, hn};
-        }
+        return linequad::detail::seed_axis(src, src.shape.C, src.shape.H);
     }
     struct NewtonAxis {
         Vec3TwoTerm h;

@@ -147,6 +147,7 @@ struct ShapeTraits<EllipticCone> {
                         field("a", &EllipticCone::a), field("b", &EllipticCone::b));
     static constexpr const char* scale_fields = "a,b,H-C";
     static constexpr const char* fragile_fields = "v,a,b,H-C";
+    static constexpr bool has_line_form = true;
 
     static Validity validate(const EllipticCone& s) {
         if (Error e = check_caps(s); !e.ok()) return {e};

@@ -108,6 +108,7 @@ struct ShapeTraits<EllipticCylinder> {
                         field("b", &EllipticCylinder::b), field("c", &EllipticCylinder::c));
     static constexpr const char* scale_fields = "a,b,c";
     static constexpr const char* fragile_fields = "v,a,b,c";
+    static constexpr bool has_line_form = true;
 
     static Validity validate(const EllipticCylinder& s) {
         if (Error e = check_caps(s); !e.ok()) return {e};

@@ -212,10 +212,21 @@ Classification<NT> on_surface(const LineQuadratic<NT>& q, const ParameterRange<N
         if (sdz < 0) f.num = -f.num, f.den = -f.den;
         return f;
     };
-    Fraction<NT> a = q.lo_bounded ? frac(NT(q.lo - q.Z0)) : Fraction<NT>{false, NT(0), NT(1)};
-    Fraction<NT> b = q.hi_bounded ? frac(NT(q.hi - q.Z0)) : Fraction<NT>{false, NT(0), NT(1)};
-    // Which bound of Z limits t from below depends on the direction dZ.
-    Fraction<NT> lo = sdz > 0 ? a : b, hi = sdz > 0 ? b : a;
+    const Fraction<NT> unbounded{false, NT(0), NT(1)};
+    Fraction<NT> lo = unbounded, hi = unbounded;
+    if (sdz == 0) {
+        // Z constant along the line (the radius coordinate of a frustum that is a cylinder):
+        // the whole line is inside the extent, or none of it.
+        int below = q.lo_bounded ? sign(NT(q.Z0 - q.lo)) : 1;
+        int above = q.hi_bounded ? sign(NT(q.hi - q.Z0)) : 1;
+        if (below == undecided || above == undecided) return c;
+        if (below < 0 || above < 0) return c.outcome = Outcome::none, c;
+    } else {
+        Fraction<NT> a = q.lo_bounded ? frac(NT(q.lo - q.Z0)) : unbounded;
+        Fraction<NT> b = q.hi_bounded ? frac(NT(q.hi - q.Z0)) : unbounded;
+        // Which bound of Z limits t from below depends on the direction dZ.
+        lo = sdz > 0 ? a : b, hi = sdz > 0 ? b : a;
+    }
     if (range.has_t0) {
         Fraction<NT> first{true, range.t0, NT(1)};
         int below = lo.bounded ? less(lo, first) : 1;

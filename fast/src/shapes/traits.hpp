@@ -1,5 +1,6 @@
 // What the solvers share about shapes. Each shape's facts and derivations are written once, in
-// its ShapeTraits specialisation (shapes/cylinder.hpp, elliptic_cylinder.hpp, elliptic_cone.hpp):
+// its ShapeTraits specialisation (shapes/cylinder.hpp, elliptic_cylinder.hpp, elliptic_cone.hpp,
+// frustum.hpp):
 //   name, fields           the case format's name of the shape, and its table: the name and
 //                          member of every field
 //   validate(shape)        what is wrong with a shape whose fields are finite (and the
@@ -10,7 +11,8 @@
 //   Stable<T>, stable_core the stable solver's core, for any lane type, and its construction
 //   certified_form<B>      the stable quantities in a bounded type
 //   exact_orientation<NT>, exact_quadratic<NT>  the exact, division-free form in any ring
-//   line_form, quick_line_form  the correct solver's Newton rung and hit test views
+//   has_line_form, line_form, quick_line_form  the correct solver's Newton rung and hit test
+//                          views, where the shape's quadratic has one (three squares)
 // Every field is a position: it scales with the scene (the scene's magnitude and the checks for
 // components too small for double arithmetic run over them).
 #pragma once
