@@ -256,7 +256,6 @@ double apex_z(const Frame& f) {
     return f.z0 + f.rho0 / (f.rho0 - f.rho1);
 }
 
-template <class S>
 Line generic_line(Rng& r, const Frame& f) {
     double z = z_inside(r, f), rho = radius_at(f, z);
     Vec3 target = world(f, r.real(-1, 1) * rho, r.real(-1, 1) * rho, z);
@@ -369,7 +368,7 @@ Case degenerate_frame(Rng& r, int k, Frames frames) {
     }
     Case c;
     c.shape = shape_from<S>(f);
-    c.line = generic_line<S>(r, f);
+    c.line = generic_line(r, f);
     c.k = k;
     return c;
 }
@@ -379,7 +378,7 @@ Case scale(Rng& r, int k, Frames frames) {
     Frame f = frame_for<S>(r, false, frames);
     int exponent = r.coin() ? k : -k;
     double s = std::ldexp(1.0, exponent);
-    Line l = generic_line<S>(r, f);
+    Line l = generic_line(r, f);
     // Half of the cases: the whole scene scaled by 2^+-k (exact). The other half: a unit
     // shape moved up to 2^50 from the origin, the line's origin with it.
     if (r.coin()) {
@@ -617,7 +616,7 @@ Case make(Family fam, Rng& r, std::uint64_t index, Frames frames) {
         Frame f = frame_for<S>(r, integer, frames);
         Case c;
         c.shape = shape_from<S>(f, r.integer(0, 4) != 0);
-        c.line = generic_line<S>(r, f);
+        c.line = generic_line(r, f);
         return c;
     }
     case Family::near_tangent:
