@@ -63,7 +63,9 @@ Shape generic_shape(int index, Vec3 C, Vec3 a, Vec3 b, Vec3 c, Real& real) {
     }
 }
 
-inline std::vector<GenericCase> generic_cases(int shape_index, int n, unsigned seed = 1) {
+// binary32: the same cases with every input rounded to float.
+inline std::vector<GenericCase> generic_cases(int shape_index, int n, unsigned seed = 1,
+                                              Precision p = Precision::binary64) {
     std::mt19937_64 rng(seed);
     auto real = [&](double lo, double hi) {
         return std::uniform_real_distribution<double>(lo, hi)(rng);
@@ -75,7 +77,11 @@ inline std::vector<GenericCase> generic_cases(int shape_index, int n, unsigned s
         if (std::fabs(dot(a, cross(b, c))) < 0.25 * norm(a) * norm(b) * norm(c)) continue;
         Shape s = generic_shape(shape_index, C, a, b, c, real);
         Vec3 middle = C + 0.5 * c, from = vec(4);
-        out.push_back({s, {from, middle + vec(0.3) - from, Range::line}});
+        Line l{from, middle + vec(0.3) - from, Range::line};
+        if (p == Precision::binary32)
+            out.push_back({rounded_to_binary32(s), rounded_to_binary32(l)});
+        else
+            out.push_back({s, l});
     }
     return out;
 }

@@ -1,7 +1,8 @@
 // Solves N pre-built generic cases with one solver, for counting instructions under callgrind:
 // bench/instructions.sh runs it with N solves and with none, and divides the difference by N.
 //   linequad_instructions SOLVER SHAPE NEED POINTS HOW N
-// SOLVER: floor | seed | stable | certified | correct; SHAPE: cylinder | elliptic_cylinder |
+// SOLVER: floor | seed | stable | certified | correct | correct32 (the float solvers on the same
+// cases rounded to float); SHAPE: cylinder | elliptic_cylinder |
 // elliptic_cone; NEED: any | nearest | all; POINTS: points | no_points; HOW: direct | prepared
 // (each case's shape prepared before the solves, which are what is counted).
 // floor: the textbook cylinder quadratic (bench/floor.hpp), the unit the ratios are quoted in.
@@ -23,8 +24,8 @@ volatile double sink;
 
 // Each case's shape as given, or prepared before the solves (which are what is counted).
 template <class ShapeT, class Solve>
-void run(int shape_index, long n, Query q, bool prepared, Solve solve) {
-    auto cases = bench::generic_cases(shape_index, 1024);
+void run(int shape_index, long n, Query q, bool prepared, Solve solve, Precision p) {
+    auto cases = bench::generic_cases(shape_index, 1024, 1, p);
     std::vector<ShapeT> shapes;
     std::vector<Prepared<ShapeT>> ready;
     std::vector<Line> lines;
@@ -43,7 +44,9 @@ void run(int shape_index, long n, Query q, bool prepared, Solve solve) {
 
 template <class ShapeT>
 bool run_solver(const std::string& solver, int shape_index, long n, Query q, bool prepared) {
-    auto with = [&](auto solve) { return run<ShapeT>(shape_index, n, q, prepared, solve), true; };
+    auto with = [&](auto solve, Precision p = Precision::binary64) {
+        return run<ShapeT>(shape_index, n, q, prepared, solve, p), true;
+    };
     if (solver == "seed")
         return with(
             [](const auto& s, const Line& l, Query qq) { return seed::intersect(s, l, qq); });
@@ -56,6 +59,11 @@ bool run_solver(const std::string& solver, int shape_index, long n, Query q, boo
     if (solver == "correct")
         return with(
             [](const auto& s, const Line& l, Query qq) { return correct::intersect(s, l, qq); });
+    // The float solvers on the same cases rounded to float.
+    if (solver == "correct32")
+        return with(
+            [](const auto& s, const Line& l, Query qq) { return correct32::intersect(s, l, qq); },
+            Precision::binary32);
     return false;
 }
 

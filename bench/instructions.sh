@@ -14,8 +14,13 @@ command -v valgrind >/dev/null || { echo "valgrind is not installed" >&2; exit 2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-ir() { # instructions of one run
-  valgrind --tool=callgrind --callgrind-out-file="$tmp/out" "$exe" "$@" >/dev/null 2>&1
+ir() { # instructions of one run (a run that fails under valgrind stops the script, named)
+  if ! valgrind --tool=callgrind --error-exitcode=3 --callgrind-out-file="$tmp/out" "$exe" "$@" \
+      >/dev/null 2>"$tmp/err"; then
+    echo "instructions.sh: $* failed under valgrind:" >&2
+    grep -v '^==[0-9]*== *$' "$tmp/err" | head -20 >&2
+    exit 1
+  fi
   awk '/^(summary|totals):/ { print $2; exit }' "$tmp/out"
 }
 per_solve() {
@@ -34,6 +39,8 @@ rows=${ROWS:-}
 if [ -z "$rows" ]; then
   for solver in seed stable correct; do rows="$rows $solver:cylinder:all:points:direct"; done
   rows="$rows correct:cylinder:any:no_points:direct correct:cylinder:nearest:no_points:direct"
+  # The float target: correct32 on the same cases rounded to float (binary32 end to end).
+  rows="$rows correct32:cylinder:all:points:direct correct32:elliptic_cone:all:points:prepared"
   for solver in seed stable correct; do rows="$rows $solver:elliptic_cone:all:points:prepared"; done
   rows="$rows correct:elliptic_cone:any:no_points:prepared"
   rows="$rows correct:elliptic_cone:nearest:no_points:prepared correct:elliptic_cone:any:no_points:direct"

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "linequad/case_io.hpp"
+#include "linequad/families.hpp"
 #include "linequad/registry.hpp"
 
 #include "numeric/format.hpp"
@@ -144,6 +145,18 @@ inline void check_hits(const Shape& s, const Line& l, std::initializer_list<Want
                 CHECK(std::fabs(h.t - w.t) <= 4 * 0x1p-52 * std::fmax(1.0, std::fabs(w.t)));
         }
     }
+}
+
+// n cases of every family, for each shape it applies to and each range, posed in p.
+template <class Visit>
+void for_each_family_case(std::uint64_t seed, std::uint64_t n, Precision p, Visit visit) {
+    for (int fi = 0; fi < family_count; ++fi)
+        for (int shape = 0; shape < shape_kinds; ++shape) {
+            if (!family_applies(Family(fi), shape)) continue;
+            for (Range range : {Range::line, Range::ray, Range::segment})
+                for (std::uint64_t i = 0; i < n; ++i)
+                    visit(make_case(Family(fi), shape, range, seed, i, Frames::any, p));
+        }
 }
 
 // The same answer bit for bit (signed zeros, infinities): the classification, t, points and

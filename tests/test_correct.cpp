@@ -291,27 +291,20 @@ TEST_CASE("correct equals the oracle bit for bit on every family, range and quer
     // and its own bound.
     const Query queries[] = {{Need::all, true}, {Need::nearest, false}, {Need::any, true}};
     std::uint64_t by_rung[4] = {};
-    for (int fi = 0; fi < family_count; ++fi)
-        for (int shape = 0; shape < shape_kinds; ++shape) {
-            Family f = Family(fi);
-            if (!family_applies(f, shape)) continue;
-            for (Range range : {Range::line, Range::ray, Range::segment})
-                for (std::uint64_t i = 0; i < 60; ++i) {
-                    Case c = make_case(f, shape, range, 31, i);
-                    for (Query q : queries) {
-                        Result got = correct_solve(c.shape, c.line, q);
-                        INFO(format_case(c));
-                        if (q.need == Need::any)
-                            check_hit_test(got, exact::intersect(c.shape, c.line));
-                        else
-                            check_same_answer(got, exact::intersect(c.shape, c.line, q));
-                        if (got.ok()) {
-                            ++by_rung[std::size_t(got.rung)];
-                            CHECK(got.certainty == Certainty::certain);
-                        }
-                    }
-                }
+    for_each_family_case(31, 60, Precision::binary64, [&](const Case& c) {
+        for (Query q : queries) {
+            Result got = correct_solve(c.shape, c.line, q);
+            INFO(format_case(c));
+            if (q.need == Need::any)
+                check_hit_test(got, exact::intersect(c.shape, c.line));
+            else
+                check_same_answer(got, exact::intersect(c.shape, c.line, q));
+            if (got.ok()) {
+                ++by_rung[std::size_t(got.rung)];
+                CHECK(got.certainty == Certainty::certain);
+            }
         }
+    });
     // Every rung is exercised, and only they answer.
     CHECK(by_rung[std::size_t(Rung::none)] == 0);
     CHECK(by_rung[std::size_t(Rung::newton)] > 0);

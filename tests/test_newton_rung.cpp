@@ -1,6 +1,7 @@
 // The correct solver's Newton rung: its arithmetic (CompensatedSum), the line forms it builds, and
 // its answers, run without scaling at sizes from 2^-600 to 2^600, against exact GMP rationals and
 // the oracle.
+#include "mpfr_reference.hpp"
 #include "rational.hpp"
 #include "support.hpp"
 
@@ -113,14 +114,8 @@ TEST_CASE("round_proven returns a double only when every value within the bound 
     // scales that reach the subnormal range. Where round_proven answers v, both ends of the
     // interval must round to v (then every value between does); 4096-bit MPFR is exact here.
     std::mt19937_64 rng(3);
-    mpfr_t end;
-    mpfr_init2(end, 4096);
     auto rounds_to = [&](double hi, double lo, double e, int k, double v) {
-        mpfr_set_d(end, hi, MPFR_RNDN);
-        mpfr_add_d(end, end, lo, MPFR_RNDN);
-        mpfr_add_d(end, end, e, MPFR_RNDN);
-        mpfr_mul_2si(end, end, k, MPFR_RNDN);
-        return same_bits(mpfr_get_d(end, MPFR_RNDN), v);
+        return same_bits(mpfr_rounded(hi, lo, e, k, Precision::binary64), v);
     };
     long answered = 0;
     for (int i = 0; i < 200000; ++i) {
@@ -137,14 +132,14 @@ TEST_CASE("round_proven returns a double only when every value within the bound 
         double lo = ulp * fraction[rng() % 7];
         double e = rng() % 4 == 0 ? 0 : ulp * std::ldexp(1.0, -int(rng() % 60));
         int k = int(rng() % 121) - 60 - (rng() % 16 == 0 ? 900 : 0);
-        std::optional<double> v = detail::round_proven({hi, lo, e}, std::ldexp(1.0, k));
+        std::optional<double> v =
+            detail::round_proven<detail::Binary64>({hi, lo, e}, std::ldexp(1.0, k));
         if (!v) continue;
         ++answered;
         INFO("hi " << hi << " lo " << lo << " e " << e << " k " << k);
         REQUIRE(rounds_to(hi, lo, -e, k, *v));
         REQUIRE(rounds_to(hi, lo, e, k, *v));
     }
-    mpfr_clear(end);
     CHECK(answered > 50000);
 }
 
@@ -270,7 +265,8 @@ bool run_rung(const Shape& shape, const Line& l, Query q, Result& r, bool& answe
                 detail::Validity valid = detail::validity_of(s);
                 detail::LineForm form = Traits::line_form(
                     detail::AsGiven<std::decay_t<decltype(s)>>{s}, l, valid.orientation);
-                answered = detail::newton_rung(form, detail::Unit{1, 1, l}, l, q, r);
+                answered =
+                    detail::newton_rung<detail::Binary64>(form, detail::Unit{1, 1, l}, l, q, r);
                 return true;
             }
             return false;

@@ -52,6 +52,7 @@ OrderedJson row_json(const RowKey& key, const Row& r) {
             {"shape", key.shape},
             {"solver", key.solver},
             {"cases", r.cases},
+            {"binary32_cases", r.binary32_cases},
             {"graded_roots", r.graded_roots},
             {"graded_points", r.graded_coords},
             {"cases_mismatched", r.cases_mismatched},
@@ -215,6 +216,8 @@ Row read_row(const Node& n) {
     Row r;
     r.cases = n.at("cases").count();
     auto at_most_cases = [&](const char* key) { return n.at(key).count(r.cases); };
+    // Reports from before binary32 cases have none.
+    if (n.find("binary32_cases")) r.binary32_cases = at_most_cases("binary32_cases");
     r.graded_roots = n.at("graded_roots").count();
     r.graded_coords = n.at("graded_points").count();
     r.cases_mismatched = at_most_cases("cases_mismatched");

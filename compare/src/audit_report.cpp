@@ -82,24 +82,33 @@ std::string status_line(const Report& r) {
     return "";
 }
 
-// How often the correct solver needed each rung of its ladder, by family.
+// The precision a row's answers were graded in: float ulps for binary32 cases.
+std::string precision_of(const Row& row) {
+    if (row.binary32_cases == 0) return "double";
+    return row.binary32_cases == row.cases ? "float" : "mixed";
+}
+
+// How often the correct solvers (correct, and correct32 rounding to float) needed each rung of
+// their ladder, by family.
 void write_rungs(std::ostream& md, const Report& r) {
-    std::map<std::string, Row> by_family;
+    std::map<std::pair<std::string, std::string>, Row> by_family;
     for (const auto& [key, row] : r.rows)
-        if (key.solver == "correct") by_family[key.family].merge(row);
+        if (key.solver == "correct" || key.solver == "correct32")
+            by_family[{key.family, key.solver}].merge(row);
     if (by_family.empty()) return;
-    md << "\n## The correct solver's rungs\n\n"
+    md << "\n## The correct solvers' rungs\n\n"
           "Results settled by the Newton rung, the double-double rung (each only where its bounds "
           "proved every sign and every rounding) and the exact rung, by family; ns/solve is the "
-          "median of the mix.\n\n";
-    md << "| family | cases | Newton | double-double | exact | exact % | ns/solve |\n";
-    md << "|---|---:|---:|---:|---:|---:|---:|\n";
-    for (const auto& [family, row] : by_family) {
+          "median of the mix. correct32 rounds to float: its Newton rung evaluates g in double "
+          "first.\n\n";
+    md << "| family | solver | cases | Newton | double-double | exact | exact % | ns/solve |\n";
+    md << "|---|---|---:|---:|---:|---:|---:|---:|\n";
+    for (const auto& [key, row] : by_family) {
         std::uint64_t nw = row.rungs[std::size_t(Rung::newton)];
         std::uint64_t dd = row.rungs[std::size_t(Rung::double_double)];
         std::uint64_t ex = row.rungs[std::size_t(Rung::exact)], all = nw + dd + ex;
-        md << "| " << family << " | " << row.cases << " | " << nw << " | " << dd << " | " << ex
-           << " | " << fmt(all ? 100.0 * double(ex) / double(all) : 0) << " | "
+        md << "| " << key.first << " | " << key.second << " | " << row.cases << " | " << nw << " | "
+           << dd << " | " << ex << " | " << fmt(all ? 100.0 * double(ex) / double(all) : 0) << " | "
            << fmt(row.ns.median()) << " |\n";
     }
     Row certified = r.total("certified");
@@ -108,6 +117,36 @@ void write_rungs(std::ostream& md, const Report& r) {
               "rounding on its own, without the Newton step): "
            << certified.bound_below_half_ulp << " of " << certified.bounded_roots
            << " certified roots.\n";
+}
+
+// Each double solver beside its float counterpart (stable beside stable32, ...), family by
+// family: cases misclassified, and the t error, each in its own precision's ulps.
+void write_float_beside_double(std::ostream& md, const Report& r) {
+    std::vector<std::string> pairs;
+    for (const std::string& s : r.solvers)
+        if (std::find(r.solvers.begin(), r.solvers.end(), s + "32") != r.solvers.end())
+            pairs.push_back(s);
+    if (pairs.empty()) return;
+    md << "\n## Float beside double\n\n"
+          "Each solver in float (binary32 cases, errors in float ulps) beside the same solver in "
+          "double (binary64 cases, double ulps), family by family: cases misclassified (of "
+          "cases), and the t error p99.\n\n| family |";
+    for (const std::string& s : pairs)
+        md << " " << s << " | " << s << "32 |";
+    md << "\n|---|";
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+        md << "---:|---:|";
+    md << "\n";
+    for (const std::string& family : r.families) {
+        md << "| " << family << " |";
+        for (const std::string& s : pairs)
+            for (const std::string& name : {s, s + "32"}) {
+                Row t = family_total(r, family, name);
+                md << " " << t.cases_mismatched << " of " << t.cases << ", p99 "
+                   << fmt(t.t_error.quantile(0.99)) << " |";
+            }
+        md << "\n";
+    }
 }
 
 } // namespace
@@ -142,20 +181,22 @@ std::string markdown(const Report& r) {
           "case uncertain (counted apart, not as a mismatch); each of its roots carries a bound, "
           "violated when |t - t_oracle| exceeds it by more than half an ulp (the oracle's "
           "rounding); "
-          "bound/err is how loose the bound is. ns/solve: median over "
+          "bound/err is how loose the bound is. A float solver (precision float) answers the "
+          "same families posed in binary32 (every input a float) and is graded in float ulps "
+          "against the oracle's answer rounded to float. ns/solve: median over "
           "chunks of 256 cases, this run, this machine. batch is stable's batch path (its "
           "results equal stable's bit for bit): graded on every case, one line per call; its "
           "ns is per line, each chunk's lines solved as one batch against four of the chunk's "
           "shapes.\n\n";
 
     md << "## Headline: every family\n\n";
-    md << "| solver | cases | mismatched | uncertain | bound violations | t max ulps | t p99 | t "
-          "p50 "
-          "| mean bits | point max ulps | ns/solve (generic) |\n";
-    md << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    md << "| solver | precision | cases | mismatched | uncertain | bound violations | t max ulps "
+          "| t p99 | t p50 | mean bits | point max ulps | ns/solve (generic) |\n";
+    md << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const std::string& s : r.solvers) {
         Row t = r.total(s), generic = family_total(r, "generic", s);
-        md << "| " << s << " | " << t.cases << " | " << t.cases_mismatched << " | "
+        md << "| " << s << " | " << precision_of(t) << " | " << t.cases << " | "
+           << t.cases_mismatched << " | "
            << (t.bounded_roots || t.uncertain ? num(t.uncertain) : "-") << " | "
            << (t.bounded_roots ? num(t.bound_violations) + " of " + num(t.bounded_roots) : "-")
            << " | " << fmt_ulps(t.t_max) << " | " << fmt(t.t_error.quantile(0.99)) << " | "
@@ -186,6 +227,7 @@ std::string markdown(const Report& r) {
            << fmt_ulps(row.p_max) << " | " << fmt(row.ns.median()) << " |\n";
     }
 
+    write_float_beside_double(md, r);
     write_rungs(md, r);
 
     md << "\n## Error against difficulty\n\n";
@@ -239,16 +281,18 @@ bool write_plots(const Report& r, const std::string& dir) {
                 << 1 + t.t_error.quantile(0.99) << "\n";
         }
         jsonl::write_file(dir + "/pareto.dat", dat.str());
-        both_terminals("pareto", "set title 'run time against error (every family)'\nset xlabel "
-                                 "'ns per solve, median, generic cases'\n"
-                                 "set ylabel '1 + t error in ulps'\nset logscale y\nset grid\nset "
-                                 "key outside bottom center horizontal\n"
-                                 "set offsets graph 0.15, graph 0.15, graph 0.1, graph 0.1\n"
-                                 "plot '" +
-                                     dir +
-                                     "/pareto.dat' using 2:3:1 with labels offset 0,1 notitle, "
-                                     "'' using 2:3 with points pt 7 ps 1.5 title 'max', '' using "
-                                     "2:4 with points pt 5 ps 1.5 title 'p99'\n");
+        both_terminals(
+            "pareto", "set title 'run time against error (every family)'\nset xlabel "
+                      "'ns per solve, median, generic cases'\n"
+                      "set ylabel '1 + t error in ulps of its precision (the *32 solvers: float)'\n"
+                      "set logscale y\nset grid\nset "
+                      "key outside bottom center horizontal\n"
+                      "set offsets graph 0.15, graph 0.15, graph 0.1, graph 0.1\n"
+                      "plot '" +
+                          dir +
+                          "/pareto.dat' using 2:3:1 with labels offset 0,1 notitle, "
+                          "'' using 2:3 with points pt 7 ps 1.5 title 'max', '' using "
+                          "2:4 with points pt 5 ps 1.5 title 'p99'\n");
     }
     // Error against difficulty, one figure per family, one curve per solver.
     std::map<std::string, std::vector<std::string>> families;

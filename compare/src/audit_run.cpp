@@ -342,7 +342,7 @@ Report grade_results(const Options& o) {
 
     for (std::size_t i = 0; i < cases.size(); ++i) {
         const Case& c = cases[i];
-        Result oracle = exact::intersect(c.shape, c.line);
+        Result oracle = exact::intersect(c.shape, c.line, {}, c.precision);
         std::string family = c.family.empty() ? "cases" : c.family;
         for (const auto& [solver, by_case] : answers) {
             Row& row = rep.rows[{family, shape_name(c.shape), solver}];
@@ -378,7 +378,7 @@ void for_each_case(const Options& o, const std::function<void(const Case&)>& f) 
     for (const Group& grp : groups_of(o))
         for (std::uint64_t i = 0; i < o.cases_per_group; ++i, ++g)
             if (g % std::uint64_t(o.shards) == std::uint64_t(o.shard))
-                f(make_case(grp.family, grp.shape, grp.range, o.seed, i, o.frames));
+                f(make_case(grp.family, grp.shape, grp.range, o.seed, i, o.frames, o.precision));
 }
 
 Report run(const Options& o) {
@@ -402,49 +402,58 @@ Report run(const Options& o) {
     saver.begin(rep);
     StopOnSignal stop;
 
-    Progress progress(groups.size() * o.cases_per_group / std::uint64_t(o.shards));
+    // Each solver answers the family's cases posed in its own precision: the double solvers (and
+    // batch) binary64 cases, the float solvers binary32 cases, each graded in its own ulps.
+    std::vector<const Solver*> by_precision[2];
+    for (const Solver* s : solvers)
+        by_precision[s->precision == Precision::binary32].push_back(s);
+    std::uint64_t passes = (by_precision[0].empty() && !batch ? 0 : 1) + !by_precision[1].empty();
+    Progress progress(passes * groups.size() * o.cases_per_group / std::uint64_t(o.shards));
     constexpr std::uint64_t chunk = 256;
     std::vector<Case> cases;
     std::vector<Result> oracle, got;
     std::uint64_t g_base = 0;
     for (const Group& grp : groups) {
         std::string family = family_name(grp.family), shape = shape_name_at(grp.shape);
-        for (std::uint64_t begin = 0; begin < o.cases_per_group && !stop_requested;
-             begin += chunk) {
-            std::uint64_t end = std::min(o.cases_per_group, begin + chunk);
-            cases.clear();
-            for (std::uint64_t i = begin; i < end; ++i)
-                if ((g_base + i) % std::uint64_t(o.shards) == std::uint64_t(o.shard))
-                    cases.push_back(
-                        make_case(grp.family, grp.shape, grp.range, o.seed, i, o.frames));
-            if (cases.empty()) continue;
-            oracle.resize(cases.size());
-            got.resize(cases.size());
-            for (std::size_t i = 0; i < cases.size(); ++i)
-                oracle[i] = exact::intersect(cases[i].shape, cases[i].line);
-            for (const Solver* s : solvers) {
-                std::string name(s->name);
-                Row& row = rep.rows[{family, shape, name}];
-                auto t0 = std::chrono::steady_clock::now();
+        for (std::uint64_t begin = 0; begin < o.cases_per_group && !stop_requested; begin += chunk)
+            for (Precision precision : {Precision::binary64, Precision::binary32}) {
+                bool single = precision == Precision::binary32;
+                bool with_batch = batch && !single;
+                if (by_precision[single].empty() && !with_batch) continue;
+                std::uint64_t end = std::min(o.cases_per_group, begin + chunk);
+                cases.clear();
+                for (std::uint64_t i = begin; i < end; ++i)
+                    if ((g_base + i) % std::uint64_t(o.shards) == std::uint64_t(o.shard))
+                        cases.push_back(make_case(grp.family, grp.shape, grp.range, o.seed, i,
+                                                  o.frames, precision));
+                if (cases.empty()) continue;
+                oracle.resize(cases.size());
+                got.resize(cases.size());
                 for (std::size_t i = 0; i < cases.size(); ++i)
-                    got[i] = (*s)(cases[i].shape, cases[i].line);
-                auto t1 = std::chrono::steady_clock::now();
-                row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
-                           double(cases.size()));
-                auto& curve = rep.curves[{family, name}];
-                for (std::size_t i = 0; i < cases.size(); ++i)
-                    grade(cases[i], name, got[i], oracle[i], row, &curve[cases[i].k]);
+                    oracle[i] = exact::intersect(cases[i].shape, cases[i].line, {}, precision);
+                for (const Solver* s : by_precision[single]) {
+                    std::string name(s->name);
+                    Row& row = rep.rows[{family, shape, name}];
+                    auto t0 = std::chrono::steady_clock::now();
+                    for (std::size_t i = 0; i < cases.size(); ++i)
+                        got[i] = (*s)(cases[i].shape, cases[i].line);
+                    auto t1 = std::chrono::steady_clock::now();
+                    row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
+                               double(cases.size()));
+                    auto& curve = rep.curves[{family, name}];
+                    for (std::size_t i = 0; i < cases.size(); ++i)
+                        grade(cases[i], name, got[i], oracle[i], row, &curve[cases[i].k]);
+                }
+                if (with_batch) {
+                    Row& row = rep.rows[{family, shape, batch_name}];
+                    row.ns.add(run_batch(cases, got));
+                    auto& curve = rep.curves[{family, batch_name}];
+                    for (std::size_t i = 0; i < cases.size(); ++i)
+                        grade(cases[i], batch_name, got[i], oracle[i], row, &curve[cases[i].k]);
+                }
+                progress.advance(cases.size());
+                saver.maybe_save(rep, start);
             }
-            if (batch) {
-                Row& row = rep.rows[{family, shape, batch_name}];
-                row.ns.add(run_batch(cases, got));
-                auto& curve = rep.curves[{family, batch_name}];
-                for (std::size_t i = 0; i < cases.size(); ++i)
-                    grade(cases[i], batch_name, got[i], oracle[i], row, &curve[cases[i].k]);
-            }
-            progress.advance(cases.size());
-            saver.maybe_save(rep, start);
-        }
         g_base += o.cases_per_group;
         if (stop_requested) break;
     }

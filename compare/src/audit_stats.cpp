@@ -12,9 +12,19 @@
 
 namespace linequad::audit {
 
-std::uint64_t ulps_between(double a, double b) {
+std::uint64_t ulps_between(double a, double b, Precision p) {
     if (std::isnan(a) || std::isnan(b)) return std::numeric_limits<std::uint64_t>::max();
-    return detail::Binary64::ulps_between(a, b);
+    if (p == Precision::binary64) return detail::Binary64::ulps_between(a, b);
+    // A float answer that is not a float is at least an ulp off, however near a float it is.
+    std::uint64_t u = detail::Binary32::ulps_between(a, b);
+    bool floats = detail::Binary32::holds(a) && detail::Binary32::holds(b);
+    return floats || u > 0 ? u : 1;
+}
+
+double half_ulp_of(double x, Precision p) {
+    if (!std::isfinite(x)) return 0;
+    if (p == Precision::binary32) return detail::Binary32::half_ulp(double(float(x)));
+    return 0.5 * (std::nextafter(std::fabs(x), INFINITY) - std::fabs(x));
 }
 
 int Histogram::bucket(std::uint64_t u) {
@@ -102,18 +112,18 @@ bool finite_result(const Result& r) {
         if (!std::isfinite(r.hits[i].t) || !is_finite(r.hits[i].p)) return false;
     return !r.on_surface || (!std::isnan(r.s0) && !std::isnan(r.s1));
 }
-// A point's error in ulps of its natural scale, the largest of |p|, |L0| and |t v| (it is
-// computed as L0 + t v): a coordinate that cancels to nearly zero would otherwise report an
-// enormous relative error that says nothing about the hit.
-std::uint64_t point_ulps(Vec3 got, Vec3 want, const Line& l, double t) {
+// A point's error in ulps (of the case's format) of its natural scale, the largest of |p|, |L0|
+// and |t v| (it is computed as L0 + t v): a coordinate that cancels to nearly zero would
+// otherwise report an enormous relative error that says nothing about the hit.
+std::uint64_t point_ulps(Vec3 got, Vec3 want, const Line& l, double t, Precision p) {
     double scale = std::max({max_abs(want), max_abs(l.L0), std::fabs(t) * max_abs(l.v)});
     if (got == want) return 0; // equal infinities included
     double err = max_abs(got - want);
     if (err == 0) return 0;
     if (!std::isfinite(err)) return std::numeric_limits<std::uint64_t>::max();
     if (!std::isfinite(scale)) return std::numeric_limits<std::uint64_t>::max();
-    double ulp = scale == 0 ? std::numeric_limits<double>::denorm_min()
-                            : std::nextafter(scale, INFINITY) - scale;
+    double ulp = 2 * half_ulp_of(scale, p);
+    if (ulp == 0) ulp = p == Precision::binary32 ? 0x1p-149 : 0x1p-1074;
     double u = std::ceil(err / ulp);
     return u >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(u);
 }
@@ -121,6 +131,7 @@ std::uint64_t point_ulps(Vec3 got, Vec3 want, const Line& l, double t) {
 
 void Row::merge(const Row& o) {
     cases += o.cases, graded_roots += o.graded_roots, graded_coords += o.graded_coords;
+    binary32_cases += o.binary32_cases;
     for (int m = 0; m < mismatch_kinds; ++m)
         mismatches[m] += o.mismatches[m];
     cases_mismatched += o.cases_mismatched;
@@ -142,6 +153,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
            Row& row, CurvePoint* curve, bool points) {
     bool flags[mismatch_kinds] = {};
     ++row.cases;
+    row.binary32_cases += c.precision == Precision::binary32;
     if (got.ok() && got.rung != Rung::none) ++row.rungs[std::size_t(got.rung)];
     std::uint64_t case_max = 0;
     if (!oracle.ok() || !got.ok()) {
@@ -175,9 +187,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
             auto check_bound = [&](const Hit& h, double o) {
                 if (std::isnan(h.bound)) return;
                 ++row.bounded_roots;
-                double half_ulp =
-                    std::isfinite(o) ? 0.5 * (std::nextafter(std::fabs(o), INFINITY) - std::fabs(o))
-                                     : 0;
+                double half_ulp = half_ulp_of(o, c.precision);
                 double err = std::fabs(h.t - o);
                 if (!(err <= h.bound + half_ulp)) ++row.bound_violations;
                 if (h.bound < half_ulp) ++row.bound_below_half_ulp;
@@ -187,7 +197,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
                                       : UINT64_MAX);
             };
             auto add_t = [&](double g, double o) {
-                std::uint64_t u = ulps_between(g, o);
+                std::uint64_t u = ulps_between(g, o, c.precision);
                 row.t_error.add(u);
                 if (curve) curve->t_error.add(u);
                 row.t_max = std::max(row.t_max, u);
@@ -204,8 +214,8 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
                 add_t(got.hits[i].t, oracle.hits[i].t);
                 check_bound(got.hits[i], oracle.hits[i].t);
                 if (!points) continue;
-                std::uint64_t u =
-                    point_ulps(got.hits[i].p, oracle.hits[i].p, c.line, oracle.hits[i].t);
+                std::uint64_t u = point_ulps(got.hits[i].p, oracle.hits[i].p, c.line,
+                                             oracle.hits[i].t, c.precision);
                 row.p_error.add(u);
                 row.p_max = std::max(row.p_max, u);
                 ++row.graded_coords;

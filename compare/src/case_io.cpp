@@ -79,8 +79,8 @@ struct Reader {
 };
 
 // Fields every case may have, whatever its shape.
-const char* const common_fields[] = {"id", "shape",  "L0",   "v",      "range", "t0",
-                                     "t1", "finite", "caps", "family", "k",     "note"};
+const char* const common_fields[] = {"id",     "shape", "L0",     "v", "range", "t0",       "t1",
+                                     "finite", "caps",  "family", "k", "note",  "precision"};
 
 // Options some shapes take.
 template <class S>
@@ -186,6 +186,30 @@ bool read_part(const Json& v, Part* out) {
     return false;
 }
 
+// A binary32 case's numbers must each be a float (NaN and the infinities are: the solvers then
+// name them); the first that is not is named, with its value.
+bool float_or_refuse(Reader& r, const char* field, double x) {
+    if (std::isnan(x) || detail::Binary32::holds(x)) return true;
+    return r.fail(field, "not a binary32 value (the case's precision is binary32): " + hex(x));
+}
+bool float_or_refuse(Reader& r, const char* field, Vec3 p) {
+    return float_or_refuse(r, field, p.x) && float_or_refuse(r, field, p.y) &&
+           float_or_refuse(r, field, p.z);
+}
+bool all_binary32(Reader& r, const Case& c) {
+    if (!float_or_refuse(r, "L0", c.line.L0) || !float_or_refuse(r, "v", c.line.v) ||
+        !float_or_refuse(r, "t0", c.line.range.t0) || !float_or_refuse(r, "t1", c.line.range.t1))
+        return false;
+    return std::visit(
+        [&](const auto& s) {
+            bool ok = true;
+            detail::for_each_field<std::decay_t<decltype(s)>>(
+                [&](const auto& f) { ok = ok && float_or_refuse(r, f.name, s.*f.member); });
+            return ok;
+        },
+        c.shape);
+}
+
 // Parses a line that must be a JSON object; says why not.
 bool parse_object(std::string_view line, Json* obj, std::string* why) {
     std::string err;
@@ -227,8 +251,17 @@ bool parse_case(std::string_view line, Case* c, std::string* why) {
             return r.fail("k", "expected an integer from -1000000 to 1000000");
         c->k = int(x);
     }
-    return with_shape_type(
+    if (const Json* p = r.find("precision")) {
+        std::string_view name = p->is_string() ? p->get_ref<const std::string&>() : "";
+        if (name == "binary32")
+            c->precision = Precision::binary32;
+        else if (name != "binary64")
+            return r.fail("precision", "expected binary64 or binary32");
+    }
+    bool shape_ok = with_shape_type(
         kind, [&](auto tag) { return read_shape<typename decltype(tag)::type>(r, &c->shape); });
+    if (!shape_ok) return false;
+    return c->precision == Precision::binary64 || all_binary32(r, *c);
 }
 
 std::string format_case(const Case& c) {
@@ -256,6 +289,7 @@ std::string format_case(const Case& c) {
     out += options;
     if (!c.family.empty()) out += ",\"family\":" + json_string(c.family);
     if (!c.family.empty() || c.k != 0) out += ",\"k\":" + std::to_string(c.k);
+    if (c.precision == Precision::binary32) out += ",\"precision\":\"binary32\"";
     out += "}";
     return out;
 }
@@ -321,7 +355,7 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
         // The code names the kind of refusal. One that no solver of linequad's gives stands as
         // out_of_range, a refusal the oracle never makes: it is graded as refused.
         pr->result.error_code = ErrorCode::out_of_range;
-        for (int c = int(ErrorCode::not_a_number); c <= int(ErrorCode::bad_option); ++c)
+        for (int c = int(ErrorCode::not_a_number); c <= int(ErrorCode::not_binary32); ++c)
             if (pr->error_code == code_name(ErrorCode(c))) pr->result.error_code = ErrorCode(c);
         pr->result.error_field = "";
         return true;

@@ -374,18 +374,19 @@ Case degenerate_frame(Rng& r, int k, Frames frames) {
 }
 
 template <class S>
-Case scale(Rng& r, int k, Frames frames) {
+Case scale(Rng& r, int k, Frames frames, Precision p) {
     Frame f = frame_for<S>(r, false, frames);
     int exponent = r.coin() ? k : -k;
     double s = std::ldexp(1.0, exponent);
     Line l = generic_line(r, f);
     // Half of the cases: the whole scene scaled by 2^+-k (exact). The other half: a unit
-    // shape moved up to 2^50 from the origin, the line's origin with it.
+    // shape moved up to 2^50 from the origin (2^24 in float, where its size is then an ulp), the
+    // line's origin with it.
     if (r.coin()) {
         f.O = s * f.O, f.a = s * f.a, f.b = s * f.b, f.c = s * f.c;
         l = {s * l.L0, s * l.v};
     } else {
-        Vec3 far = std::ldexp(1.0, std::min(k, 50)) * r.vec(1);
+        Vec3 far = std::ldexp(1.0, std::min(k, p == Precision::binary32 ? 24 : 50)) * r.vec(1);
         f.O = f.O + far;
         l.L0 = l.L0 + far;
     }
@@ -462,16 +463,18 @@ std::pair<double, double> quarter(Rng& r) {
     return {c[q], c[(q + 3) % 4]};
 }
 
-// x moved by k ulps, up or down (0 by k ulps of 1).
-double ulps_moved(double x, int k, bool up) {
-    if (x == 0) return (up ? k : -k) * 0x1p-52;
+// x moved by k ulps of its format, up or down (0 by k ulps of 1).
+double ulps_moved(double x, int k, bool up, Precision p) {
+    bool single = p == Precision::binary32;
+    if (x == 0) return (up ? k : -k) * (single ? 0x1p-23 : 0x1p-52);
     for (int i = 0; i < k; ++i)
-        x = std::nextafter(x, up ? INFINITY : -INFINITY);
+        x = single ? std::nextafter(float(x), up ? INFINITY : -INFINITY)
+                   : std::nextafter(x, up ? INFINITY : -INFINITY);
     return x;
 }
 
 template <class S>
-Case rim(Rng& r, int k, Frames frames) {
+Case rim(Rng& r, int k, Frames frames, Precision p) {
     Frame f = frame_for<S>(r, true, frames);
     Closed kind = closed_kind<S>(r, f);
     double z = end_z(r, kind), rho = radius_at(f, z), mid = radius_at(f, kind.middle);
@@ -492,7 +495,7 @@ Case rim(Rng& r, int k, Frames frames) {
     if (k > 0) { // the largest coordinate moved (at the origin: by k ulps of 1, not subnormals)
         int i = std::fabs(P.x) >= std::fabs(P.y) ? 0 : 1;
         if (std::fabs(P.z) > std::fabs(P[i])) i = 2;
-        double moved = ulps_moved(P[i], k, r.coin());
+        double moved = ulps_moved(P[i], k, r.coin(), p);
         (i == 0 ? P.x : i == 1 ? P.y : P.z) = moved;
     }
     Case c;
@@ -608,8 +611,31 @@ Case two_nappes(Rng& r, int k, Frames frames) {
     return c;
 }
 
+// The family's difficulty for case `index`: 2^-k offsets up to 2^-60 in double, 2^-24 in float
+// (beyond, a float offset is lost in the rounding of the case); the scale family's 2^+-k within
+// each format's range; the rim's k in ulps of the case's own format.
+int difficulty(Family fam, std::uint64_t index, Precision p) {
+    bool single = p == Precision::binary32;
+    int steps = single ? 25 : 61; // k = 0 .. 24 or 0 .. 60
+    switch (fam) {
+    case Family::generic:
+        return 0;
+    case Family::degenerate_frame:
+        return 1 + int(index % std::uint64_t(steps - 1));
+    case Family::scale:
+        return int(index % (single ? 16 : 64)) * 8;
+    case Family::extent_edge:
+        if (index % 3 == 0) return 0;
+        return single ? 14 + int(index % 11) : 40 + int(index % 14);
+    case Family::rim:
+        return int(index % 17);
+    default:
+        return int(index % std::uint64_t(steps));
+    }
+}
+
 template <class S>
-Case make(Family fam, Rng& r, std::uint64_t index, Frames frames) {
+Case make(Family fam, Rng& r, int k, Frames frames, Precision p) {
     switch (fam) {
     case Family::generic: {
         bool integer = r.integer(0, 9) == 0;
@@ -620,29 +646,29 @@ Case make(Family fam, Rng& r, std::uint64_t index, Frames frames) {
         return c;
     }
     case Family::near_tangent:
-        return near_tangent<S>(r, int(index % 61), frames);
+        return near_tangent<S>(r, k, frames);
     case Family::axis_parallel:
-        return axis_parallel<S>(r, int(index % 61), frames);
+        return axis_parallel<S>(r, k, frames);
     case Family::apex:
-        return apex<S>(r, int(index % 61), frames);
+        return apex<S>(r, k, frames);
     case Family::generator:
-        return generator<S>(r, int(index % 61), frames);
+        return generator<S>(r, k, frames);
     case Family::degenerate_frame:
-        return degenerate_frame<S>(r, 1 + int(index % 60), frames);
+        return degenerate_frame<S>(r, k, frames);
     case Family::scale:
-        return scale<S>(r, int(index % 64) * 8, frames);
+        return scale<S>(r, k, frames, p);
     case Family::extent_edge:
-        return extent_edge<S>(r, index % 3 == 0 ? 0 : 40 + int(index % 14), frames);
+        return extent_edge<S>(r, k, frames);
     case Family::rim:
-        return rim<S>(r, int(index % 17), frames);
+        return rim<S>(r, k, frames, p);
     case Family::cap_plane:
-        return cap_plane<S>(r, int(index % 61), frames);
+        return cap_plane<S>(r, k, frames);
     case Family::cap_axis:
-        return cap_axis<S>(r, int(index % 61), frames);
+        return cap_axis<S>(r, k, frames);
     case Family::inside_start:
-        return inside_start<S>(r, int(index % 61), frames);
+        return inside_start<S>(r, k, frames);
     case Family::two_nappes:
-        return two_nappes<S>(r, int(index % 61), frames);
+        return two_nappes<S>(r, k, frames);
     }
     return {};
 }
@@ -683,19 +709,30 @@ bool family_applies(Family f, int shape) {
 }
 
 Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint64_t index,
-               Frames frames) {
+               Frames frames, Precision precision) {
     std::uint64_t key =
         splitmix(seed) ^
         splitmix(std::uint64_t(fam) * 1000003 + std::uint64_t(shape) * 101 + std::uint64_t(range));
     Rng r{std::mt19937_64(splitmix(key ^ splitmix(index)))};
+    int k = difficulty(fam, index, precision);
     Case c = with_shape_type(std::size_t(shape), [&](auto tag) {
-        return make<typename decltype(tag)::type>(fam, r, index, frames);
+        return make<typename decltype(tag)::type>(fam, r, k, frames, precision);
     });
+    c.k = k;
     c.line.range = range;
+    // A binary32 case: every input rounded to the nearest float. The exact constructions (small
+    // integers, dyadics of a few bits) are floats already and stay exact; the rest is a float
+    // case near the double one, which the oracle decides as it is.
+    if (precision == Precision::binary32) {
+        c.shape = rounded_to_binary32(c.shape);
+        c.line = rounded_to_binary32(c.line);
+        c.precision = precision;
+    }
     c.family = family_name(fam);
     c.id = "\"" + std::string(family_name(fam)) + "/" + std::to_string(shape) + "/" +
            range_name(range) + "/" + std::to_string(seed) + "/" + std::to_string(index) +
-           (frames == Frames::any ? "" : std::string("/") + frames_name(frames)) + "\"";
+           (frames == Frames::any ? "" : std::string("/") + frames_name(frames)) +
+           (precision == Precision::binary32 ? "/binary32" : "") + "\"";
     return c;
 }
 

@@ -86,7 +86,8 @@ struct Checker {
                     r);
         require(closed || r.surface_part == Part::lateral, "caps only on a closed shape", name, r);
         require(!(r.on_surface && r.count), "hits or an interval, not both", name, r);
-        bool oracle = name == "exact" || name == "correct"; // infinities are correct roundings
+        // Infinities are correct roundings beyond the format's range.
+        bool oracle = name == "exact" || name == "correct" || name == "correct32";
         for (int i = 0; i < r.count; ++i) {
             const Hit& h = r.hits[i];
             require(oracle ? !std::isnan(h.t) : std::isfinite(h.t), "finite t", name, r);
@@ -107,6 +108,34 @@ struct Checker {
 
 } // namespace
 
+namespace {
+
+// The float solvers on the case rounded to float: correct32 is the oracle's float answer, bit for
+// bit (and the oracles in Mpzf and Gmpq agree on it).
+std::string broken_in_binary32(const Case& given) {
+    Case c = given;
+    c.shape = rounded_to_binary32(c.shape);
+    c.line = rounded_to_binary32(c.line);
+    c.precision = Precision::binary32;
+    Checker k{c, {}};
+    Result oracle = exact::intersect(c.shape, c.line, {}, Precision::binary32);
+    Result gmpq = exact::intersect_gmpq(c.shape, c.line, {}, Precision::binary32);
+    k.require(format_result(c.id, "", gmpq) == format_result(c.id, "", oracle),
+              "Mpzf and Gmpq agree in float", "exact_gmpq", gmpq);
+    for (Query q : {Query{}, Query{Need::nearest, false}}) {
+        Result want = q.need == Need::all
+                          ? oracle
+                          : exact::intersect(c.shape, c.line, q, Precision::binary32);
+        Result got = correct32::intersect(c.shape, c.line, q);
+        k.shape("correct32", got);
+        k.require(same_answer(got, want), "correct32 equals the oracle's float answer bit for bit",
+                  "correct32", got);
+    }
+    return k.broken;
+}
+
+} // namespace
+
 std::string broken_invariant(const Case& c) {
     Checker k{c, {}};
     Result oracle = exact::intersect(c.shape, c.line);
@@ -114,25 +143,29 @@ std::string broken_invariant(const Case& c) {
     Result gmpq = exact::intersect_gmpq(c.shape, c.line);
     k.require(format_result(c.id, "", gmpq) == format_result(c.id, "", oracle),
               "Mpzf and Gmpq agree", "exact_gmpq", gmpq);
+    // A float solver answers the case only when its inputs are floats (it names the first that
+    // is not); its oracle is the float one.
+    Result oracle32 = exact::intersect(c.shape, c.line, {}, Precision::binary32);
     for (const Solver& s : all_solvers()) {
         std::string name(s.name);
         Result r = s(c.shape, c.line);
+        const Result& want = s.precision == Precision::binary32 ? oracle32 : oracle;
         k.shape(name, r);
-        if (!oracle.ok()) {
-            k.require(!r.ok() && r.error_code == oracle.error_code, "same verdict on bad input",
-                      name, r);
+        if (!want.ok()) {
+            k.require(!r.ok() && r.error_code == want.error_code, "same verdict on bad input", name,
+                      r);
         } else if (!r.ok()) {
             k.require(r.error_code == ErrorCode::out_of_range,
                       "refuses only what double cannot hold", name, r);
         } else {
-            if (!oracle.any_hit())
+            if (!want.any_hit())
                 k.require(!r.on_surface, "no invented on-surface interval", name, r);
             if (r.certainty == Certainty::certain) {
-                bool same = r.count == oracle.count && r.on_surface == oracle.on_surface &&
-                            (!r.on_surface || r.surface_part == oracle.surface_part);
+                bool same = r.count == want.count && r.on_surface == want.on_surface &&
+                            (!r.on_surface || r.surface_part == want.surface_part);
                 for (int i = 0; same && i < r.count; ++i)
-                    same = r.hits[i].kind == oracle.hits[i].kind &&
-                           r.hits[i].part == oracle.hits[i].part;
+                    same =
+                        r.hits[i].kind == want.hits[i].kind && r.hits[i].part == want.hits[i].part;
                 k.require(same, "a certain classification is the oracle's", name, r);
             }
         }
@@ -185,6 +218,7 @@ std::string broken_invariant(const Case& c) {
         any_ok = near;
     }
     k.require(any_ok, "correct's hit test is within its bound of the oracle", "correct (any)", any);
+    if (k.broken.empty()) k.broken = broken_in_binary32(c);
     // Five lines through the batch: this one, reversed, doubled, moved, and this one again.
     const Line variants[5] = {c.line,
                               {c.line.L0, -1.0 * c.line.v, c.line.range},

@@ -155,9 +155,8 @@ int run_solve(const SolveArgs& a) {
             }
         }
         for (const Solver* s : solvers)
-            out.line(parsed
-                         ? format_result(c.id, s->name, (*s)(c.shape, c.line, query), query.points)
-                         : format_failure(c.id, s->name, "malformed_case", why));
+            out.line(parsed ? format_result(c.id, s->name, answer(*s, c, query), query.points)
+                            : format_failure(c.id, s->name, "malformed_case", why));
         if (!parsed) {
             ++errors;
             std::fprintf(stderr, "linequad: %s\n", why.c_str());
@@ -172,7 +171,7 @@ int run_solve(const SolveArgs& a) {
 struct CampaignArgs {
     std::string cases = "100000", seed = "1", shard = "0/1", out = "reports/latest";
     std::string cases_file, results_file, max_line_bytes = "1048576", families, solvers;
-    std::string shapes, frames = "any";
+    std::string shapes, frames = "any", precision = "binary64";
     bool no_plots = false, check = false;
 
     audit::Options options() const {
@@ -193,6 +192,7 @@ struct CampaignArgs {
             o.shapes.erase(std::unique(o.shapes.begin(), o.shapes.end()), o.shapes.end());
         }
         parse_frames(frames, &o.frames);
+        o.precision = precision == "binary32" ? Precision::binary32 : Precision::binary64;
         if (!solvers.empty()) o.solvers = split_list(solvers);
         o.out_dir = out;
         o.plots = !no_plots;
@@ -445,6 +445,12 @@ int main_checked(int argc, char** argv) {
     CLI::App* c = app.add_subcommand(
         "cases", "Write a campaign's cases (for your own solver to answer) to standard output.");
     add_campaign_options(c, cases_args);
+    c->add_option("--precision", cases_args.precision,
+                  "the cases' format: binary64, or binary32 (every input a float, answers "
+                  "graded in float ulps; the audit poses them to the float solvers)")
+        ->type_name("binary64|binary32")
+        ->check(CLI::IsMember({"binary64", "binary32"}))
+        ->capture_default_str();
 
     std::vector<std::string> inputs;
     std::string merge_out;

@@ -1,5 +1,6 @@
 // The oracle: each shape's exact form (fast/src/shapes/: derivation and classification) in
-// CGAL::Mpzf, every decision exact; then each output rounded to the nearest double by MPFR.
+// CGAL::Mpzf, every decision exact; then each output rounded to the nearest double, or float for
+// a binary32 answer, by MPFR.
 #include "linequad/exact.hpp"
 
 #include "rounding.hpp"
@@ -72,7 +73,7 @@ SurdRounder& rounder() {
 
 // The on-surface interval's ends are rational: num / den.
 template <class NT>
-Result round_on_surface(const exact_form::Classification<NT>& c) {
+Result round_on_surface(const exact_form::Classification<NT>& c, Precision target) {
     Result r;
     r.on_surface = true;
     r.surface_part = c.surface_part;
@@ -84,22 +85,24 @@ Result round_on_surface(const exact_form::Classification<NT>& c) {
     to_dyadic(D, rd.D());
     if (c.s0.bounded) queue(rd, c.s0.num, NT(c.s0.S), c.s0.den, D);
     if (c.s1.bounded) queue(rd, c.s1.num, NT(c.s1.S), c.s1.den, D);
-    rd.run();
+    rd.run(target);
     r.s0 = c.s0.bounded ? rd.result(0) : -INFINITY;
     r.s1 = c.s1.bounded ? rd.result(c.s0.bounded ? 1 : 0) : INFINITY;
     return r;
 }
 
 template <class NT, class ShapeT>
-Result solve(const ShapeT& shape, const Line& l, Query query) {
+Result solve(const ShapeT& shape, const Line& l, Query query, Precision target) {
     if (Error e = validate(shape, l); !e.ok()) return Result::failure(e);
+    if (target == Precision::binary32)
+        if (Error e = detail::binary32_error(shape, l); !e.ok()) return Result::failure(e);
     // The frame's orientation folds into the extent; the oracle decides it in NT itself.
     using Traits = detail::ShapeTraits<ShapeT>;
     int orientation = Traits::template exact_orientation<NT>(shape);
     exact_form::Classification<NT> c =
         exact_form::classify(Traits::template exact_quadratic<NT>(shape, l, orientation),
                              exact_form::parameter_range<NT>(l.range), query.need);
-    if (c.outcome == exact_form::Outcome::on_surface) return round_on_surface(c);
+    if (c.outcome == exact_form::Outcome::on_surface) return round_on_surface(c, target);
     if (c.outcome != exact_form::Outcome::hits) return Result{}; // exact: never undecided
     bool points = query.points && query.need != Need::any;       // a hit test computes no point
 
@@ -117,7 +120,7 @@ Result solve(const ShapeT& shape, const Line& l, Query query) {
             queue(rd, NT(L0 * rt.Den + v * rt.N), NT(v * S), rt.Den, c.D);
         }
     }
-    rd.run();
+    rd.run(target);
     Result r;
     std::size_t per_root = points ? 4 : 1;
     for (int j = 0; j < c.count; ++j) {
@@ -136,39 +139,45 @@ Result solve(const ShapeT& shape, const Line& l, Query query) {
 } // namespace
 
 template <class S, if_solvable<S>>
-Result intersect(const S& shape, const Line& l, Query q) {
+Result intersect(const S& shape, const Line& l, Query q, Precision p) {
     if constexpr (detail::is_prepared<S>::value)
-        return solve<CGAL::Mpzf>(shape.shape(), l, q);
+        return solve<CGAL::Mpzf>(shape.shape(), l, q, p);
     else
-        return solve<CGAL::Mpzf>(shape, l, q);
+        return solve<CGAL::Mpzf>(shape, l, q, p);
 }
-Result intersect(const Shape& s, const Line& l, Query q) {
-    return std::visit([&](const auto& shape) { return solve<CGAL::Mpzf>(shape, l, q); }, s);
+Result intersect(const Shape& s, const Line& l, Query q, Precision p) {
+    return std::visit([&](const auto& shape) { return solve<CGAL::Mpzf>(shape, l, q, p); }, s);
 }
-Result intersect_gmpq(const Shape& s, const Line& l, Query q) {
-    return std::visit([&](const auto& shape) { return solve<CGAL::Gmpq>(shape, l, q); }, s);
+Result intersect_gmpq(const Shape& s, const Line& l, Query q, Precision p) {
+    return std::visit([&](const auto& shape) { return solve<CGAL::Gmpq>(shape, l, q, p); }, s);
 }
 
 #define LINEQUAD_INSTANTIATE_EXACT(S)                                                              \
-    template Result intersect(const S&, const Line&, Query);                                       \
-    template Result intersect(const Prepared<S>&, const Line&, Query);
+    template Result intersect(const S&, const Line&, Query, Precision);                            \
+    template Result intersect(const Prepared<S>&, const Line&, Query, Precision);
 LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_INSTANTIATE_EXACT)
 
-double round_surd(const char* X, const char* Y, const char* D, const char* Den) {
+double round_surd(const char* X, const char* Y, const char* D, const char* Den, Precision p) {
     CGAL::Gmpq x(X), y(Y), d(D), den(Den);
     SurdRounder& rd = rounder();
     rd.clear();
     to_dyadic(d, rd.D());
     queue(rd, x, y, den, d);
-    rd.run();
+    rd.run(p);
     return rd.result(0);
 }
 
-const Solver& solver() {
+const Solver& solver(Precision p) {
     static const Solver exact_solver = {
         "exact", "exact rational oracle (CGAL kernel over Mpzf), correctly rounded t and points",
         [](const Shape& s, const Line& l, Query q) { return intersect(s, l, q); }};
-    return exact_solver;
+    static const Solver exact_binary32 = {
+        "exact", "exact rational oracle (CGAL kernel over Mpzf), t and points rounded to float",
+        [](const Shape& s, const Line& l, Query q) {
+            return intersect(s, l, q, Precision::binary32);
+        },
+        Precision::binary32};
+    return p == Precision::binary32 ? exact_binary32 : exact_solver;
 }
 
 } // namespace linequad::exact

@@ -69,9 +69,11 @@ void SurdRounder::add_same_sign(Mag& r, const Mag& a, const Mag& b) {
     mpfr_add(r.hi, a.hi, b.hi, MPFR_RNDU);
 }
 
-// Encloses the value at the current precision; true when both ends round to one double (then
-// so does the value between them: rounding to nearest is monotonic). mpfr_get_d rounds
-// correctly over the whole double range, subnormals and overflow to infinity included.
+// Encloses the value at the current precision; true when both ends round to one double (or
+// float; then so does the value between them: rounding to nearest is monotonic). mpfr_get_d and
+// mpfr_get_flt round correctly over their format's whole range, subnormals and overflow to
+// infinity included, each straight from the enclosure (a float is never the rounding of a
+// rounded double).
 bool SurdRounder::try_round(Value& v) {
     switch (v.form) {
     case Form::rational:
@@ -102,13 +104,18 @@ bool SurdRounder::try_round(Value& v) {
         v.out = 0.0;
         return true;
     }
-    double lo = mpfr_get_d(t1_.lo, MPFR_RNDN), hi = mpfr_get_d(t1_.hi, MPFR_RNDN);
+    auto get = [&](mpfr_srcptr x) -> double {
+        return target_ == Precision::binary32 ? mpfr_get_flt(x, MPFR_RNDN)
+                                              : mpfr_get_d(x, MPFR_RNDN);
+    };
+    double lo = get(t1_.lo), hi = get(t1_.hi);
     if (lo != hi) return false;
     v.out = t1_.sign > 0 ? lo : -lo;
     return true;
 }
 
-void SurdRounder::run() {
+void SurdRounder::run(Precision target) {
+    target_ = target;
     RoundingStats& stats = rounding_stats();
     if (prec_ != first_precision) set_precision(first_precision);
     std::size_t left = used_;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "linequad/result.hpp"
+#include "linequad/shapes.hpp"
 
 #include <gmp.h>
 #include <mpfr.h>
@@ -49,7 +50,7 @@ class SurdRounder {
     void clear() { used_ = 0; }
     Value& next(); // a slot to fill, in order; its index is size() - 1
     std::size_t size() const { return used_; }
-    void run();
+    void run(Precision target = Precision::binary64); // rounds every value to target
     double result(std::size_t i) const { return values_[i].out; }
 
   private:
@@ -74,6 +75,7 @@ class SurdRounder {
     std::size_t used_ = 0;
     Mag sqrtD_, t1_, t2_, t3_, t4_;
     mpfr_prec_t prec_ = 0;
+    Precision target_ = Precision::binary64;
 };
 
 } // namespace linequad::exact

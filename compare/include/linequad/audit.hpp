@@ -18,8 +18,11 @@
 
 namespace linequad::audit {
 
-// Distance in representable doubles: 0 when equal; saturates for NaN and opposite infinities.
-std::uint64_t ulps_between(double a, double b);
+// Distance in representable doubles (or floats: a value that is not a float is at least 1 off);
+// 0 when equal; saturates for NaN.
+std::uint64_t ulps_between(double a, double b, Precision p = Precision::binary64);
+// Half the spacing of the format's values at x (0 for infinities).
+double half_ulp_of(double x, Precision p);
 
 // Error histogram: exact buckets for 0..16 ulps, then quarter octaves up to 2^64.
 struct Histogram {
@@ -63,6 +66,9 @@ struct Worst {
 
 struct Row {
     std::uint64_t cases = 0, graded_roots = 0, graded_coords = 0;
+    // Cases posed in binary32 (their answers graded in float ulps): all of a float solver's, none
+    // of a double solver's in a campaign.
+    std::uint64_t binary32_cases = 0;
     std::array<std::uint64_t, mismatch_kinds> mismatches{};
     std::uint64_t cases_mismatched = 0;
     Histogram t_error, p_error;
@@ -151,8 +157,9 @@ struct Report {
 // the difference; empty when it can.
 std::string unmergeable(const Report& a, const Report& b);
 
-// Grades one solver result against the oracle's for one case, into a row and a curve point.
-// points: whether the solver's result carries hit points to grade.
+// Grades one solver result against the oracle's for one case, into a row and a curve point,
+// in ulps of the case's precision (the oracle's answer rounded to it). points: whether the
+// solver's result carries hit points to grade.
 void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
            Row& row, CurvePoint* curve, bool points = true);
 
@@ -165,6 +172,9 @@ struct Options {
     std::vector<Family> families; // empty: all
     std::vector<int> shapes;      // indices in linequad::Shape; empty: all
     Frames frames = Frames::any;
+    // The cases' precision for for_each_case (the cases command); a campaign poses each family's
+    // cases in each solver's own precision.
+    Precision precision = Precision::binary64;
     std::vector<std::string> solvers; // empty: every fast solver, and batch
     int shard = 0, shards = 1;
     std::string out_dir;                  // reports/<run>; empty: nothing written

@@ -48,8 +48,11 @@ int shape_named(std::string_view name);
 bool family_applies(Family f, int shape);
 
 // shape: its index in linequad::Shape (0 cylinder, 1 elliptic_cylinder, 2 elliptic_cone,
-// 3 frustum). The case's id names all of it, and the frames unless they are any.
+// 3 frustum). The case's id names all of it, the frames unless they are any, and the precision
+// when it is binary32. A binary32 case has every input a float: the family's construction with
+// its offsets in float's reach (2^-k for k up to 24, the scale family within float's range, the
+// rim's ulps of float), rounded to float.
 Case make_case(Family f, int shape, Range range, std::uint64_t seed, std::uint64_t index,
-               Frames frames = Frames::any);
+               Frames frames = Frames::any, Precision precision = Precision::binary64);
 
 } // namespace linequad

@@ -61,6 +61,7 @@ enum class ErrorCode : std::uint8_t {
     empty_range,     // t0 > t1, or an end that leaves no real t (t0 = +inf, t1 = -inf)
     out_of_range,    // inputs whose products overflow or underflow double
     bad_option,      // caps on a shape that is not finite; nappes other than 1 or 2
+    not_binary32,    // a float solver given an input that is not a float
 };
 
 struct Error {

@@ -9,6 +9,12 @@
 
 namespace linequad {
 
+// The floating-point format a case is posed in and answered in: binary64 (double), or binary32
+// (float, as renderers and GPUs intersect): every input a float, every answer a float, held in a
+// double exactly. The float solvers (seed32, stable32, correct32) compute or round to float.
+enum class Precision : std::uint8_t { binary64, binary32 };
+const char* precision_name(Precision p); // "binary64", "binary32"
+
 // The usual ranges, as shorthands for an Interval.
 enum class Range : std::uint8_t { line, ray, segment }; // all t; t >= 0; 0 <= t <= 1
 
@@ -96,6 +102,11 @@ struct Frustum {
 // Every shape. The solvers, the case format, the families and the benchmarks take their list
 // of shapes from here (and each shape's derivation from fast/src/shapes/).
 using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum>;
+
+// The same shape and line with every input rounded to the nearest float (to pose a case in
+// binary32; range ends included).
+Shape rounded_to_binary32(const Shape& s);
+Line rounded_to_binary32(const Line& l);
 
 // "cylinder", "elliptic_cylinder", "elliptic_cone", "frustum".
 const char* shape_name(const Shape& s);

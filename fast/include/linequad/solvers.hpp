@@ -69,15 +69,27 @@ Result intersect(const S& shape, const Line& line, Query query = {});
 Result intersect(const Shape& shape, const Line& line, Query query = {});
 } // namespace correct
 
+// The float solvers: inputs must be floats (ErrorCode::not_binary32 names the first that is not),
+// and every t, point and interval end of the answer is a float, held in a double.
+namespace correct32 {
+// The exact classification, with t and points correctly rounded to float (ties to even,
+// subnormals and overflow as IEEE rounds them): the oracle's float answer, bit for bit.
+template <class S, if_solvable<S> = 0>
+Result intersect(const S& shape, const Line& line, Query query = {});
+Result intersect(const Shape& shape, const Line& line, Query query = {});
+} // namespace correct32
+
 struct Solver {
     std::string_view name;
     std::string_view summary;
     Result (*solve)(const Shape&, const Line&, Query);
+    // What it answers in: a binary32 solver takes float inputs only, and is graded in floats.
+    Precision precision = Precision::binary64;
 
     Result operator()(const Shape& s, const Line& l, Query q = {}) const { return solve(s, l, q); }
 };
 
-// seed, stable, certified and correct, in that order.
+// seed, stable, certified and correct, then the float solvers, in that order.
 const std::vector<Solver>& fast_solvers();
 
 struct BuildInfo {

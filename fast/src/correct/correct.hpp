@@ -14,9 +14,16 @@
 //  3. exact: the same template in BigFloat (exact dyadic arithmetic, no GMP), every sign exact,
 //     and each output rounded by deciding, exactly, on which side of the midpoints between
 //     neighbouring doubles it lies.
-// Result::rung says which rung answered. A closed shape (caps on) starts at the double-double
-// rung: the Newton rung's proof covers the lateral roots only; so does a frustum, whose quadratic
-// has no Newton form (shapes/frustum.hpp).
+// Result::rung says which rung answered.
+//
+// correct32 is the same ladder with a float target (Binary32): the inputs are floats, so every
+// quantity above is as exact as for doubles, and only the rounding changes: each output is
+// rounded to float directly from its enclosure or exactly (never through the nearest double,
+// which would round twice). Its first rung evaluates g in double from the quick line form (the
+// hit test's), whose enclosure is loose for a double but some 2^29 times tighter than a float's
+// rounding cell; the precise Newton rung, then the others, follow where it cannot prove. A closed
+// shape (caps on) starts at the double-double rung: the Newton rung's proof covers the lateral
+// roots only; so does a frustum, whose quadratic has no Newton form (shapes/frustum.hpp).
 #pragma once
 
 #include "correct/ladder.hpp"
@@ -27,14 +34,38 @@
 
 namespace linequad::detail {
 
-// Every answer of the ladder is certain, each t within half an ulp; and says which rung gave it.
-inline void mark_certain(Result& r, Rung rung) {
+// Every answer of the ladder is certain, each t within half an ulp of Target; and says which rung
+// gave it.
+template <class Target>
+void mark_certain(Result& r, Rung rung) {
     r.certainty = Certainty::certain;
     r.rung = rung;
     for (int i = 0; i < r.count; ++i) {
         r.hits[i].certain = true;
-        r.hits[i].bound = Binary64::half_ulp(r.hits[i].t);
+        r.hits[i].bound = Target::half_ulp(r.hits[i].t);
     }
+}
+
+// A hit test's t is its enclosure's midpoint, not rounded; for a float answer it is rounded to
+// the nearest float once, and the bound grows by what that moved it.
+inline void hit_test_in(Result&, Binary64) {}
+inline void hit_test_in(Result& r, Binary32) {
+    for (int i = 0; i < r.count; ++i) {
+        Hit& h = r.hits[i];
+        double t = float(h.t);
+        h.bound = (h.bound + std::fabs(t - h.t)) * Binary64::cover(4);
+        h.t = t;
+    }
+}
+
+// The first input that is not a float, for a float target.
+template <class Src>
+Error target_error(const Src&, const Line&, Binary64) {
+    return {};
+}
+template <class Src>
+Error target_error(const Src& src, const Line& l, Binary32) {
+    return binary32_error(src.shape, l);
 }
 
 // Sizes of scene and direction at which no quantity the Newton rung forms (products of at most
@@ -47,11 +78,13 @@ inline bool moderate(double extent, const Line& l) {
     return in_moderate_range(extent) && in_moderate_range(max_abs(l.v));
 }
 
-struct Correct {
+template <class Target>
+struct CorrectTo {
     template <class Src>
     static Result solve(const Src& src, const Line& l, Query q) {
         Validity valid = check(src, l);
         if (!valid.error.ok()) return Result::failure(valid.error);
+        if (Error e = target_error(src, l, Target{}); !e.ok()) return Result::failure(e);
         double extent = scene_extent(src, l);
         if (q.need == Need::any) q.points = false; // a hit test computes no point
         // The quick rung first, where the scene's products stay in double's normal range.
@@ -63,6 +96,7 @@ struct Correct {
                 if (hit_test_rung(form, Unit{1, 1, l}, r)) {
                     r.certainty = Certainty::certain;
                     r.rung = Rung::newton;
+                    hit_test_in(r, Target{});
                     return r;
                 }
             }
@@ -80,8 +114,8 @@ struct Correct {
         auto newton = [&](const auto& scene, const Unit& unit) {
             if constexpr (Traits::has_line_form) {
                 LineForm form = Traits::line_form(scene, unit.line, orientation);
-                if (newton_rung(form, unit, l, q, r)) {
-                    mark_certain(r, Rung::newton);
+                if (newton_rung<Target>(form, unit, l, q, r)) {
+                    mark_certain<Target>(r, Rung::newton);
                     return true;
                 }
                 r = Result();
@@ -93,20 +127,34 @@ struct Correct {
         // so that tiny or huge scenes are not left to the slower rungs.
         bool as_given = moderate(extent, l);
         bool lateral_only = Traits::has_line_form && !closed(src.shape);
+        if constexpr (std::is_same_v<Target, Binary32> && Traits::has_line_form) {
+            if (lateral_only && as_given) {
+                LineForm form = Traits::quick_line_form(src, l, orientation);
+                if (newton_rung<Target, Residual::quick>(form, Unit{1, 1, l}, l, q, r)) {
+                    mark_certain<Target>(r, Rung::newton);
+                    return r;
+                }
+                r = Result();
+            }
+        }
         if (lateral_only && as_given && newton(src, Unit{1, 1, l})) return r;
         if (std::optional<Unit> u = unit_scale(src, extent, l)) {
             S unit = scaled(src.shape, 1 / u->pos_factor);
             if (lateral_only && !as_given && newton(AsGiven<S>{unit}, *u)) return r;
             auto dd = Traits::template exact_quadratic<BoundedDD>(unit, u->line, orientation);
-            if (double_double_rung(dd, *u, q, r)) {
-                mark_certain(r, Rung::double_double);
+            if (double_double_rung<Target>(dd, *u, q, r)) {
+                mark_certain<Target>(r, Rung::double_double);
                 return r;
             }
         }
-        r = exact_rung(Traits::template exact_quadratic<BigFloat>(src.shape, l, orientation), l, q);
-        mark_certain(r, Rung::exact);
+        r = exact_rung<Target>(
+            Traits::template exact_quadratic<BigFloat>(src.shape, l, orientation), l, q);
+        mark_certain<Target>(r, Rung::exact);
         return r;
     }
 };
+
+using Correct = CorrectTo<Binary64>;
+using Correct32 = CorrectTo<Binary32>;
 
 } // namespace linequad::detail

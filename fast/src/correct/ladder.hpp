@@ -42,7 +42,7 @@ std::optional<Unit> unit_scale(const Src& src, double extent, const Line& l) {
 
 // The double nearest x 2^k (scale = 2^k) when x's bound proves which it is. Inline: every t and
 // every coordinate of every point of the first two rungs passes through it.
-inline std::optional<double> round_proven(const BoundedDD& x, double scale) {
+inline std::optional<double> round_proven(const BoundedDD& x, double scale, Binary64) {
     using F = Binary64;
     if (x.e == 0 && x.hi == 0) return 0.0; // an exact zero is +0
     double hi = x.hi * scale, a = std::fabs(hi);
@@ -59,6 +59,32 @@ inline std::optional<double> round_proven(const BoundedDD& x, double scale) {
     double away = outward + e, toward = e - outward;
     if (away * F::cover(8) < half_away && toward * F::cover(8) < half_toward) return hi;
     return std::nullopt;
+}
+
+// The float nearest x 2^k, held in a double, when x's bound proves which it is: y = hi + lo in
+// double (one rounding more in the bound) and the float nearest y; the exact value must lie
+// inside that float's rounding cell, whose half-width is some 2^29 times a double's, so that the
+// first rung's enclosure nearly always proves it. Never through the nearest double rounded again
+// (that would round twice). Floats outside the normal range (subnormal, zero, beyond 2^127) are
+// left to the exact rung; so is a float that is a power of two when the value lies below it
+// (the cell is half as wide there: tested on the narrower side both ways).
+inline std::optional<double> round_proven(const BoundedDD& x, double scale, Binary32) {
+    using F = Binary64;
+    if (x.e == 0 && x.hi == 0) return 0.0;
+    double y = (x.hi + x.lo) * scale, f = float(y), a = std::fabs(f);
+    if (!(a >= 0x1p-126 && a <= 0x1p+127)) return std::nullopt; // NaN too
+    // y - f is exact (y is near f, whose last bit is far above y's).
+    double e = x.e * scale + F::u * std::fabs(y) + F::subnormal_slack;
+    double half = F::power_of_two_floor(a) * 0x1p-24;
+    if (F::is_power_of_two(a)) half *= 0.5;
+    if ((std::fabs(y - f) + e) * F::cover(8) < half) return f;
+    return std::nullopt;
+}
+
+// The target's value nearest x 2^k, when x's bound proves it.
+template <class Target>
+LINEQUAD_INLINE std::optional<double> round_proven(const BoundedDD& x, double scale) {
+    return round_proven(x, scale, Target{});
 }
 
 } // namespace linequad::detail

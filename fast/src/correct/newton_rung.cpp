@@ -172,45 +172,77 @@ LINEQUAD_INLINE int kept(const LineForm& f, const Unit& unit, const Enclosure& e
     return 1;
 }
 
-// The hit, t and its point correctly rounded in the caller's units; false when a bound does
-// not prove a rounding.
+// The hit, t and its point correctly rounded to Target in the caller's units; false when a bound
+// does not prove a rounding.
+template <class Target>
 LINEQUAD_INLINE bool add_hit(const Enclosure& en, const Unit& unit, const Line& caller, Query q,
                              Result& r) {
-    TwoTerm t = two_sum(en.c, en.x);
-    std::optional<double> rounded = round_proven({t.hi, t.lo, en.e}, unit.t_factor);
-    if (!rounded) return false;
-    Hit& h = r.hits[r.count];
-    h.t = *rounded;
-    h.kind = HitKind::cross;
-    h.part = Part::lateral;
-    h.p = {};
-    if (q.points) {
-        double p[3];
+    if constexpr (std::is_same_v<Target, Binary32>) {
+        // A float's rounding cell is 2^29 times a double's: t = c + x and each coordinate
+        // fma(t, v_k, L0_k) in double, each with one rounding added to its bound, nearly always
+        // prove it.
+        double t = en.c + en.x, e_t = en.e + u * std::fabs(t);
+        std::optional<double> rounded =
+            round_proven<Target>({t, 0, e_t * F::cover(4) + F::denorm_min}, unit.t_factor);
+        if (!rounded) return false;
+        Hit& h = r.hits[r.count];
+        h.t = *rounded, h.kind = HitKind::cross, h.part = Part::lateral, h.p = {};
+        if (q.points) {
+            double p[3];
 #pragma GCC unroll 3
-        for (int k = 0; k < 3; ++k) {
-            // L0_k + t v_k is L0_k exactly when v_k = 0 (an exact zero is +0, as the oracle's).
-            if (caller.v[k] == 0) {
-                p[k] = caller.L0[k] + 0.0;
-                continue;
+            for (int k = 0; k < 3; ++k) {
+                if (caller.v[k] == 0) { // an exact zero is +0, as the oracle's
+                    p[k] = caller.L0[k] + 0.0;
+                    continue;
+                }
+                double v = unit.line.v[k], pk = std::fma(t, v, unit.line.L0[k]);
+                double e =
+                    (std::fabs(v) * e_t + u * std::fabs(pk)) * F::cover(8) + F::underflow_floor;
+                std::optional<double> rk = round_proven<Target>({pk, 0, e}, unit.pos_factor);
+                if (!rk) return false;
+                p[k] = *rk;
             }
-            // L0_k + c v_k + x v_k: the first two exactly (hi + s.lo + cv.lo), the rest rounded
-            // three times: u (2 |x v_k| + |cv.lo| + |lo|) with the rounding of the bound.
-            double v = unit.line.v[k];
-            TwoTerm cv = two_prod(en.c, v), s = two_sum(unit.line.L0[k], cv.hi);
-            double xv = en.x * v, lo = s.lo + (cv.lo + xv);
-            double e =
-                (std::fabs(v) * en.e + u * (2 * std::fabs(xv) + std::fabs(cv.lo) + std::fabs(lo))) *
-                    F::cover(32) +
-                F::underflow_floor;
-            TwoTerm n = two_sum(s.hi, lo);
-            std::optional<double> pk = round_proven({n.hi, n.lo, e}, unit.pos_factor);
-            if (!pk) return false;
-            p[k] = *pk;
+            h.p = {p[0], p[1], p[2]};
         }
-        h.p = {p[0], p[1], p[2]};
+        ++r.count;
+        return true;
+    } else {
+        TwoTerm t = two_sum(en.c, en.x);
+        std::optional<double> rounded = round_proven<Target>({t.hi, t.lo, en.e}, unit.t_factor);
+        if (!rounded) return false;
+        Hit& h = r.hits[r.count];
+        h.t = *rounded;
+        h.kind = HitKind::cross;
+        h.part = Part::lateral;
+        h.p = {};
+        if (q.points) {
+            double p[3];
+#pragma GCC unroll 3
+            for (int k = 0; k < 3; ++k) {
+                // L0_k + t v_k is L0_k exactly when v_k = 0 (an exact zero is +0, as the oracle's).
+                if (caller.v[k] == 0) {
+                    p[k] = caller.L0[k] + 0.0;
+                    continue;
+                }
+                // L0_k + c v_k + x v_k: the first two exactly (hi + s.lo + cv.lo), the rest rounded
+                // three times: u (2 |x v_k| + |cv.lo| + |lo|) with the rounding of the bound.
+                double v = unit.line.v[k];
+                TwoTerm cv = two_prod(en.c, v), s = two_sum(unit.line.L0[k], cv.hi);
+                double xv = en.x * v, lo = s.lo + (cv.lo + xv);
+                double e = (std::fabs(v) * en.e +
+                            u * (2 * std::fabs(xv) + std::fabs(cv.lo) + std::fabs(lo))) *
+                               F::cover(32) +
+                           F::underflow_floor;
+                TwoTerm n = two_sum(s.hi, lo);
+                std::optional<double> pk = round_proven<Target>({n.hi, n.lo, e}, unit.pos_factor);
+                if (!pk) return false;
+                p[k] = *pk;
+            }
+            h.p = {p[0], p[1], p[2]};
+        }
+        ++r.count;
+        return true;
     }
-    ++r.count;
-    return true;
 }
 
 } // namespace
@@ -238,33 +270,6 @@ LINEQUAD_INLINE Estimates estimates(const LineForm& f, const Leading& A) {
     double q = -(B + std::copysign(std::sqrt(D), B));
     return {true, 0, {q / A.A, C0 / q}};
 }
-
-template <int SigmaZ>
-bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
-    Leading A = leading<SigmaZ>(f);
-    if (!(std::fabs(A.A) > A.e)) return false; // nearly parallel to the axis or to a generator
-    Estimates est = estimates<SigmaZ>(f, A);
-    if (!est.real)
-        return no_root_proven(A, est.vertex, [&](double c) { return local_at<SigmaZ>(f, c); });
-    double estimate[2] = {est.root[0], est.root[1]};
-    if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
-    // Both roots at once when both are needed; otherwise the second only if the first is not kept.
-    Local local[2];
-    if (query.need == Need::all) local_at<SigmaZ>(f, estimate, local);
-    for (int i = 0; i < 2; ++i) {
-        if (query.need != Need::all) local[i] = local_at<SigmaZ>(f, estimate[i]);
-        std::optional<Enclosure> en = root_near(local[i], A, estimate[i]);
-        if (!en || en->smaller != (i == 0)) return false;
-        int inside = kept(f, unit, *en);
-        if (inside < 0) return false;
-        if (inside == 0) continue;
-        if (!add_hit(*en, unit, caller, query, r)) return false;
-        if (query.need != Need::all) break; // the smaller root first: also the nearest
-    }
-    return true;
-}
-
-// ---- The hit test ----
 
 // g(c + x) = A x^2 + G' x + G from the quick line form (values a_k, b_k, kappa in double, each
 // within alpha_k, beta_k, e_kappa of U0_k, U1_k, K). With u_k = fma(c, b_k, a_k), one rounding:
@@ -295,6 +300,44 @@ Local quick_local_at(const LineForm& f, double c) {
     return {G, (e_G + 6 * u * S) * F::cover(32) + F::underflow_floor, 2 * Gp,
             2 * (e_Gp + 4 * u * P) * F::cover(32) + F::underflow_floor};
 }
+
+// G in double-double (the precise line form), or in double from the quick line form: enough for
+// a float rounding, which has 29 bits more room.
+template <int SigmaZ, Residual R>
+Local local_near(const LineForm& f, double c) {
+    if constexpr (R == Residual::quick)
+        return quick_local_at<SigmaZ>(f, c);
+    else
+        return local_at<SigmaZ>(f, c);
+}
+
+template <int SigmaZ, class Target, Residual R>
+bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
+    Leading A = leading<SigmaZ>(f);
+    if (!(std::fabs(A.A) > A.e)) return false; // nearly parallel to the axis or to a generator
+    Estimates est = estimates<SigmaZ>(f, A);
+    if (!est.real)
+        return no_root_proven(A, est.vertex, [&](double c) { return local_near<SigmaZ, R>(f, c); });
+    double estimate[2] = {est.root[0], est.root[1]};
+    if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
+    // Both roots at once when both are needed; otherwise the second only if the first is not kept.
+    Local local[2];
+    bool both = R == Residual::double_double && query.need == Need::all;
+    if (both) local_at<SigmaZ>(f, estimate, local);
+    for (int i = 0; i < 2; ++i) {
+        if (!both) local[i] = local_near<SigmaZ, R>(f, estimate[i]);
+        std::optional<Enclosure> en = root_near(local[i], A, estimate[i]);
+        if (!en || en->smaller != (i == 0)) return false;
+        int inside = kept(f, unit, *en);
+        if (inside < 0) return false;
+        if (inside == 0) continue;
+        if (!add_hit<Target>(*en, unit, caller, query, r)) return false;
+        if (query.need != Need::all) break; // the smaller root first: also the nearest
+    }
+    return true;
+}
+
+// ---- The hit test ----
 
 // Any root proven inside the extent and the range is a hit, whichever it is: the first one
 // found is the answer. No hit needs both roots proven outside, or none proven real.
@@ -340,15 +383,23 @@ bool hit_test_rung(const LineForm& f, const Unit& unit, Result& r) {
     }
 }
 
+template <class Target, Residual R>
 bool newton_rung(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
     switch (f.sigma_z) {
     case 1:
-        return solve<1>(f, unit, caller, query, r);
+        return solve<1, Target, R>(f, unit, caller, query, r);
     case 0:
-        return solve<0>(f, unit, caller, query, r);
+        return solve<0, Target, R>(f, unit, caller, query, r);
     default:
-        return solve<-1>(f, unit, caller, query, r);
+        return solve<-1, Target, R>(f, unit, caller, query, r);
     }
 }
+
+template bool newton_rung<Binary64, Residual::double_double>(const LineForm&, const Unit&,
+                                                             const Line&, Query, Result&);
+template bool newton_rung<Binary32, Residual::double_double>(const LineForm&, const Unit&,
+                                                             const Line&, Query, Result&);
+template bool newton_rung<Binary32, Residual::quick>(const LineForm&, const Unit&, const Line&,
+                                                     Query, Result&);
 
 } // namespace linequad::detail

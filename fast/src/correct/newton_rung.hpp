@@ -21,9 +21,15 @@
 
 namespace linequad::detail {
 
-// The answer to `query` in r (hits, t and points correctly rounded, r.count set) when every
-// decision and every rounding is proven; false otherwise, with r to be discarded. `caller` is
-// the line as given, u the scaled scene.
+// How g is evaluated near each estimate: in double-double from the line form (the double
+// target's rung), or in double from the quick line form, whose bounds are some 2^50 wider but
+// still leave a float rounding proven nearly always (correct32's first rung).
+enum class Residual { double_double, quick };
+
+// The answer to `query` in r (hits, t and points correctly rounded to Target, Binary64 or
+// Binary32, r.count set) when every decision and every rounding is proven; false otherwise, with
+// r to be discarded. `caller` is the line as given, u the scaled scene.
+template <class Target, Residual R = Residual::double_double>
 bool newton_rung(const LineForm& f, const Unit& u, const Line& caller, Query query, Result& r);
 
 // The hit test (Need::any) on a quick line form (the shape's quick_line_form: doubles with

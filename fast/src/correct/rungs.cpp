@@ -36,6 +36,7 @@ BoundedDD root_value(const SurdRoot<BoundedDD>& r, const BoundedDD& sqrt_D,
 
 } // namespace
 
+template <class Target>
 bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query query, Result& r) {
     Classification<BoundedDD> c =
         exact_form::classify(q, exact_form::parameter_range<BoundedDD>(u.line.range), query.need);
@@ -55,7 +56,7 @@ bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query 
     BoundedDD sqrt_D = surd ? sqrt(c.D) : BoundedDD();
     for (int i = 0; i < c.count; ++i) {
         BoundedDD t = root_value(c.roots[i], sqrt_D, q);
-        std::optional<double> rounded = round_proven(t, u.t_factor);
+        std::optional<double> rounded = round_proven<Target>(t, u.t_factor);
         if (!rounded) return false;
         Hit& h = r.hits[r.count++];
         h.t = *rounded;
@@ -65,7 +66,7 @@ bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query 
         if (!query.points) continue;
         for (int k = 0; k < 3; ++k) {
             BoundedDD p = BoundedDD(u.line.L0[k]) + BoundedDD(u.line.v[k]) * t;
-            std::optional<double> pk = round_proven(p, u.pos_factor);
+            std::optional<double> pk = round_proven<Target>(p, u.pos_factor);
             if (!pk) return false;
             (k == 0 ? h.p.x : k == 1 ? h.p.y : h.p.z) = *pk;
         }
@@ -73,21 +74,35 @@ bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query 
     return true;
 }
 
+template bool double_double_rung<Binary64>(const LineQuadratic<BoundedDD>&, const Unit&, Query,
+                                           Result&);
+template bool double_double_rung<Binary32>(const LineQuadratic<BoundedDD>&, const Unit&, Query,
+                                           Result&);
+
 // ---- Rung 3: exact ----
 
 namespace {
 
-// Doubles in order, as integers (Binary64::ordinal): adjacent doubles have adjacent keys.
-using Key = Binary64::Ordinal;
-const Key key_max = Binary64::ordinal(dbl_max);
+// The target's values in order, as integers (Format::ordinal): adjacent values have adjacent
+// keys.
+using Key = std::int64_t;
+template <class Target>
+const Key key_max = Target::ordinal(Target::max);
+template <class Target>
+double value_of(Key k) {
+    return double(Target::from_ordinal(typename Target::Ordinal(k)));
+}
 
-// The midpoint between the doubles of keys k and k + 1. Beyond the largest double, the next
-// "double" is 2^1024 (IEEE rounds there to infinity): the midpoint is DBL_MAX + 2^970.
+// The midpoint between the values of keys k and k + 1. Beyond the largest, the next value is
+// 2^(emax + 1) (IEEE rounds there to infinity): the midpoint is max + 2^(emax - precision), half
+// an ulp of max (2^970 for doubles, 2^103 for floats).
+template <class Target>
 BigFloat midpoint_after(Key k) {
-    if (k >= key_max) return BigFloat(dbl_max) + BigFloat::pow2(970);
-    if (k < -key_max) return -(BigFloat(dbl_max) + BigFloat::pow2(970));
-    return (BigFloat(Binary64::from_ordinal(k)) + BigFloat(Binary64::from_ordinal(k + 1)))
-        .scaled(-1);
+    BigFloat beyond = BigFloat(double(Target::max)) +
+                      BigFloat::pow2(Binary64::exponent(double(Target::max)) - Target::precision);
+    if (k >= key_max<Target>) return beyond;
+    if (k < -key_max<Target>) return -beyond;
+    return (BigFloat(value_of<Target>(k)) + BigFloat(value_of<Target>(k + 1))).scaled(-1);
 }
 
 // A first guess at (X + Y sqrt(D)) / Den from the leading bits, without cancellation: a few
@@ -126,8 +141,9 @@ struct Approx {
     }
 };
 
-// (X + Y sqrt(D)) / Den rounded to the nearest double, ties to even; infinite beyond the range,
-// +0 for an exact zero (the oracle's conventions).
+// (X + Y sqrt(D)) / Den rounded to the nearest value of Target (double or float), ties to even;
+// infinite beyond the range, +0 for an exact zero (the oracle's conventions).
+template <class Target>
 class ExactRounder {
   public:
     ExactRounder(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den)
@@ -137,10 +153,10 @@ class ExactRounder {
     double run() const {
         int s = sden_ * exact_form::sign_surd(X_, sy_, Y2D_);
         if (s == 0) return 0.0;
-        Key k = search(Binary64::ordinal(guess()));
-        if (k > key_max) return INFINITY;
-        if (k < -key_max) return -INFINITY;
-        double x = Binary64::from_ordinal(k);
+        Key k = search(Target::ordinal(typename Target::Real(guess())));
+        if (k > key_max<Target>) return INFINITY;
+        if (k < -key_max<Target>) return -INFINITY;
+        double x = value_of<Target>(k);
         return x == 0 ? std::copysign(0.0, s) : x;
     }
 
@@ -151,7 +167,7 @@ class ExactRounder {
 
     // sign(value - midpoint_after(k)): decreasing in k.
     int above_midpoint(Key k) const {
-        BigFloat m = midpoint_after(k);
+        BigFloat m = midpoint_after<Target>(k);
         return sden_ * exact_form::sign_surd(BigFloat(X_ - m * Den_), sy_, Y2D_);
     }
 
@@ -171,7 +187,7 @@ class ExactRounder {
     // The key of the rounded value, from the guess g: the smallest k whose midpoint_after(k) is
     // at or above the value (key_max + 1: +infinity), and the even side of a tie.
     Key search(Key g) const {
-        const Key first = -key_max - 1, last = key_max;
+        const Key first = -key_max<Target> - 1, last = key_max<Target>;
         g = std::clamp(g, first, last);
         Key lo, hi; // above_midpoint(lo) > 0 >= above_midpoint(hi)
         int fhi;
@@ -214,19 +230,26 @@ class ExactRounder {
     // The value is at or below midpoint_after(k) and above midpoint_after(k - 1): double k, or
     // on a tie (exactly at the midpoint) the even one of k and k + 1.
     static Key resolve(Key k, int f) {
-        if (k == -key_max - 1) return k; // below -DBL_MAX's cell: -infinity
+        if (k == -key_max<Target> - 1) return k; // below -max's cell: -infinity
         if (f != 0) return k;
-        if (k == key_max) return k + 1; // the midpoint to 2^1024 rounds to infinity
-        return (Binary64::bits(Binary64::from_ordinal(k)) & 1) == 0 ? k : k + 1;
+        if (k == key_max<Target>) return k + 1; // the midpoint beyond max rounds to infinity
+        auto x = Target::from_ordinal(typename Target::Ordinal(k));
+        return (Target::bits(x) & 1) == 0 ? k : k + 1;
     }
 };
 
-double round_exact(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den) {
-    return ExactRounder(X, Y, D, Den).run();
-}
-
 } // namespace
 
+template <class Target>
+double round_exact(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den) {
+    return ExactRounder<Target>(X, Y, D, Den).run();
+}
+template double round_exact<Binary64>(const BigFloat&, const BigFloat&, const BigFloat&,
+                                      const BigFloat&);
+template double round_exact<Binary32>(const BigFloat&, const BigFloat&, const BigFloat&,
+                                      const BigFloat&);
+
+template <class Target>
 Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) {
     Classification<BigFloat> c =
         exact_form::classify(q, exact_form::parameter_range<BigFloat>(l.range), query.need);
@@ -237,7 +260,7 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) 
         r.on_surface = true;
         r.surface_part = c.surface_part;
         auto end = [&](const exact_form::Fraction<BigFloat>& f) {
-            return round_exact(f.num, BigFloat(f.S), f.S == 0 ? zero : c.D, f.den);
+            return round_exact<Target>(f.num, BigFloat(f.S), f.S == 0 ? zero : c.D, f.den);
         };
         r.s0 = c.s0.bounded ? end(c.s0) : -INFINITY;
         r.s1 = c.s1.bounded ? end(c.s1) : INFINITY;
@@ -249,17 +272,20 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) 
         Hit& h = r.hits[r.count++];
         h.kind = rt.kind;
         h.part = rt.part;
-        h.t = round_exact(rt.N, S, c.D, rt.Den);
+        h.t = round_exact<Target>(rt.N, S, c.D, rt.Den);
         h.p = {};
         if (!query.points) continue;
         // L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den
         for (int k = 0; k < 3; ++k) {
             BigFloat L0(l.L0[k]), v(l.v[k]);
-            double pk = round_exact(L0 * rt.Den + v * rt.N, v * S, c.D, rt.Den);
+            double pk = round_exact<Target>(L0 * rt.Den + v * rt.N, v * S, c.D, rt.Den);
             (k == 0 ? h.p.x : k == 1 ? h.p.y : h.p.z) = pk;
         }
     }
     return r;
 }
+
+template Result exact_rung<Binary64>(const LineQuadratic<BigFloat>&, const Line&, Query);
+template Result exact_rung<Binary32>(const LineQuadratic<BigFloat>&, const Line&, Query);
 
 } // namespace linequad::detail

@@ -10,12 +10,19 @@
 namespace linequad::detail {
 
 // The quadratic of the scaled scene u in bounded double-double: the answer in r (hits, t and
-// points correctly rounded), or false when its bounds do not settle it (r is then left partly
-// written).
+// points correctly rounded to Target, Binary64 or Binary32), or false when its bounds do not
+// settle it (r is then left partly written).
+template <class Target>
 bool double_double_rung(const exact_form::LineQuadratic<BoundedDD>& q, const Unit& u, Query query,
                         Result& r);
 
-// The quadratic of the line as given, exactly: always the answer.
+// (X + Y sqrt(D)) / Den rounded to the nearest value of Target (Binary64 or Binary32, held in a
+// double), ties to even, infinite beyond its range, +0 for an exact zero: decided exactly.
+template <class Target>
+double round_exact(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den);
+
+// The quadratic of the line as given, exactly: always the answer, rounded to Target.
+template <class Target>
 Result exact_rung(const exact_form::LineQuadratic<BigFloat>& q, const Line& l, Query query);
 
 } // namespace linequad::detail

@@ -1,6 +1,7 @@
 // What the arithmetic knows of a floating-point format, once per format: its precision and
 // range, the floors that bounds add for what underflow can hide, and the tricks played on its
-// bits. Binary64 here; binary32 is a second specialisation of the same names.
+// bits. Binary64 is what the solvers compute in; binary32 is what the float solvers compute in
+// and what the correct ladder can round to (a float is held in a double exactly).
 #pragma once
 
 #include <algorithm>
@@ -24,10 +25,35 @@ namespace linequad::detail {
 template <class F>
 struct Format;
 
+// A format's bits as an unsigned integer, and its values in order as signed integers: adjacent
+// values have adjacent ordinals; +0 and -0 share 0.
+template <class R, class B, class O>
+struct FormatBits {
+    using Real = R;
+    using Bits = B;
+    using Ordinal = O;
+    LINEQUAD_INLINE static Bits bits(Real x) {
+        Bits b;
+        std::memcpy(&b, &x, sizeof b);
+        return b;
+    }
+    LINEQUAD_INLINE static Real from_bits(Bits b) {
+        Real x;
+        std::memcpy(&x, &b, sizeof x);
+        return x;
+    }
+    LINEQUAD_INLINE static Ordinal ordinal(Real x) {
+        Ordinal b = Ordinal(bits(x));
+        return b >= 0 ? b : -(b & std::numeric_limits<Ordinal>::max());
+    }
+    LINEQUAD_INLINE static Real from_ordinal(Ordinal k) {
+        Real x = from_bits(Bits(k >= 0 ? k : -k));
+        return k >= 0 ? x : -x;
+    }
+};
+
 template <>
-struct Format<double> {
-    using Bits = std::uint64_t;
-    using Ordinal = std::int64_t;
+struct Format<double> : FormatBits<double, std::uint64_t, std::int64_t> {
 
     static constexpr int precision = 53; // significand bits, the hidden one included
     static constexpr double u = 0x1p-53; // unit roundoff: |fl(x) - x| <= u |x| in the normal range
@@ -52,16 +78,6 @@ struct Format<double> {
     // A product at least this large keeps its exact fma error (no bit of it is subnormal).
     static constexpr double exact_product_min = 0x1p-960;
 
-    LINEQUAD_INLINE static Bits bits(double x) {
-        Bits b;
-        std::memcpy(&b, &x, sizeof b);
-        return b;
-    }
-    LINEQUAD_INLINE static double from_bits(Bits b) {
-        double x;
-        std::memcpy(&x, &b, sizeof x);
-        return x;
-    }
     static constexpr Bits exponent_mask = Bits(0x7ff) << 52;
     static constexpr Bits significand_mask = (Bits(1) << 52) - 1;
 
@@ -91,15 +107,6 @@ struct Format<double> {
         return (from_bits(bits(a) + 1) - a) / 2;
     }
 
-    // Doubles in order as integers: adjacent doubles have adjacent ordinals; +0 and -0 share 0.
-    LINEQUAD_INLINE static Ordinal ordinal(double x) {
-        Ordinal b = Ordinal(bits(x));
-        return b >= 0 ? b : -(b & std::numeric_limits<Ordinal>::max());
-    }
-    LINEQUAD_INLINE static double from_ordinal(Ordinal k) {
-        double x = from_bits(Bits(k >= 0 ? k : -k));
-        return k >= 0 ? x : -x;
-    }
     // The distance in doubles between a and b (0 when equal, +0 and -0 included).
     static std::uint64_t ulps_between(double a, double b) {
         Ordinal x = ordinal(a), y = ordinal(b);
@@ -108,5 +115,59 @@ struct Format<double> {
 };
 
 using Binary64 = Format<double>;
+
+// binary32: what the float solvers compute in (seed32, stable32), and the correct ladder's second
+// rounding target. Its values are passed around in doubles (exactly): the rounding helpers take
+// and return doubles.
+template <>
+struct Format<float> : FormatBits<float, std::uint32_t, std::int32_t> {
+
+    static constexpr int precision = 24;
+    static constexpr float u = 0x1p-24f;
+    static constexpr float denorm_min = 0x1p-149f;
+    static constexpr float max = std::numeric_limits<float>::max();
+    static constexpr float inf = std::numeric_limits<float>::infinity();
+    static constexpr int min_exponent = -126; // of the normal floats
+    static constexpr int max_exponent = 127;
+    // 2^k for |k| up to this is normal: the float solvers' prescaling stays there.
+    static constexpr int moderate_exponent = 100;
+
+    static constexpr Bits exponent_mask = Bits(0xff) << 23;
+    LINEQUAD_INLINE static float pow2(int e) { return from_bits(Bits(e + 127) << 23); }
+    LINEQUAD_INLINE static int exponent(float x) {
+        int biased = int((bits(x) & exponent_mask) >> 23);
+        return biased == 0 ? (x == 0 ? 0 : std::ilogb(x)) : biased - 127;
+    }
+
+    // Whether the double x is a float: finite ones and the infinities (NaN is not asked).
+    LINEQUAD_INLINE static bool holds(double x) { return double(float(x)) == x; }
+
+    // Half the spacing of the floats around the float f (a double holding it), away from zero
+    // and towards it: they differ at a normal power of two, where the spacing below halves.
+    // Subnormal floats (and zero) are 2^-149 apart.
+    // (From the double's bits: these run on the correct ladder's every rounding.)
+    LINEQUAD_INLINE static double half_spacing_away(double f) {
+        double a = std::fabs(f);
+        if (a < 0x1p-126) return 0x1p-150;
+        return Format<double>::power_of_two_floor(a) * 0x1p-24;
+    }
+    LINEQUAD_INLINE static double half_spacing_toward(double f) {
+        double a = std::fabs(f), h = half_spacing_away(f);
+        return a >= 0x1p-125 && Format<double>::is_power_of_two(a) ? 0.5 * h : h;
+    }
+    // Half an ulp of the float f: the distance to the next float away from zero, halved.
+    static double half_ulp(double f) {
+        if (!std::isfinite(f)) return std::numeric_limits<double>::infinity();
+        return half_spacing_away(f);
+    }
+
+    // The distance in floats between two floats (held in doubles).
+    static std::uint64_t ulps_between(double a, double b) {
+        std::int64_t x = ordinal(float(a)), y = ordinal(float(b));
+        return std::uint64_t(x > y ? x - y : y - x);
+    }
+};
+
+using Binary32 = Format<float>;
 
 } // namespace linequad::detail

@@ -44,7 +44,7 @@ constexpr Field<S, T> field(const char* name, T S::*member) {
 }
 
 template <class S, class Visit>
-void for_each_field(Visit&& visit) {
+LINEQUAD_INLINE void for_each_field(Visit&& visit) {
     std::apply([&](const auto&... f) { (visit(f), ...); }, ShapeTraits<S>::fields);
 }
 
@@ -115,6 +115,47 @@ Error check_fields(const S& s) {
             e = {ErrorCode::infinite, f.name};
     });
     return e;
+}
+
+// For a float solver, after the usual checks: the first input that is not a float (the line's
+// L0, v, t0, t1, then the shape's fields in the table's order). The usual case in one pass,
+// without branches: whether any input differs from its nearest float; the field by field search,
+// which names the culprit, only when one does.
+struct Binary32Check {
+    double off = 0; // the sum of |x - float(x)| over finite inputs (the solvers refuse others)
+    LINEQUAD_INLINE void add(double x) { off += std::fabs(x - double(float(x))); }
+    LINEQUAD_INLINE void add(const Vec3& a) { add(a.x), add(a.y), add(a.z); }
+    LINEQUAD_INLINE void add(const Interval& i) {
+        if (i.has_t0()) add(i.t0);
+        if (i.has_t1()) add(i.t1);
+    }
+    LINEQUAD_INLINE bool all_floats() const { return off == 0; }
+};
+inline bool holds_binary32(double x) {
+    return Binary32::holds(x);
+}
+inline bool holds_binary32(Vec3 a) {
+    return Binary32::holds(a.x) && Binary32::holds(a.y) && Binary32::holds(a.z);
+}
+template <class S>
+[[gnu::noinline]] Error binary32_culprit(const S& s, const Line& l) {
+    if (!holds_binary32(l.L0)) return {ErrorCode::not_binary32, "L0"};
+    if (!holds_binary32(l.v)) return {ErrorCode::not_binary32, "v"};
+    if (!holds_binary32(l.range.t0)) return {ErrorCode::not_binary32, "t0"};
+    if (!holds_binary32(l.range.t1)) return {ErrorCode::not_binary32, "t1"};
+    Error e;
+    for_each_field<S>([&](const auto& f) {
+        if (e.ok() && !holds_binary32(s.*f.member)) e = {ErrorCode::not_binary32, f.name};
+    });
+    return e;
+}
+template <class S>
+LINEQUAD_INLINE Error binary32_error(const S& s, const Line& l) {
+    Binary32Check check;
+    check.add(l.L0), check.add(l.v), check.add(l.range);
+    for_each_field<S>([&](const auto& f) { check.add(s.*f.member); });
+    if (check.all_floats()) return {};
+    return binary32_culprit(s, l);
 }
 
 // The line's own checks, before any of the shape's: L0, v (NaN, then infinite), the range's

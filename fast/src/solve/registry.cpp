@@ -17,6 +17,10 @@ const char* range_name(Range r) {
     return "?";
 }
 
+const char* precision_name(Precision p) {
+    return p == Precision::binary32 ? "binary32" : "binary64";
+}
+
 const char* part_name(Part p) {
     switch (p) {
     case Part::lateral:
@@ -51,6 +55,8 @@ const char* code_name(ErrorCode c) {
         return "out_of_range";
     case ErrorCode::bad_option:
         return "bad_option";
+    case ErrorCode::not_binary32:
+        return "not_binary32";
     }
     return "?";
 }
@@ -79,6 +85,8 @@ std::string message(const Error& e) {
     case ErrorCode::bad_option:
         return f == "caps" ? std::string("caps: only a finite shape has end discs to close it")
                            : f + ": not an option this shape takes (nappes is 1 or 2)";
+    case ErrorCode::not_binary32:
+        return f + " is not a binary32 value (a float solver takes float inputs)";
     }
     return "?";
 }
@@ -94,6 +102,10 @@ const std::vector<Solver>& fast_solvers() {
         {"correct",
          "exact classification, correctly rounded t and points: Newton, double-double, exact",
          [](const Shape& s, const Line& l, Query q) { return correct::intersect(s, l, q); }},
+        {"correct32",
+         "correct's exact classification, with t and points correctly rounded to float",
+         [](const Shape& s, const Line& l, Query q) { return correct32::intersect(s, l, q); },
+         Precision::binary32},
     };
     return solvers;
 }

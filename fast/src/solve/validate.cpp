@@ -53,6 +53,34 @@ Prepared<S> prepare(const S& shape) {
     return PreparedAccess::make(shape, f);
 }
 
+namespace {
+// (Out of line: GCC 12's -O3 vectorises the rounding of consecutive vectors and drops their last
+// two components, leaving them unrounded.)
+[[gnu::noinline]] double nearest_float(double x) {
+    return float(x);
+}
+Vec3 nearest_float(Vec3 a) {
+    return {nearest_float(a.x), nearest_float(a.y), nearest_float(a.z)};
+}
+} // namespace
+
+Shape rounded_to_binary32(const Shape& s) {
+    Shape out = s;
+    std::visit(
+        [](auto& shape) {
+            detail::for_each_field<std::decay_t<decltype(shape)>>(
+                [&](const auto& f) { shape.*f.member = nearest_float(shape.*f.member); });
+        },
+        out);
+    return out;
+}
+
+Line rounded_to_binary32(const Line& l) {
+    return {nearest_float(l.L0),
+            nearest_float(l.v),
+            {nearest_float(l.range.t0), nearest_float(l.range.t1)}};
+}
+
 template <class S>
 const char* shape_name() {
     return detail::ShapeTraits<S>::name;
