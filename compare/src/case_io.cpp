@@ -252,10 +252,9 @@ bool parse_case(std::string_view line, Case* c, std::string* why) {
         c->k = int(x);
     }
     if (const Json* p = r.find("precision")) {
-        std::string_view name = p->is_string() ? p->get_ref<const std::string&>() : "";
-        if (name == "binary32")
+        if (p->is_string() && p->get_ref<const std::string&>() == "binary32")
             c->precision = Precision::binary32;
-        else if (name != "binary64")
+        else if (!p->is_string() || p->get_ref<const std::string&>() != "binary64")
             return r.fail("precision", "expected binary64 or binary32");
     }
     bool shape_ok = with_shape_type(
