@@ -10,6 +10,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <string_view>
+#include <type_traits>
+
 namespace {
 
 using namespace linequad;
@@ -20,7 +24,7 @@ std::string name_of(int shape) {
 }
 
 void solve(benchmark::State& state, const Solver* solver, int shape, Query q) {
-    auto cases = bench::generic_cases(shape, 1024);
+    auto cases = bench::generic_cases(shape, 1024, 1, solver->precision);
     std::size_t i = 0;
     int hits = 0;
     for (auto _ : state) {
@@ -65,18 +69,22 @@ void solve_prepared(benchmark::State& state, int shape, Query q, Solve solve) {
         benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// One shape, 1024 generic lines aimed at it: the scalar solver in a loop, and the batch.
+// One shape, 1024 generic lines aimed at it, in R: the scalar solver in a loop, and the batch
+// (stable in double, stable32 in float: the shape and lines rounded to float).
+template <class R>
 struct OneShape {
     Shape shape;
-    std::vector<double> soa[6];
-    LineArrays lines() const {
+    std::vector<R> soa[6];
+    LineArraysT<R> lines() const {
         return {soa[0].data(), soa[1].data(), soa[2].data(), soa[3].data(),
                 soa[4].data(), soa[5].data(), soa[0].size(), Range::line};
     }
 };
-OneShape one_shape(int shape) {
+template <class R>
+OneShape<R> one_shape(int shape) {
+    constexpr bool in_float = std::is_same_v<R, float>;
     auto cases = bench::generic_cases(shape, 1024);
-    OneShape o{cases[0].shape, {}};
+    OneShape<R> o{in_float ? rounded_to_binary32(cases[0].shape) : cases[0].shape, {}};
     // Re-aim each line at this one shape: through a point near its middle (the generic cases'
     // own lines aim at their own shapes; their middle is where they aimed).
     Vec3 middle = cases[0].line.L0 + cases[0].line.v;
@@ -84,29 +92,41 @@ OneShape one_shape(int shape) {
         Vec3 from = cases[i].line.L0, target = middle + 0.1 * cases[i].line.v;
         Vec3 v = target - from;
         for (int a = 0; a < 3; ++a)
-            o.soa[a].push_back(from[a]), o.soa[3 + a].push_back(v[a]);
+            o.soa[a].push_back(R(from[a])), o.soa[3 + a].push_back(R(v[a]));
     }
     return o;
 }
 
+template <class R>
 void stable_scalar_loop(benchmark::State& state, int shape) {
-    OneShape o = one_shape(shape);
-    LineArrays l = o.lines();
+    OneShape<R> o = one_shape<R>(shape);
+    LineArraysT<R> l = o.lines();
+    std::string_view name = std::is_same_v<R, float> ? "stable32" : "stable";
+    const Solver& solver = *std::find_if(fast_solvers().begin(), fast_solvers().end(),
+                                         [&](const Solver& f) { return f.name == name; });
     std::vector<Result> out(l.count);
     for (auto _ : state) {
         for (std::size_t i = 0; i < l.count; ++i)
-            out[i] = fast_solvers()[1](
-                o.shape, Line{{l.x[i], l.y[i], l.z[i]}, {l.vx[i], l.vy[i], l.vz[i]}}, {});
+            out[i] =
+                solver(o.shape, Line{{l.x[i], l.y[i], l.z[i]}, {l.vx[i], l.vy[i], l.vz[i]}}, {});
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
 }
+template <class R>
 void stable_batch(benchmark::State& state, int shape) {
-    OneShape o = one_shape(shape);
-    LineArrays l = o.lines();
+    OneShape<R> o = one_shape<R>(shape);
+    LineArraysT<R> l = o.lines();
     std::vector<Result> out(l.count);
     for (auto _ : state) {
-        std::visit([&](const auto& s) { stable::intersect(s, l, {}, out.data()); }, o.shape);
+        std::visit(
+            [&](const auto& s) {
+                if constexpr (std::is_same_v<R, float>)
+                    stable32::intersect(s, l, {}, out.data());
+                else
+                    stable::intersect(s, l, {}, out.data());
+            },
+            o.shape);
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
@@ -116,8 +136,13 @@ void stable_batch(benchmark::State& state, int shape) {
 int register_all() {
     for (int shape = 0; shape < int(shape_count); ++shape) {
         std::string name = name_of(shape) + "/stable/1024_lines/";
-        benchmark::RegisterBenchmark((name + "scalar_loop").c_str(), stable_scalar_loop, shape);
-        benchmark::RegisterBenchmark((name + "batch").c_str(), stable_batch, shape);
+        benchmark::RegisterBenchmark((name + "scalar_loop").c_str(), stable_scalar_loop<double>,
+                                     shape);
+        benchmark::RegisterBenchmark((name + "batch").c_str(), stable_batch<double>, shape);
+        std::string name32 = name_of(shape) + "/stable32/1024_lines/";
+        benchmark::RegisterBenchmark((name32 + "scalar_loop").c_str(), stable_scalar_loop<float>,
+                                     shape);
+        benchmark::RegisterBenchmark((name32 + "batch").c_str(), stable_batch<float>, shape);
     }
     std::vector<const Solver*> solvers;
     for (const Solver& s : fast_solvers())

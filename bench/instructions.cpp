@@ -1,11 +1,11 @@
 // Solves N pre-built generic cases with one solver, for counting instructions under callgrind:
 // bench/instructions.sh runs it with N solves and with none, and divides the difference by N.
 //   linequad_instructions SOLVER SHAPE NEED POINTS HOW N
-// SOLVER: floor | seed | stable | certified | correct | correct32 (the float solvers on the same
-// cases rounded to float); SHAPE: cylinder | elliptic_cylinder |
-// elliptic_cone; NEED: any | nearest | all; POINTS: points | no_points; HOW: direct | prepared
-// (each case's shape prepared before the solves, which are what is counted).
-// floor: the textbook cylinder quadratic (bench/floor.hpp), the unit the ratios are quoted in.
+// SOLVER: floor | seed | stable | certified | correct | seed32 | stable32 | correct32 (the float
+// solvers on the same cases rounded to float); SHAPE: cylinder | elliptic_cylinder |
+// elliptic_cone | frustum; NEED: any | nearest | all; POINTS: points | no_points; HOW: direct |
+// prepared (each case's shape prepared before the solves, which are what is counted). floor: the
+// textbook cylinder quadratic (bench/floor.hpp), the unit the ratios are quoted in.
 #include "floor.hpp"
 #include "generic_cases.hpp"
 
@@ -60,6 +60,14 @@ bool run_solver(const std::string& solver, int shape_index, long n, Query q, boo
         return with(
             [](const auto& s, const Line& l, Query qq) { return correct::intersect(s, l, qq); });
     // The float solvers on the same cases rounded to float.
+    if (solver == "seed32")
+        return with(
+            [](const auto& s, const Line& l, Query qq) { return seed32::intersect(s, l, qq); },
+            Precision::binary32);
+    if (solver == "stable32")
+        return with(
+            [](const auto& s, const Line& l, Query qq) { return stable32::intersect(s, l, qq); },
+            Precision::binary32);
     if (solver == "correct32")
         return with(
             [](const auto& s, const Line& l, Query qq) { return correct32::intersect(s, l, qq); },

@@ -41,6 +41,7 @@ if [ -z "$rows" ]; then
   rows="$rows correct:cylinder:any:no_points:direct correct:cylinder:nearest:no_points:direct"
   # The float target: correct32 on the same cases rounded to float (binary32 end to end).
   rows="$rows correct32:cylinder:all:points:direct correct32:elliptic_cone:all:points:prepared"
+  rows="$rows seed32:cylinder:all:points:direct stable32:cylinder:all:points:direct"
   for solver in seed stable correct; do rows="$rows $solver:elliptic_cone:all:points:prepared"; done
   rows="$rows correct:elliptic_cone:any:no_points:prepared"
   rows="$rows correct:elliptic_cone:nearest:no_points:prepared correct:elliptic_cone:any:no_points:direct"

@@ -50,10 +50,12 @@ TEST_CASE("closed cylinder: rays from inside, on the surface and outside") {
     // From a point of the base disc, upwards: t = 0 on the base, then the top.
     Line on_base{{0.5, 0, 0}, {0, 0, 1}, Range::ray};
     check_hits(drum, on_base, {{0, HitKind::cross, Part::base}, {2, HitKind::cross, Part::top}});
-    // From just below the base (2^-40), upwards.
+    // From just below the base (2^-40), upwards. (2 + 2^-40 is not a float, and stable32
+    // refuses a coordinate 2^-40 of the scene: its zeros could be underflow.)
     Line below{{0.5, 0, -0x1p-40}, {0, 0, 1}, Range::ray};
     check_hits(drum, below,
-               {{0x1p-40, HitKind::cross, Part::base}, {2 + 0x1p-40, HitKind::cross, Part::top}});
+               {{0x1p-40, HitKind::cross, Part::base}, {2 + 0x1p-40, HitKind::cross, Part::top}},
+               test::double_solvers);
     // The segment from the centre to the axis' top: the top disc at its end.
     check_hits(drum, {{0, 0, 1}, {0, 0, 1}, Range::segment}, {{1, HitKind::cross, Part::top}});
 }
@@ -67,7 +69,7 @@ TEST_CASE("closed cylinder: a line in a disc's plane meets it in the chord, or g
     CHECK(want.surface_part == Part::base);
     CHECK(want.s0 == 1.2); // 2 - 0.8, the nearest doubles as strtod gives them
     CHECK(want.s1 == 2.8);
-    for (const char* solver : test::every_solver) {
+    for (const char* solver : test::double_solvers) { // 0.6 is not a float
         Result r = run(solver, drum, chord);
         INFO(solver << ": " << test::describe(r));
         REQUIRE(r.on_surface);

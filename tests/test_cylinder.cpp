@@ -10,7 +10,8 @@ const Cylinder upright{{0, 0, 0}, {0, 0, 10}, 5};
 } // namespace
 
 TEST_CASE("cylinder: a line through two surface points crosses at t = 0 and t = 1", "[cylinder]") {
-    check_through_two_points(upright, {3, 4, 2}, {-4, -3, 7}, {"seed", "stable", "exact"});
+    check_through_two_points(upright, {3, 4, 2}, {-4, -3, 7},
+                             {"seed", "stable", "exact", "seed32", "stable32", "correct32"});
     CHECK(run("stable", upright, through({3, 4, 2}, {-4, -3, 7})).hits[0].kind == HitKind::cross);
 }
 
@@ -20,7 +21,8 @@ TEST_CASE("cylinder: tilted axis with integer frame / radius 25", "[cylinder]") 
     Cylinder tilted{{1, 1, 1}, {1 + 30, 1 + 40, 1}, 25};
     Vec3 p{1 - 12 + 3, 1 + 9 + 4, 1 + 20};   // s = 1/10
     Vec3 q{1 + 12 + 15, 1 - 9 + 20, 1 - 20}; // e1 -> -20, e2 -> -15, s = 1/2
-    check_through_two_points(tilted, p, q, {"seed", "stable", "certified", "exact"});
+    check_through_two_points(
+        tilted, p, q, {"seed", "stable", "certified", "exact", "seed32", "stable32", "correct32"});
 }
 
 TEST_CASE("cylinder: power-of-two scales leave t unchanged", "[cylinder]") {

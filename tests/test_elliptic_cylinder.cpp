@@ -15,7 +15,8 @@ Vec3 at(double x, double y, double z, Vec3 cc = c) {
 
 TEST_CASE("elliptic cylinder: line through two surface points", "[elliptic_cylinder]") {
     Vec3 p = at(1, 0, 0.5), q = at(0, -1, 0.25);
-    check_through_two_points(ellipse, p, q, {"seed", "stable", "exact"});
+    check_through_two_points(ellipse, p, q,
+                             {"seed", "stable", "exact", "seed32", "stable32", "correct32"});
 }
 
 TEST_CASE("elliptic cylinder: a point off the axes / (3/5 / 4/5)", "[elliptic_cylinder]") {
@@ -23,7 +24,8 @@ TEST_CASE("elliptic cylinder: a point off the axes / (3/5 / 4/5)", "[elliptic_cy
     // frame by 5 instead: a' = 5a, b' = 5b, then 3/5 a' + 4/5 b' = 3a + 4b exactly.
     EllipticCylinder big{C, 5 * a, 5 * b, c};
     Vec3 p = C + 3 * a + 4 * b + 0.5 * c, q = C - 5 * a + 0.75 * c;
-    check_through_two_points(big, p, q, {"seed", "stable", "certified", "exact"});
+    check_through_two_points(
+        big, p, q, {"seed", "stable", "certified", "exact", "seed32", "stable32", "correct32"});
 }
 
 TEST_CASE("elliptic cylinder: oblique (sheared) frame", "[elliptic_cylinder]") {

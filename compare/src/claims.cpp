@@ -34,22 +34,26 @@ std::vector<std::string> broken_claims(const Report& r) {
                   "a point not correctly rounded (" + std::to_string(row.p_max) + " ulps)");
             claim(row.uncertain == 0, "a result not marked certain");
         }
+        // On generic cases stable classifies like the oracle and its t error has p99 <= 32 ulps,
+        // in double and in float. (Its maximum follows the case's condition number, which random
+        // cases can make large: a 1-ulp change of the input moves some roots by 10^2 ulps.)
+        auto stable_on_generic = [&] {
+            claim(row.cases_mismatched == 0,
+                  std::to_string(row.cases_mismatched) + " generic cases misclassified");
+            double p99 = row.t_error.quantile(0.99);
+            claim(p99 <= 32, "t error p99 " + std::to_string(p99) + " ulps > 32 on generic cases");
+        };
         if (solver == "stable" || solver == batch_name) {
             // Batch equals stable bit for bit, so it makes stable's claims.
-            // On generic cases stable classifies like the oracle and its t error has p99 <= 32
-            // ulps. (Its maximum follows the case's condition number, which random cases can
-            // make large: a 1-ulp change of the input moves some roots by 10^2 ulps.)
-            if (family == "generic") {
-                claim(row.cases_mismatched == 0,
-                      std::to_string(row.cases_mismatched) + " generic cases misclassified");
-                double p99 = row.t_error.quantile(0.99);
-                claim(p99 <= 32,
-                      "t error p99 " + std::to_string(p99) + " ulps > 32 on generic cases");
-            }
+            if (family == "generic") stable_on_generic();
             // It refuses (out_of_range) only inputs whose magnitudes double cannot hold.
             claim(row.mismatches[refused] == 0 || family == "scale",
                   "refused a case within double's range");
         }
+        // stable32's refusals are not claimed: its discriminant is a product of up to ten
+        // inputs, which leaves float's range in the scale family's far shapes and in the
+        // degenerate frames' flat frusta.
+        if (solver == "stable32" && family == "generic") stable_on_generic();
     }
     return broken;
 }

@@ -10,8 +10,10 @@
 //  - a certified result that says it is certain has the oracle's classification;
 //  - the correct solver returns the oracle's answer bit for bit (all hits with points, and the
 //    nearest without);
-//  - the batch solver (four lanes and a scalar tail) returns the scalar solver's result, bit for
-//    bit, for this line among variants of it;
+//  - the batch solvers (stable in four double lanes, stable32 in eight float lanes, and a scalar
+//    tail) return the scalar solver's result, bit for bit, for this line among variants of it;
+//  - on the case rounded to float: correct32 is the float oracle's answer bit for bit, and the
+//    float solvers answer in floats;
 //  - every solver returns for the prepared shape what it returns for the shape, bit for bit
 //    (bounds, certainty and rung included);
 //  - the correct solver's hit test has a hit exactly when the oracle has one, within its bound of
@@ -27,6 +29,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -110,6 +114,98 @@ struct Checker {
 
 namespace {
 
+// A solver by name on a prepared shape (the fast solvers and the oracle).
+template <class P>
+Result solve_prepared(std::string_view name, const P& p, const Line& l, Query q) {
+    if (name == "seed") return seed::intersect(p, l, q);
+    if (name == "stable") return stable::intersect(p, l, q);
+    if (name == "certified") return certified::intersect(p, l, q);
+    if (name == "correct") return correct::intersect(p, l, q);
+    if (name == "seed32") return seed32::intersect(p, l, q);
+    if (name == "stable32") return stable32::intersect(p, l, q);
+    if (name == "correct32") return correct32::intersect(p, l, q);
+    return exact::intersect(p, l, q, name == "exact32" ? Precision::binary32 : Precision::binary64);
+}
+
+// Every named solver returns for the prepared shape what it returns for the shape, bit for bit.
+void check_prepared(Checker& k, std::initializer_list<std::string_view> names) {
+    const Case& c = k.c;
+    std::visit(
+        [&](const auto& s) {
+            auto p = prepare(s);
+            for (std::string_view name : names)
+                for (Query q : {Query{}, Query{Need::any, false}}) {
+                    Precision precision =
+                        name == "exact32" ? Precision::binary32 : Precision::binary64;
+                    Result given = name.substr(0, 5) == "exact"
+                                       ? exact::intersect(s, c.line, q, precision)
+                                       : find_solver(name)->solve(c.shape, c.line, q);
+                    Result prepared = solve_prepared(name, p, c.line, q);
+                    k.require(format_result(c.id, std::string(name), given) ==
+                                      format_result(c.id, std::string(name), prepared) &&
+                                  given.rung == prepared.rung,
+                              "a prepared shape gives the same answer", std::string(name),
+                              prepared);
+                }
+        },
+        c.shape);
+}
+
+// Nine lines through the batch (two full batches of four double lanes, one of eight float
+// lanes, and a scalar tail): this one, reversed, doubled, moved, halved, moved back, reversed
+// and doubled, moved twice, and this one again; each the scalar solver's answer bit for bit. A
+// float case's variants are rounded to float.
+template <class R>
+void check_batch(Checker& k) {
+    const Case& c = k.c;
+    const Line& l = c.line;
+    Line variants[9] = {l,
+                        {l.L0, -1.0 * l.v, l.range},
+                        {l.L0, 2.0 * l.v, l.range},
+                        {l.L0 + l.v, l.v, l.range},
+                        {l.L0, 0.5 * l.v, l.range},
+                        {l.L0 - l.v, l.v, l.range},
+                        {l.L0, -2.0 * l.v, l.range},
+                        {l.L0 + 2.0 * l.v, l.v, l.range},
+                        l};
+    std::vector<R> soa[6];
+    for (Line& v : variants) {
+        if constexpr (std::is_same_v<R, float>) v = rounded_to_binary32(v);
+        for (int a = 0; a < 3; ++a)
+            soa[a].push_back(R(v.L0[a])), soa[3 + a].push_back(R(v.v[a]));
+    }
+    LineArraysT<R> lines{
+        soa[0].data(), soa[1].data(), soa[2].data(), soa[3].data(), soa[4].data(), soa[5].data(), 9,
+        l.range};
+    Result batch[9];
+    std::visit(
+        [&](const auto& s) {
+            if constexpr (std::is_same_v<R, float>)
+                stable32::intersect(s, lines, Query{}, batch);
+            else
+                stable::intersect(s, lines, Query{}, batch);
+        },
+        c.shape);
+    const char* name = std::is_same_v<R, float> ? "stable32" : "stable";
+    for (int i = 0; i < 9; ++i) {
+        Result scalar = find_solver(name)->solve(c.shape, variants[i], Query{});
+        k.require(format_result(c.id, "", batch[i]) == format_result(c.id, "", scalar),
+                  "batch equals scalar bit for bit", std::string(name) + " (batch)", batch[i]);
+    }
+}
+
+// A float solver's answer is floats: every t, point and interval end.
+bool all_floats(const Result& r) {
+    using detail::Binary32;
+    bool ok = !r.on_surface || (Binary32::holds(r.s0) && Binary32::holds(r.s1));
+    for (int i = 0; i < r.count; ++i) {
+        const Hit& h = r.hits[i];
+        ok = ok && Binary32::holds(h.t) && Binary32::holds(h.p.x) && Binary32::holds(h.p.y) &&
+             Binary32::holds(h.p.z);
+    }
+    return ok;
+}
+
 // The float solvers on the case rounded to float: correct32 is the oracle's float answer, bit for
 // bit (and the oracles in Mpzf and Gmpq agree on it).
 std::string broken_in_binary32(const Case& given) {
@@ -131,6 +227,18 @@ std::string broken_in_binary32(const Case& given) {
         k.require(same_answer(got, want), "correct32 equals the oracle's float answer bit for bit",
                   "correct32", got);
     }
+    for (const char* name : {"seed32", "stable32"}) {
+        Result r = find_solver(name)->solve(c.shape, c.line, Query{});
+        k.shape(name, r);
+        if (!oracle.ok())
+            k.require(r.error_code == oracle.error_code, "same verdict on bad input", name, r);
+        else
+            k.require(r.ok() || r.error_code == ErrorCode::out_of_range,
+                      "refuses only what float cannot hold", name, r);
+        k.require(all_floats(r), "a float solver answers in floats", name, r);
+    }
+    check_prepared(k, {"seed32", "stable32", "correct32", "exact32"});
+    check_batch<float>(k);
     return k.broken;
 }
 
@@ -176,32 +284,7 @@ std::string broken_invariant(const Case& c) {
         k.require(same_answer(got, want), "correct equals the oracle bit for bit", "correct", got);
     }
     // A prepared shape: the same answers, bit for bit, from every solver and the oracle.
-    std::visit(
-        [&](const auto& s) {
-            auto p = prepare(s);
-            const std::pair<const char*, Result (*)(const decltype(p)&, const Line&, Query)> by[] =
-                {{"seed", [](const decltype(p)& x, const Line& l,
-                             Query q) { return seed::intersect(x, l, q); }},
-                 {"stable", [](const decltype(p)& x, const Line& l,
-                               Query q) { return stable::intersect(x, l, q); }},
-                 {"certified", [](const decltype(p)& x, const Line& l,
-                                  Query q) { return certified::intersect(x, l, q); }},
-                 {"correct", [](const decltype(p)& x, const Line& l,
-                                Query q) { return correct::intersect(x, l, q); }},
-                 {"exact", [](const decltype(p)& x, const Line& l, Query q) {
-                      return exact::intersect(x, l, q);
-                  }}};
-            for (const auto& [name, solve] : by)
-                for (Query q : {Query{}, Query{Need::any, false}}) {
-                    Result given = find_solver(name)->solve(c.shape, c.line, q);
-                    Result prepared = solve(p, c.line, q);
-                    k.require(format_result(c.id, name, given) ==
-                                      format_result(c.id, name, prepared) &&
-                                  given.rung == prepared.rung,
-                              "a prepared shape gives the same answer", name, prepared);
-                }
-        },
-        c.shape);
+    check_prepared(k, {"seed", "stable", "certified", "correct", "exact"});
     // The hit test: a hit exactly when the oracle has one (or the interval), and then within
     // its bound of one of the oracle's roots (each within half an ulp of exact).
     Result any = correct::intersect(c.shape, c.line, {Need::any, false});
@@ -219,26 +302,7 @@ std::string broken_invariant(const Case& c) {
     }
     k.require(any_ok, "correct's hit test is within its bound of the oracle", "correct (any)", any);
     if (k.broken.empty()) k.broken = broken_in_binary32(c);
-    // Five lines through the batch: this one, reversed, doubled, moved, and this one again.
-    const Line variants[5] = {c.line,
-                              {c.line.L0, -1.0 * c.line.v, c.line.range},
-                              {c.line.L0, 2.0 * c.line.v, c.line.range},
-                              {c.line.L0 + c.line.v, c.line.v, c.line.range},
-                              c.line};
-    std::vector<double> soa[6];
-    for (const Line& l : variants)
-        for (int a = 0; a < 3; ++a)
-            soa[a].push_back(l.L0[a]), soa[3 + a].push_back(l.v[a]);
-    LineArrays lines{
-        soa[0].data(), soa[1].data(), soa[2].data(), soa[3].data(), soa[4].data(), soa[5].data(), 5,
-        c.line.range};
-    Result batch[5];
-    std::visit([&](const auto& s) { stable::intersect(s, lines, Query{}, batch); }, c.shape);
-    for (int i = 0; i < 5; ++i) {
-        Result scalar = stable::intersect(c.shape, variants[i], Query{});
-        k.require(format_result(c.id, "", batch[i]) == format_result(c.id, "", scalar),
-                  "batch equals scalar bit for bit", "stable (batch)", batch[i]);
-    }
+    check_batch<double>(k);
     return k.broken;
 }
 

@@ -10,18 +10,29 @@
 
 namespace linequad {
 
-struct LineArrays {
-    const double *x, *y, *z;    // L0
-    const double *vx, *vy, *vz; // v
+// The lines' coordinates in R: double for stable, float for stable32 (a renderer's packet).
+template <class R>
+struct LineArraysT {
+    const R *x, *y, *z;    // L0
+    const R *vx, *vy, *vz; // v
     std::size_t count;
-    Interval range; // shared by every line
+    Interval range; // shared by every line (floats, for float lines)
 };
+using LineArrays = LineArraysT<double>;
+using LineArrays32 = LineArraysT<float>;
 
 namespace stable {
 // out[i] = stable::intersect(shape, line i, query) for every i < lines.count.
 template <class S, if_solvable<S> = 0>
 void intersect(const S& shape, const LineArrays& lines, Query query, Result* out);
 } // namespace stable
+
+namespace stable32 {
+// out[i] = stable32::intersect(shape, line i, query) for every i < lines.count: eight float
+// lanes at a time.
+template <class S, if_solvable<S> = 0>
+void intersect(const S& shape, const LineArrays32& lines, Query query, Result* out);
+} // namespace stable32
 
 // Whether the batch solvers run their AVX2 path on this machine (or the scalar loop).
 bool batch_uses_avx2();

@@ -71,6 +71,21 @@ Result intersect(const Shape& shape, const Line& line, Query query = {});
 
 // The float solvers: inputs must be floats (ErrorCode::not_binary32 names the first that is not),
 // and every t, point and interval end of the answer is a float, held in a double.
+namespace seed32 {
+// seed evaluated in float, as a renderer would write it.
+template <class S, if_solvable<S> = 0>
+Result intersect(const S& shape, const Line& line, Query query = {});
+Result intersect(const Shape& shape, const Line& line, Query query = {});
+} // namespace seed32
+
+namespace stable32 {
+// stable's geometry evaluated in float (its guards at float's range); a line on the surface
+// from the certified double solver, rounded to float.
+template <class S, if_solvable<S> = 0>
+Result intersect(const S& shape, const Line& line, Query query = {});
+Result intersect(const Shape& shape, const Line& line, Query query = {});
+} // namespace stable32
+
 namespace correct32 {
 // The exact classification, with t and points correctly rounded to float (ties to even,
 // subnormals and overflow as IEEE rounds them): the oracle's float answer, bit for bit.

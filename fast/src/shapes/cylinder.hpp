@@ -81,10 +81,11 @@ struct CylinderStable {
         dz = dot(v, h);
     }
 
-    // Sizes that products of four would underflow (prescaled scene: near unit size).
-    Mask too_small() const {
-        return (r < T(min_relative_size)) | (hh < T(min_relative_size * min_relative_size));
-    }
+    // Whether the shape's sizes are below `size` (of the prescaled scene: near unit size).
+    Mask smaller_than(Real<T> size) const { return (r < T(size)) | (hh < T(size * size)); }
+    // Whether an exact zero of A or D may be underflow: they are products of up to six of the
+    // shape's sizes.
+    Mask zero_may_underflow() const { return smaller_than(Guards<Real<T>>::min_zero_size); }
     // Lanes that only the scalar solver can finish, beyond the usual branches: none here.
     Mask scalar_only() const { return Mask{}; }
     // C0 at the caller's origin: for lines parallel to the axis, and for Vieta's product. Out of
@@ -123,7 +124,8 @@ struct CylinderStable {
         using std::fma;
         return fma(t, dz, dot2(w.rounded(), h));
     }
-    double z_of(const Roots& r, int i) const {
+    template <class Roots>
+    T z_of(const Roots& r, int i) const {
         return r.from_vieta[i] ? z_at_origin(r.t[i]) : z_moved(r.s[i]);
     }
     T z_lanes(T t, T s, Mask from_vieta) const {
@@ -138,19 +140,21 @@ struct CylinderStable {
     }
 };
 
-// The axis h = to - from of a circular shape as seed 001 normalises it: h / |h| and |h|; what
-// prepare() keeps (AxisFacts), or worked out.
-struct SeedAxis {
-    Vec3 unit;
-    double length;
+// The axis h = to - from of a circular shape as seed 001 normalises it: h / |h| and |h|, in R;
+// what prepare() keeps (AxisFacts, in double), or worked out.
+template <class R>
+struct SeedAxisT {
+    Vec3T<R> unit;
+    R length;
 };
-template <class Src>
-SeedAxis seed_axis(const Src& src, Vec3 from, Vec3 to) {
-    if constexpr (Src::prepared) {
+using SeedAxis = SeedAxisT<double>;
+template <class R = double, class Src>
+SeedAxisT<R> seed_axis(const Src& src, Vec3 from, Vec3 to) {
+    if constexpr (Src::prepared && in_double<R>) {
         return {src.facts.seed_axis, src.facts.seed_length};
     } else {
-        Vec3 h = to - from;
-        double hn = norm(h);
+        Vec3T<R> h = in_real<R>(to) - in_real<R>(from);
+        R hn = std::sqrt(dot(h, h));
         return {(1 / hn) * h, hn};
     }
 }
@@ -187,9 +191,9 @@ struct ShapeTraits<Cylinder> {
 
     // ---- What prepare() keeps ----
 
-    template <class Src>
-    static SeedAxis seed_axis(const Src& src) {
-        return linequad::detail::seed_axis(src, src.shape.C, src.shape.H);
+    template <class R = double, class Src>
+    static SeedAxisT<R> seed_axis(const Src& src) {
+        return linequad::detail::seed_axis<R>(src, src.shape.C, src.shape.H);
     }
     struct NewtonAxis {
         Vec3TwoTerm h;
@@ -227,15 +231,16 @@ struct ShapeTraits<Cylinder> {
 
     // ---- seed ----
 
-    template <class Src>
-    static SeedForm seed_form(const Src& src, const Line& l) {
+    template <class R, class Src>
+    static SeedFormT<R> seed_form(const Src& src, const Line& l) {
         const Cylinder& s = src.shape;
-        SeedAxis axis = seed_axis(src);
-        Vec3 w = l.L0 - s.C;
-        double vh = dot(l.v, axis.unit), wh = dot(w, axis.unit);
-        double a = dot(l.v, l.v) - vh * vh;
-        double b = 2 * (dot(l.v, w) - vh * wh);
-        double c = dot(w, w) - wh * wh - s.r * s.r;
+        SeedAxisT<R> axis = seed_axis<R>(src);
+        Vec3T<R> v = in_real<R>(l.v), w = in_real<R>(l.L0) - in_real<R>(s.C);
+        R r = R(s.r);
+        R vh = dot(v, axis.unit), wh = dot(w, axis.unit);
+        R a = dot(v, v) - vh * vh;
+        R b = 2 * (dot(v, w) - vh * wh);
+        R c = dot(w, w) - wh * wh - r * r;
         bool usable =
             std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && std::isfinite(axis.length);
         Extent e = s.finite ? Extent{0, axis.length, both_ends(s.caps)}

@@ -88,10 +88,13 @@ struct ConeStable {
         vl = f.scaled_local(v, s);
         A = circle_minus_square(vl.x, vl.y, vl.z);
     }
-    Mask too_small() const {
+    Mask smaller_than(Real<T> size) const {
         return lane_min(lane_min(max_abs_lanes(a), max_abs_lanes(b)), max_abs_lanes(c.hi)) <
-               T(min_relative_size);
+               T(size);
     }
+    // A, B, C0 and D are formed in local coordinates scaled to the frame (M^-1 times s det):
+    // the frame's sizes are not factors of them.
+    Mask zero_may_underflow() const { return Mask{}; }
     // Near tangency D comes from the double-double triple products, which only the scalar
     // solver computes.
     Mask scalar_only() const { return near_tangent; }
@@ -115,7 +118,7 @@ struct ConeStable {
         D = squares_difference(u.x, u.y, u.z);
         T size = triple_product_magnitude(u, vl, wc);
         near_tangent = fabs(D) <= T(0.125) * size; // and where u, and D with it, came out 0
-        if constexpr (std::is_same_v<T, double>)
+        if constexpr (std::is_floating_point_v<T>)
             if (near_tangent) D = accurate_discriminant(wcw);
     }
     // u = M^T (v x w) / det with each component a double-double triple product, which stays
@@ -128,7 +131,10 @@ struct ConeStable {
         return squares_difference(u.x, u.y, u.z);
     }
     T z_at(T t) const { return f.local_z(moved_origin(w, t, v)); }
-    double z_of(const Roots& r, int i) const { return z_at(r.t[i]); }
+    template <class Roots>
+    T z_of(const Roots& r, int i) const {
+        return z_at(r.t[i]);
+    }
     T z_lanes(T t, T, Mask) const { return z_at(t); }
     // z = zc + s dz from the moved origin: where the line meets the discs' planes.
     T axial_moved() const { return z_at(tc); }
@@ -173,16 +179,17 @@ struct ShapeTraits<EllipticCone> {
 
     // ---- seed ----
 
-    template <class Src>
-    static SeedForm seed_form(const Src& src, const Line& l) {
+    template <class R, class Src>
+    static SeedFormT<R> seed_form(const Src& src, const Line& l) {
         const EllipticCone& s = src.shape;
-        Vec3 w, v; // H' = 0
-        to_seed_frame(src, s.H, s.a, s.b, s.c(), l, w, v);
-        const Vec3 h{0, 0, -1};
-        double vh = dot(v, h), wh = dot(w, h);
-        double a = dot(v, v) - 2 * vh * vh;
-        double b = 2 * (dot(v, w) - 2 * vh * wh);
-        double c = dot(w, w) - 2 * wh * wh;
+        Vec3T<R> w, v;                                     // H' = 0
+        Vec3T<R> axis = in_real<R>(s.H) - in_real<R>(s.C); // H - C, rounded to R
+        to_seed_frame<R>(src, s.H, s.a, s.b, in_real<double>(axis), l, w, v);
+        const Vec3T<R> h{0, 0, -1};
+        R vh = dot(v, h), wh = dot(w, h);
+        R a = dot(v, v) - 2 * vh * vh;
+        R b = 2 * (dot(v, w) - 2 * vh * wh);
+        R c = dot(w, w) - 2 * wh * wh;
         bool usable = std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
         return {a, b, c, w.z, v.z, cone_extent(s), usable};
     }
@@ -200,7 +207,7 @@ struct ShapeTraits<EllipticCone> {
         Vec3TwoTermT<T> c;
         bool rescaled = false;
         int delta = 0;
-        if constexpr (Src::prepared) {
+        if constexpr (Src::prepared && in_double<T>) {
             const FrameFacts& f = src.facts;
             delta = ps.k - f.exponent;
             rescaled = dual_frame_rescales(f, delta);
@@ -211,7 +218,7 @@ struct ShapeTraits<EllipticCone> {
         }
         if (!rescaled) c = difference_exact(H, ps.pos(s.C)); // c = H - C exactly: not a double
         auto frame = [&]() -> DualFrameT<T> {
-            if constexpr (Src::prepared)
+            if constexpr (Src::prepared && in_double<T>)
                 if (rescaled) return rescaled_dual_frame(src.facts, delta);
             return {a, b, c};
         };

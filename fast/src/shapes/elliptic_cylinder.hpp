@@ -59,11 +59,13 @@ struct EllipticStable {
         vl = f.local(v);
         A = vl.x * vl.x + vl.y * vl.y;
     }
-    // An axis too short beside the scene for products of four to stay normal.
-    Mask too_small() const {
-        return lane_min(lane_min(max_abs_lanes(a), max_abs_lanes(b)), max_abs_lanes(c)) <
-               T(min_relative_size);
+    // Whether an axis is shorter than `size` (of the prescaled scene).
+    Mask smaller_than(Real<T> size) const {
+        return lane_min(lane_min(max_abs_lanes(a), max_abs_lanes(b)), max_abs_lanes(c)) < T(size);
     }
+    // A, B, C0 and D are formed in local coordinates (M^-1 u): the frame's sizes are not
+    // factors of them.
+    Mask zero_may_underflow() const { return Mask{}; }
     Mask scalar_only() const { return Mask{}; }
     // C0 at the caller's origin: for lines along the axis, and for Vieta's product.
     T C0_at_origin() const {
@@ -89,7 +91,10 @@ struct EllipticStable {
     // The local z of a hit point itself, in compensated arithmetic: near the extent's ends,
     // where it decides, a sum of moved-origin terms would cancel.
     T z_at(T t) const { return f.local_z(moved_origin(w, t, v)); }
-    double z_of(const Roots& r, int i) const { return z_at(r.t[i]); }
+    template <class Roots>
+    T z_of(const Roots& r, int i) const {
+        return z_at(r.t[i]);
+    }
     T z_lanes(T t, T, Mask) const { return z_at(t); }
     // z = zc + s dz from the moved origin: where the line meets the discs' planes.
     T axial_moved() const { return z_at(tc); }
@@ -134,16 +139,16 @@ struct ShapeTraits<EllipticCylinder> {
 
     // ---- seed ----
 
-    template <class Src>
-    static SeedForm seed_form(const Src& src, const Line& l) {
+    template <class R, class Src>
+    static SeedFormT<R> seed_form(const Src& src, const Line& l) {
         const EllipticCylinder& s = src.shape;
-        Vec3 w, v; // C' = 0
-        to_seed_frame(src, s.C, s.a, s.b, s.c, l, w, v);
-        const Vec3 h{0, 0, 1};
-        double vh = dot(v, h), wh = dot(w, h);
-        double a = dot(v, v) - vh * vh;
-        double b = 2 * (dot(v, w) - vh * wh);
-        double c = dot(w, w) - wh * wh - 1;
+        Vec3T<R> w, v; // C' = 0
+        to_seed_frame<R>(src, s.C, s.a, s.b, s.c, l, w, v);
+        const Vec3T<R> h{0, 0, 1};
+        R vh = dot(v, h), wh = dot(w, h);
+        R a = dot(v, v) - vh * vh;
+        R b = 2 * (dot(v, w) - vh * wh);
+        R c = dot(w, w) - wh * wh - 1;
         bool usable = std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
         Extent e =
             s.finite ? Extent{0, 1, both_ends(s.caps)} : Extent{-Binary64::inf, Binary64::inf};
@@ -161,7 +166,7 @@ struct ShapeTraits<EllipticCylinder> {
         const EllipticCylinder& s = src.shape;
         Vec3T<T> a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c);
         auto frame = [&]() -> DualFrameT<T> {
-            if constexpr (Src::prepared) {
+            if constexpr (Src::prepared && in_double<T>) {
                 int delta = ps.k - src.facts.exponent;
                 if (dual_frame_rescales(src.facts, delta))
                     return rescaled_dual_frame(src.facts, delta);

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <initializer_list>
+#include <type_traits>
 
 namespace linequad {
 
@@ -94,9 +95,10 @@ inline int lowest_exponent(std::initializer_list<Vec3> inputs, double scale) {
 
 // 2^-E for |x| in [2^E, 2^(E+1)), exactly; 1 when x is zero or subnormal (no power of two of that
 // size is safe to scale by; the solvers' underflow guards then refuse what they cannot decide).
-inline double power_of_two_inverse(double x) {
-    double p = Binary64::power_of_two_floor(x);
-    return p == 0 ? 1.0 : 1 / p;
+template <class R, std::enable_if_t<std::is_floating_point_v<R>, int> = 0>
+R power_of_two_inverse(R x) {
+    R p = Format<R>::power_of_two_floor(x);
+    return p == 0 ? R(1) : 1 / p;
 }
 
 } // namespace detail

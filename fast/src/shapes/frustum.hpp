@@ -105,10 +105,12 @@ struct FrustumStable {
         inv_vv = T(1) / dot(v, v);
     }
 
-    Mask too_small() const {
-        return (lane_max(r0, r1) < T(min_relative_size)) |
-               (hh < T(min_relative_size * min_relative_size));
+    Mask smaller_than(Real<T> size) const {
+        return (lane_max(r0, r1) < T(size)) | (hh < T(size * size));
     }
+    // Whether an exact zero of A or D may be underflow: D = h.h (|G|^2 - K^2) is a product of
+    // up to ten of the shape's sizes.
+    Mask zero_may_underflow() const { return smaller_than(Guards<Real<T>>::min_zero_size); }
     Mask scalar_only() const { return Mask{}; }
 
     // R = rE (h.h) + (r1 - r0) u_E from u_E = (P - E) . h.
@@ -154,7 +156,8 @@ struct FrustumStable {
         using std::fma;
         return fma(t, axial_rate(), axial(dot2(w.rounded(), h)));
     }
-    double z_of(const Roots& r, int i) const {
+    template <class Roots>
+    T z_of(const Roots& r, int i) const {
         return r.from_vieta[i] ? z_at_origin(r.t[i]) : z_moved(r.s[i]);
     }
     T z_lanes(T t, T s, Mask from_vieta) const {
@@ -196,16 +199,16 @@ struct ShapeTraits<Frustum> {
 
     // s = (P - C0) . h^ along the unit axis, rho = r0 + k s: |P - C0|^2 - s^2 - rho^2 = 0; the
     // extent's coordinate is s (finite: 0 <= s <= |h|) or rho (the nappe rho >= 0).
-    template <class Src>
-    static SeedForm seed_form(const Src& src, const Line& l) {
+    template <class R, class Src>
+    static SeedFormT<R> seed_form(const Src& src, const Line& l) {
         const Frustum& s = src.shape;
-        SeedAxis axis = seed_axis(src, s.C0, s.C1);
-        double k = (s.r1 - s.r0) / axis.length;
-        Vec3 w = l.L0 - s.C0;
-        double vh = dot(l.v, axis.unit), wh = dot(w, axis.unit), rho = s.r0 + k * wh;
-        double a = dot(l.v, l.v) - vh * vh - k * k * vh * vh;
-        double b = 2 * (dot(l.v, w) - vh * wh - k * vh * rho);
-        double c = dot(w, w) - wh * wh - rho * rho;
+        SeedAxisT<R> axis = seed_axis<R>(src, s.C0, s.C1);
+        R r0 = R(s.r0), k = (R(s.r1) - r0) / axis.length;
+        Vec3T<R> v = in_real<R>(l.v), w = in_real<R>(l.L0) - in_real<R>(s.C0);
+        R vh = dot(v, axis.unit), wh = dot(w, axis.unit), rho = r0 + k * wh;
+        R a = dot(v, v) - vh * vh - k * k * vh * vh;
+        R b = 2 * (dot(v, w) - vh * wh - k * vh * rho);
+        R c = dot(w, w) - wh * wh - rho * rho;
         bool usable = std::isfinite(a) && std::isfinite(b) && std::isfinite(c) &&
                       std::isfinite(axis.length) && std::isfinite(k);
         if (s.finite) return {a, b, c, wh, vh, {0, axis.length, frustum_closure(s)}, usable};

@@ -117,6 +117,12 @@ Error check_fields(const S& s) {
     return e;
 }
 
+// x (or each coordinate) rounded to the nearest float. (Out of line: GCC 12's -O3 vectorises
+// the rounding of consecutive vectors and drops their last two components, leaving them
+// unrounded.)
+double nearest_float(double x);
+Vec3 nearest_float(Vec3 a);
+
 // For a float solver, after the usual checks: the first input that is not a float (the line's
 // L0, v, t0, t1, then the shape's fields in the table's order). The usual case in one pass,
 // without branches: whether any input differs from its nearest float; the field by field search,
@@ -259,5 +265,10 @@ struct ExtentT {
     Closure caps{};
 };
 using Extent = ExtentT<double>;
+// An extent in R as the double one it equals (every R value is a double).
+template <class R>
+Extent widened(const ExtentT<R>& e) {
+    return {e.lo, e.hi, e.caps};
+}
 
 } // namespace linequad::detail

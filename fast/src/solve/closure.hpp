@@ -30,10 +30,13 @@ struct Decided {
     int sign;
     bool certain;
 };
-inline Decided decide(double x) {
+template <class R>
+using if_real = std::enable_if_t<std::is_floating_point_v<R>, int>;
+template <class R, if_real<R> = 0>
+Decided decide(R x) {
     return {(x > 0) - (x < 0), true};
 }
-template <class BT>
+template <class BT, std::enable_if_t<!std::is_floating_point_v<BT>, int> = 0>
 Decided decide(const BT& x) {
     if (x.v == 0 && x.e == 0) return {0, true};
     int s = x.certain_sign();
@@ -42,27 +45,29 @@ Decided decide(const BT& x) {
 
 template <class BT>
 BT exactly(double x) {
-    if constexpr (std::is_same_v<BT, double>)
-        return x;
+    if constexpr (std::is_floating_point_v<BT>)
+        return BT(x);
     else
         return BT::exact(x);
 }
 
-inline double value(double x) {
+template <class R, if_real<R> = 0>
+R value(R x) {
     return x;
 }
-template <class BT>
+template <class BT, std::enable_if_t<!std::is_floating_point_v<BT>, int> = 0>
 double value(const BT& x) {
     return x.v;
 }
 
 // t = (tc + s) t_scale in the caller's units, as the stable solver rounds it.
-inline double caller_t(double tc, double s, double t_scale) {
+template <class R, if_real<R> = 0>
+R caller_t(R tc, R s, R t_scale) {
     return (tc + s) * t_scale;
 }
 // t = tc + s in the caller's units: exact scaling by a power of two, unless the result falls
 // below the normal range, where it rounds: then the bound grows by a subnormal ulp.
-template <class BT>
+template <class BT, std::enable_if_t<!std::is_floating_point_v<BT>, int> = 0>
 BT caller_t(double tc, const BT& s, double t_scale) {
     BT t = BT::exact(tc) + s;
     double v = t.v * t_scale, e = t.bound() * t_scale;
@@ -76,7 +81,8 @@ template <class BT>
 struct AxialQuadratic {
     BT A, B2, C; // Q(s) = A s^2 + B2 s + C
     BT z0, dz;
-    double tc, t_scale;
+    // In the float solvers' float; double for the others (and the bounded types).
+    std::conditional_t<std::is_floating_point_v<BT>, BT, double> tc, t_scale;
 };
 
 // A point where the line meets the closed shape's boundary (t in the caller's units).
@@ -190,17 +196,17 @@ ClosedPoints<BT> close(const BoundaryPoint<BT>* lateral, int n, const AxialQuadr
 // The seed's and stable's last step for a closed shape: the roots (t in the form's parameter,
 // scaled by q.t_scale), their axial coordinates z_of(roots, i), and the discs. A line in a
 // disc's plane is a claim of infinitely many hits: in_plane() (the certified result) settles it.
-template <class AxialOf, class InPlane>
-[[gnu::noinline]] Result finish_closed(const Roots& r, AxialOf z_of,
-                                       const AxialQuadratic<double>& q, const Extent& e,
-                                       const Line& l, Query query, InPlane in_plane) {
+template <class R, class AxialOf, class InPlane>
+[[gnu::noinline]] Result finish_closed(const RootsT<R>& r, AxialOf z_of, const AxialQuadratic<R>& q,
+                                       const Extent& e, const Line& l, Query query,
+                                       InPlane in_plane) {
     if (plane_holding(q, e) != Part::lateral) return in_plane();
-    BoundaryPoint<double> lateral[2];
+    BoundaryPoint<R> lateral[2];
     int n = r.count();
     for (int i = 0; i < n; ++i)
         lateral[i] = {r.t[i] * q.t_scale, z_of(r, i), Part::lateral, r.hit_kind(), true};
-    ClosedPoints<double> cp = close(lateral, n, q, e);
-    Candidate c[max_hits];
+    ClosedPoints<R> cp = close(lateral, n, q, e);
+    CandidateT<R> c[max_hits];
     for (int i = 0; i < cp.n; ++i)
         c[i] = {cp.p[i].t, cp.p[i].kind, cp.p[i].z, cp.p[i].part};
     return finish(c, cp.n, e, l, query);

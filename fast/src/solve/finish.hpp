@@ -15,11 +15,12 @@ namespace linequad::detail {
 constexpr double no_bound = std::numeric_limits<double>::quiet_NaN();
 
 // A root before the extent and range tests: t in the caller's parameter, z its axial coordinate
-// in the form's own units.
-struct Candidate {
-    double t;
+// in the form's own units, both in the real type R the solver computes in.
+template <class R>
+struct CandidateT {
+    R t;
     HitKind kind;
-    double z;
+    R z;
     Part part = Part::lateral;
 };
 
@@ -29,8 +30,11 @@ inline void fail(Result& r, ErrorCode code, const char* field) {
     r.count = 0, r.on_surface = false;
 }
 
-inline Vec3 point_at(const Line& l, double t) {
-    return {std::fma(t, l.v.x, l.L0.x), std::fma(t, l.v.y, l.L0.y), std::fma(t, l.v.z, l.L0.z)};
+// L0 + t v in R, one rounding per coordinate (the line's coordinates are R's values).
+template <class R>
+Vec3 point_at(const Line& l, R t) {
+    Vec3T<R> L0 = in_real<R>(l.L0), v = in_real<R>(l.v);
+    return {std::fma(t, v.x, L0.x), std::fma(t, v.y, L0.y), std::fma(t, v.z, L0.z)};
 }
 
 // A caller's buffer made a fresh result: the fields a result without hits has.
@@ -70,15 +74,16 @@ LINEQUAD_INLINE void assemble(const Candidates& c, int n, Query q, Result& r) {
     r.count = std::uint8_t(count);
 }
 
-// Candidates' facts from their t and z.
+// Candidates' facts from their t and z (the extent and range, R's values, compared exactly).
+template <class R>
 struct CandidateFacts {
-    const Candidate* c;
+    const CandidateT<R>* c;
     Extent e;
     const Line& l;
     double t(int i) const { return c[i].t; }
     HitKind kind(int i) const { return c[i].kind; }
     Part part(int i) const { return c[i].part; }
-    bool bad(int i) const { return !(std::fabs(c[i].t) <= Binary64::max) | (c[i].z != c[i].z); }
+    bool bad(int i) const { return !(std::fabs(c[i].t) <= Format<R>::max) | (c[i].z != c[i].z); }
     bool keep(int i) const {
         return (c[i].z >= e.lo) & (c[i].z <= e.hi) & (c[i].t >= l.range.t0) &
                (c[i].t <= l.range.t1);
@@ -88,12 +93,13 @@ struct CandidateFacts {
 
 // More than two candidates (a closed shape's): sorted by t first, then kept in that order. Out
 // of line: the usual path's finish stays small.
-[[gnu::noinline]] inline void assemble_sorted(Candidate* c, int n, Extent e, const Line& l, Query q,
-                                              Result& r) {
+template <class R>
+[[gnu::noinline]] void assemble_sorted(CandidateT<R>* c, int n, Extent e, const Line& l, Query q,
+                                       Result& r) {
     for (int i = 1; i < n; ++i)
         for (int j = i; j > 0 && c[j].t < c[j - 1].t; --j)
             std::swap(c[j], c[j - 1]);
-    CandidateFacts facts{c, e, l};
+    CandidateFacts<R> facts{c, e, l};
     bool points = q.points && q.need != Need::any;
     for (int i = 0; i < n; ++i)
         if (facts.bad(i)) return fail(r, ErrorCode::out_of_range, "t");
@@ -108,10 +114,11 @@ struct CandidateFacts {
     }
 }
 
-LINEQUAD_INLINE Result finish(Candidate* c, int n, Extent e, const Line& l, Query q) {
+template <class R>
+LINEQUAD_INLINE Result finish(CandidateT<R>* c, int n, Extent e, const Line& l, Query q) {
     Result r;
     if (n <= 2)
-        assemble(CandidateFacts{c, e, l}, n, q, r);
+        assemble(CandidateFacts<R>{c, e, l}, n, q, r);
     else
         assemble_sorted(c, n, e, l, q, r);
     return r;
@@ -119,10 +126,10 @@ LINEQUAD_INLINE Result finish(Candidate* c, int n, Extent e, const Line& l, Quer
 
 // Roots to candidates (t scaled back by t_scale, z_of(roots, i) the axial coordinate of root
 // i), then finish(). Lines on the surface never get here: see without_certification.
-template <class AxialOf>
-LINEQUAD_INLINE Result finish_roots(const Roots& r, double t_scale, AxialOf z_of, Extent e,
+template <class R, class AxialOf>
+LINEQUAD_INLINE Result finish_roots(const RootsT<R>& r, R t_scale, AxialOf z_of, Extent e,
                                     const Line& l, Query q) {
-    Candidate c[2];
+    CandidateT<R> c[2];
     int n = r.count();
     for (int i = 0; i < n; ++i)
         c[i] = {r.t[i] * t_scale, r.hit_kind(), z_of(r, i)};
@@ -161,6 +168,18 @@ inline Result without_certification(Result r) {
     r.certainty = Certainty::unknown;
     for (int i = 0; i < r.count; ++i)
         r.hits[i].bound = no_bound, r.hits[i].certain = false;
+    return r;
+}
+
+// A result for a solver that answers in R: every t and point rounded to R (the float solvers'
+// rare lines on the surface, which the certified double solver settles).
+template <class R>
+Result answered_in(Result r) {
+    if constexpr (std::is_same_v<R, float>) {
+        for (int i = 0; i < r.count; ++i)
+            r.hits[i].t = nearest_float(r.hits[i].t), r.hits[i].p = nearest_float(r.hits[i].p);
+        r.s0 = nearest_float(r.s0), r.s1 = nearest_float(r.s1);
+    }
     return r;
 }
 

@@ -81,7 +81,7 @@ std::string message(const Error& e) {
     case ErrorCode::empty_range:
         return f + ": the range holds no t (t0 > t1, or an end at the wrong infinity)";
     case ErrorCode::out_of_range:
-        return f + ": magnitudes too far apart for double evaluation (overflow or underflow)";
+        return f + ": magnitudes too far apart for the solver's format (overflow or underflow)";
     case ErrorCode::bad_option:
         return f == "caps" ? std::string("caps: only a finite shape has end discs to close it")
                            : f + ": not an option this shape takes (nappes is 1 or 2)";
@@ -102,6 +102,12 @@ const std::vector<Solver>& fast_solvers() {
         {"correct",
          "exact classification, correctly rounded t and points: Newton, double-double, exact",
          [](const Shape& s, const Line& l, Query q) { return correct::intersect(s, l, q); }},
+        {"seed32", "seed evaluated in float",
+         [](const Shape& s, const Line& l, Query q) { return seed32::intersect(s, l, q); },
+         Precision::binary32},
+        {"stable32", "stable evaluated in float",
+         [](const Shape& s, const Line& l, Query q) { return stable32::intersect(s, l, q); },
+         Precision::binary32},
         {"correct32",
          "correct's exact classification, with t and points correctly rounded to float",
          [](const Shape& s, const Line& l, Query q) { return correct32::intersect(s, l, q); },

@@ -10,31 +10,40 @@
 namespace linequad::detail {
 
 // What a quadratic A t^2 + (linear) t + C = 0 has, before any extent or range test.
-struct Roots {
-    enum Kind { none, one, two, tangent, on_surface } kind = none;
-    double t[2] = {0, 0};
+struct RootKinds {
+    enum Kind { none, one, two, tangent, on_surface };
+};
+// R is the real type the roots were found in.
+template <class R>
+struct RootsT : RootKinds {
+    Kind kind = none;
+    R t[2] = {0, 0};
     // After shift_back: each root's parameter from the moved origin (s = t - tc, not rounded
     // through t), and whether t came from Vieta (a root near the caller's origin).
-    double s[2] = {0, 0};
+    R s[2] = {0, 0};
     bool from_vieta[2] = {false, false};
 
     int count() const { return kind == two ? 2 : kind == one || kind == tangent ? 1 : 0; }
     HitKind hit_kind() const { return kind == tangent ? HitKind::tangent : HitKind::cross; }
 };
+using Roots = RootsT<double>;
 
 // What each shape's seed derivation gives: a t^2 + b t + c = 0 as the seed writes it, the axial
 // coordinate z0 + t dz and its extent; `usable` is false when a coefficient is not finite.
-struct SeedForm {
-    double a, b, c;
-    double z0, dz;
+template <class R>
+struct SeedFormT {
+    R a, b, c;
+    R z0, dz;
     Extent extent;
     bool usable;
 };
+using SeedForm = SeedFormT<double>;
 
 // The seed documents' last step, a t^2 + b t + c = 0 solved as written ((-b +- sqrt(b^2-4ac))/2a),
 // with erratum 6 fixed: a = 0 is linear (b != 0) or identically zero (the line on the surface).
-inline Roots textbook_roots(double a, double b, double c) {
-    Roots r;
+template <class R>
+RootsT<R> textbook_roots(R a, R b, R c) {
+    RootsT<R> r;
     if (a == 0) {
         if (b != 0)
             r.kind = Roots::one, r.t[0] = -c / b;
@@ -42,13 +51,13 @@ inline Roots textbook_roots(double a, double b, double c) {
             r.kind = Roots::on_surface;
         return r;
     }
-    double disc = b * b - 4 * a * c;
+    R disc = b * b - 4 * a * c;
     if (disc < 0) return r;
     if (disc == 0) {
         r.kind = Roots::tangent, r.t[0] = -b / (2 * a);
         return r;
     }
-    double sq = std::sqrt(disc);
+    R sq = std::sqrt(disc);
     r.kind = Roots::two;
     r.t[0] = (-b - sq) / (2 * a);
     r.t[1] = (-b + sq) / (2 * a);
@@ -69,8 +78,9 @@ void stable_pair(T A, T B, T Cc, T D, T s[2]) {
 // A t^2 + 2 B t + C = 0 (half-b form) solved without cancellation: the discriminant D = B^2 - AC
 // is supplied by the caller in a geometric form that is accurate near tangency, and the roots
 // are the stable pair q / A, C / q with q = -(B + sign(B) sqrt(D)).
-LINEQUAD_INLINE Roots stable_roots(double A, double B, double C, double D) {
-    Roots r;
+template <class R>
+LINEQUAD_INLINE RootsT<R> stable_roots(R A, R B, R C, R D) {
+    RootsT<R> r;
     if (A == 0) {
         if (B != 0)
             r.kind = Roots::one, r.t[0] = -C / (2 * B);
@@ -93,14 +103,14 @@ LINEQUAD_INLINE Roots stable_roots(double A, double B, double C, double D) {
 // Vieta, t_near = product / t_far, where product() = C0 / A is formed at the caller's origin;
 // otherwise its error is at most an ulp of tc <= 2 ulps of t and it stands. Either way both
 // roots are accurate to a few ulps, and product() is only computed when it is needed.
-template <class Product>
-void shift_back(Roots& r, double tc, Product product) {
+template <class R, class Product>
+void shift_back(RootsT<R>& r, R tc, Product product) {
     r.s[0] = r.t[0], r.s[1] = r.t[1];
     if (r.kind == Roots::one || r.kind == Roots::tangent) r.t[0] += tc;
     if (r.kind != Roots::two) return;
     r.t[0] = tc + r.s[0], r.t[1] = tc + r.s[1];
     int far = std::fabs(r.t[0]) >= std::fabs(r.t[1]) ? 0 : 1, near = 1 - far;
-    if (r.t[far] != 0 && std::fabs(r.t[near]) < 0.5 * std::fabs(tc)) {
+    if (r.t[far] != 0 && std::fabs(r.t[near]) < R(0.5) * std::fabs(tc)) {
         r.t[near] = product() / r.t[far];
         r.from_vieta[near] = true;
     }
@@ -108,26 +118,29 @@ void shift_back(Roots& r, double tc, Product product) {
 
 // Whether a decision rests on a zero: only then can underflow have made it, and only then are
 // the scene's components worth checking (fragile() may cost a little).
-inline bool rests_on_zero(const Roots& r, double A, double D) {
+template <class R>
+bool rests_on_zero(const RootsT<R>& r, R A, R D) {
     return A == 0 || D == 0 || r.kind == Roots::on_surface || r.kind == Roots::tangent;
 }
-template <class Fragile>
-bool undecidable(const Roots& r, Fragile fragile, double A, double D) {
+template <class R, class Fragile>
+bool undecidable(const RootsT<R>& r, Fragile fragile, R A, R D) {
     if (underflow_zone(A) || underflow_zone(D)) return true;
     return rests_on_zero(r, A, D) && fragile();
 }
 
 // The seed solvers do not prescale: the same guard, with the raw inputs' own magnitudes (the
 // largest `largest`, the smallest nonzero `smallest`). A scene whose nonzero components span
-// more than 2^240 cannot decide a zero in double, nor can one beyond 2^+-240. Both magnitudes
-// are asked for only when the answer matters.
-template <class Magnitudes>
-bool seed_undecidable(const Roots& r, double a, double disc, Magnitudes magnitudes) {
+// more than 1 / min_relative_size cannot decide a zero in R (2^240 in double), nor can one
+// beyond that size or below its inverse. Both magnitudes are asked for only when the answer
+// matters.
+template <class R, class Magnitudes>
+bool seed_undecidable(const RootsT<R>& r, R a, R disc, Magnitudes magnitudes) {
     if (underflow_zone(a) || underflow_zone(disc)) return true;
     if (!rests_on_zero(r, a, disc)) return false;
     auto [largest, smallest] = magnitudes();
-    bool extreme = largest > 0x1p+240 || largest < 0x1p-240;
-    return smallest < min_relative_size * largest || extreme;
+    constexpr double min_size = Guards<R>::min_relative_size;
+    bool extreme = largest > 1 / min_size || largest < min_size;
+    return smallest < min_size * largest || extreme;
 }
 
 } // namespace linequad::detail

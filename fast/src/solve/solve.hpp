@@ -9,6 +9,8 @@
 #include "solve/finish.hpp"
 #include "solve/roots.hpp"
 
+#include <type_traits>
+
 namespace linequad::detail {
 
 // The checks every solve starts with: the line's, then the shape's (its Validity). The usual
@@ -60,17 +62,32 @@ Result Certified::solve(const Src& src, const Line& l, Query q) {
     });
 }
 
-// Each seed as written (errata fixed): the textbook quadratic.
-struct Seed {
+// The input checks of a solver computing in R: a float solver's inputs must be floats.
+template <class R, class Src>
+LINEQUAD_INLINE Error real_error(const Src& src, const Line& l) {
+    if constexpr (std::is_same_v<R, float>)
+        return binary32_error(src.shape, l);
+    else
+        return {};
+}
+
+// Each seed as written (errata fixed): the textbook quadratic, evaluated in R (double for
+// `seed`, float for `seed32`, as a renderer would).
+template <class R>
+struct SeedIn {
     template <class Src>
     static Result solve(const Src& src, const Line& l, Query q);
 };
+using Seed = SeedIn<double>;
+using Seed32 = SeedIn<float>;
+template <class R>
 template <class Src>
-Result Seed::solve(const Src& src, const Line& l, Query q) {
+Result SeedIn<R>::solve(const Src& src, const Line& l, Query q) {
     if (Validity valid = check(src, l); !valid.error.ok()) return Result::failure(valid.error);
-    SeedForm f = ShapeTraits<typename Src::Shape>::seed_form(src, l);
+    if (Error e = real_error<R>(src, l); !e.ok()) return Result::failure(e);
+    SeedFormT<R> f = ShapeTraits<typename Src::Shape>::template seed_form<R>(src, l);
     if (!f.usable) return Result::failure(ErrorCode::out_of_range, "coefficients");
-    Roots roots = textbook_roots(f.a, f.b, f.c);
+    RootsT<R> roots = textbook_roots(f.a, f.b, f.c);
     auto magnitudes = [&] {
         double largest = std::max({src.magnitude(), max_abs(l.L0), max_abs(l.v)});
         double smallest = std::fmin(src.smallest(), std::fmin(min_nonzero(l.L0), min_nonzero(l.v)));
@@ -79,37 +96,51 @@ Result Seed::solve(const Src& src, const Line& l, Query q) {
     if (seed_undecidable(roots, f.a, f.b * f.b - 4 * f.a * f.c, magnitudes))
         return Result::failure(ErrorCode::out_of_range, "coefficients");
     // A line on the surface is a claim of infinitely many hits: only with proof.
-    auto on_surface = [&] { return without_certification(Certified::solve(src, l, q)); };
-    if (roots.kind == Roots::on_surface) return on_surface();
-    auto z_of = [&](const Roots& r, int i) { return f.z0 + r.t[i] * f.dz; };
+    auto on_surface = [&] {
+        return answered_in<R>(without_certification(Certified::solve(src, l, q)));
+    };
+    if (roots.kind == RootsT<R>::on_surface) return on_surface();
+    auto z_of = [&](const RootsT<R>& r, int i) { return f.z0 + r.t[i] * f.dz; };
     if (f.extent.caps.any())
-        return finish_closed(roots, z_of, {f.a, f.b, f.c, f.z0, f.dz, 0, 1}, f.extent, l, q,
-                             on_surface);
-    return finish_roots(roots, 1, z_of, f.extent, l, q);
+        return finish_closed(roots, z_of, AxialQuadratic<R>{f.a, f.b, f.c, f.z0, f.dz, 0, 1},
+                             f.extent, l, q, on_surface);
+    return finish_roots(roots, R(1), z_of, f.extent, l, q);
 }
 
-// The scalar stable solve around a shape's core (its Stable<double>): the branches that the
-// batch kernels send back here. For the cylinders A = 0 (a line along the axis) means no hit or
-// a line on the surface; for the cone it is a line along a generator, a linear equation that
-// stable_roots solves. A line on the surface needs proof: the certified result stands for it.
-struct Stable {
+// The scalar stable solve around a shape's core (its Stable<R>), in R (double for `stable`,
+// float for `stable32`): the branches that the batch kernels send back here. For the cylinders
+// A = 0 (a line along the axis) means no hit or a line on the surface; for the cone it is a line
+// along a generator, a linear equation that stable_roots solves. A line on the surface needs
+// proof: the certified result stands for it.
+template <class R>
+struct StableIn {
     template <class Src>
     static Result solve(const Src& src, const Line& l, Query q);
 };
+using Stable = StableIn<double>;
+using Stable32 = StableIn<float>;
+template <class R>
 template <class Src>
-Result Stable::solve(const Src& src, const Line& l, Query q) {
+Result StableIn<R>::solve(const Src& src, const Line& l, Query q) {
     using Traits = ShapeTraits<typename Src::Shape>;
+    using Roots = RootsT<R>;
     if (Validity valid = check(src, l); !valid.error.ok()) return Result::failure(valid.error);
+    if (Error e = real_error<R>(src, l); !e.ok()) return Result::failure(e);
     double extent = scene_extent(src, l);
-    Prescale ps = prescale_for(extent, l.v);
-    auto k = Traits::template stable_core<double>(src, ps, l.L0, l.v);
-    if (k.too_small()) return Result::failure(ErrorCode::out_of_range, Traits::scale_fields);
-    auto fragile = [&] { return fragile_scene(src, extent, l); };
-    auto on_surface = [&] { return without_certification(Certified::solve(src, l, q)); };
-    auto e = k.extent(src.shape);
+    PrescaleT<R> ps = prescale_for<R>(extent, l.v);
+    auto k = Traits::template stable_core<R>(src, ps, in_real<R>(l.L0), in_real<R>(l.v));
+    if (k.smaller_than(Guards<R>::min_relative_size))
+        return Result::failure(ErrorCode::out_of_range, Traits::scale_fields);
+    // A zero of A or D may be underflow when a component is tiny beside the scene, or when the
+    // shape is and they are products of its sizes.
+    auto fragile = [&] { return fragile_scene<R>(src, extent, l) || k.zero_may_underflow(); };
+    auto on_surface = [&] {
+        return answered_in<R>(without_certification(Certified::solve(src, l, q)));
+    };
+    Extent e = widened(k.extent(src.shape));
     Roots roots;
     if (k.parallel_is_miss && k.A == 0) {
-        double C0 = k.C0_at_origin();
+        R C0 = k.C0_at_origin();
         roots.kind = C0 == 0 ? Roots::on_surface : Roots::none;
         if (undecidable(roots, fragile, k.A, C0))
             return Result::failure(ErrorCode::out_of_range, Traits::fragile_fields);
@@ -127,9 +158,10 @@ Result Stable::solve(const Src& src, const Line& l, Query q) {
     }
     auto z_of = [&](const Roots& r, int i) { return k.z_of(r, i); };
     if (e.caps.any())
-        return finish_closed(
-            roots, z_of, {k.A, 2 * k.B, k.Cc, k.axial_moved(), k.axial_rate(), k.tc, ps.t_scale()},
-            e, l, q, on_surface);
+        return finish_closed(roots, z_of,
+                             AxialQuadratic<R>{k.A, 2 * k.B, k.Cc, k.axial_moved(), k.axial_rate(),
+                                               k.tc, ps.t_scale()},
+                             e, l, q, on_surface);
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }
 

@@ -53,16 +53,15 @@ Prepared<S> prepare(const S& shape) {
     return PreparedAccess::make(shape, f);
 }
 
-namespace {
-// (Out of line: GCC 12's -O3 vectorises the rounding of consecutive vectors and drops their last
-// two components, leaving them unrounded.)
+namespace detail {
 [[gnu::noinline]] double nearest_float(double x) {
     return float(x);
 }
 Vec3 nearest_float(Vec3 a) {
     return {nearest_float(a.x), nearest_float(a.y), nearest_float(a.z)};
 }
-} // namespace
+} // namespace detail
+using detail::nearest_float;
 
 Shape rounded_to_binary32(const Shape& s) {
     Shape out = s;
