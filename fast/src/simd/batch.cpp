@@ -31,7 +31,6 @@ Result solve_one(const S& shape, const Line& l, Query q) {
 template <class R, class S>
 void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* out) {
     auto src = detail::source(shape);
-    using Shape = typename decltype(src)::Shape;
     auto line_at = [&](std::size_t i) {
         return Line{{lines.x[i], lines.y[i], lines.z[i]},
                     {lines.vx[i], lines.vy[i], lines.vz[i]},
