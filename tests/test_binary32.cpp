@@ -14,6 +14,7 @@
 #include "linequad/case_io.hpp"
 #include "linequad/exact.hpp"
 #include "linequad/families.hpp"
+#include "linequad/invariants.hpp"
 
 #include <mpfr.h>
 
@@ -215,17 +216,6 @@ TEST_CASE("binary32 cases: the parser refuses a number that is not a float, nami
     CHECK(why.find("precision") != std::string::npos);
 }
 
-// Every t, point and interval end a float.
-bool answers_in_floats(const Result& r) {
-    bool ok = !r.on_surface || (Binary32::holds(r.s0) && Binary32::holds(r.s1));
-    for (int i = 0; i < r.count; ++i) {
-        const Hit& h = r.hits[i];
-        for (double x : {h.t, h.p.x, h.p.y, h.p.z})
-            ok = ok && Binary32::holds(x);
-    }
-    return ok;
-}
-
 TEST_CASE("seed32 and stable32 answer in floats, and stable32 classifies generic cases exactly") {
     std::uint64_t answered[2] = {}, generic = 0;
     for_each_family_case(17, 30, Precision::binary32, [&](const Case& c) {
@@ -237,7 +227,7 @@ TEST_CASE("seed32 and stable32 answer in floats, and stable32 classifies generic
             INFO(names[k] << " " << describe(r));
             // What they refuse is beyond float's range (out_of_range), never a silent NaN.
             CHECK((r.ok() || r.error_code == ErrorCode::out_of_range));
-            CHECK(answers_in_floats(r));
+            CHECK(answered_in_floats(r));
             answered[k] += r.ok();
             if (k == 1 && c.family == "generic") {
                 // Generic cases are well separated from tangency: the classification is the

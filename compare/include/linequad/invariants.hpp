@@ -12,4 +12,7 @@ namespace linequad {
 // result lines. See the list at the top of src/invariants.cpp.
 std::string broken_invariant(const Case& c);
 
+// Whether every t, point and interval end of r is a float (what a float solver must answer).
+bool answered_in_floats(const Result& r);
+
 } // namespace linequad

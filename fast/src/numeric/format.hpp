@@ -139,11 +139,11 @@ struct Format<float> : FormatBits<float, std::uint32_t, std::int32_t> {
         return biased == 0 ? (x == 0 ? 0 : std::ilogb(x)) : biased - 127;
     }
 
-    // Whether the double x is a float: finite ones and the infinities (NaN is not asked).
     // 2^E for |x| in [2^E, 2^(E+1)), exactly; 0 when x is zero or subnormal.
     LINEQUAD_INLINE static float power_of_two_floor(float x) {
         return from_bits(bits(x) & exponent_mask);
     }
+    // Whether the double x is a float: finite ones and the infinities (NaN is not asked).
     LINEQUAD_INLINE static bool holds(double x) { return double(float(x)) == x; }
 
     // Half the spacing of the floats around the float f (a double holding it), away from zero

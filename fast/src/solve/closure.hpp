@@ -30,17 +30,15 @@ struct Decided {
     int sign;
     bool certain;
 };
-template <class R>
-using if_real = std::enable_if_t<std::is_floating_point_v<R>, int>;
-template <class R, if_real<R> = 0>
-Decided decide(R x) {
-    return {(x > 0) - (x < 0), true};
-}
-template <class BT, std::enable_if_t<!std::is_floating_point_v<BT>, int> = 0>
+template <class BT>
 Decided decide(const BT& x) {
-    if (x.v == 0 && x.e == 0) return {0, true};
-    int s = x.certain_sign();
-    return {s != 0 ? s : (x.v > 0) - (x.v < 0), s != 0};
+    if constexpr (std::is_floating_point_v<BT>) {
+        return {(x > 0) - (x < 0), true};
+    } else {
+        if (x.v == 0 && x.e == 0) return {0, true};
+        int s = x.certain_sign();
+        return {s != 0 ? s : (x.v > 0) - (x.v < 0), s != 0};
+    }
 }
 
 template <class BT>
@@ -51,17 +49,17 @@ BT exactly(double x) {
         return BT::exact(x);
 }
 
-template <class R, if_real<R> = 0>
-R value(R x) {
-    return x;
-}
-template <class BT, std::enable_if_t<!std::is_floating_point_v<BT>, int> = 0>
-double value(const BT& x) {
-    return x.v;
+// A value's rounded value: the real itself, or a bounded number's value.
+template <class BT>
+auto value(const BT& x) {
+    if constexpr (std::is_floating_point_v<BT>)
+        return x;
+    else
+        return x.v;
 }
 
 // t = (tc + s) t_scale in the caller's units, as the stable solver rounds it.
-template <class R, if_real<R> = 0>
+template <class R, std::enable_if_t<std::is_floating_point_v<R>, int> = 0>
 R caller_t(R tc, R s, R t_scale) {
     return (tc + s) * t_scale;
 }

@@ -48,8 +48,6 @@ struct Guards<float> {
     static constexpr float tiny_decisive = 0x1p-100f;
     static constexpr float min_zero_size = 0x1p-12f;
 };
-constexpr double min_relative_size = Guards<double>::min_relative_size;
-constexpr double tiny_decisive = Guards<double>::tiny_decisive;
 template <class R>
 bool underflow_zone(R x) {
     return x != 0 && std::fabs(x) < Guards<R>::tiny_decisive;
