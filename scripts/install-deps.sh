@@ -4,7 +4,10 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config git
           libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev catch2 libbenchmark-dev
           gnuplot-nox clang libclang-rt-14-dev
-          nlohmann-json3-dev libcli11-dev)
+          nlohmann-json3-dev libcli11-dev
+          # The peer libraries the audit grades beside linequad (compare/peers/).
+          libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev
+          libembree-dev libbullet-dev libode-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

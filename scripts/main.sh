@@ -7,3 +7,4 @@ bash scripts/build.sh
 ./build/compare/linequad --version
 ./build/compare/linequad solve --solver all examples/cases.jsonl
 ./build/compare/linequad audit --out reports/latest
+bash scripts/peers.sh

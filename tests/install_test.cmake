@@ -11,4 +11,5 @@ run(${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${WORK_DIR}/build -DCMAKE_PREFIX_PATH
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer)
 run(${WORK_DIR}/build/consumer_exact)
+run(${WORK_DIR}/build/consumer_audit)
 message(STATUS "consumer built against the installed package and ran")

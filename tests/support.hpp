@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <variant>
 
@@ -38,6 +40,26 @@ inline std::filesystem::path scratch(const std::string& name) {
     fs::remove_all(p);
     fs::create_directories(p);
     return p;
+}
+
+// What the linequad program did when run.
+struct Ran {
+    int status = -1; // the exit status; 128 + N when killed by signal N
+    std::string out, err;
+};
+
+// Runs `linequad ARGS` through the shell (ARGS may redirect), in dir.
+inline Ran program(const std::string& args, const std::filesystem::path& dir) {
+    // The captures come first, so that a redirection in args (> /dev/full, >&-) overrides them.
+    std::string cmd = "cd '" + dir.string() + "' && '" + std::string(LINEQUAD_BIN) +
+                      "' > stdout.txt 2> stderr.txt " + args;
+    int raw = std::system(cmd.c_str());
+    Ran r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+    r.out = slurp(dir / "stdout.txt");
+    r.err = slurp(dir / "stderr.txt");
+    INFO("linequad " << args << "\nstatus " << r.status << "\nstderr: " << r.err);
+    return r;
 }
 
 inline Result run(const std::string& solver, const Shape& s, const Line& l, Query q = {}) {

@@ -18,25 +18,6 @@ using nlohmann::json;
 
 namespace {
 
-struct Ran {
-    int status = -1; // the exit status; 128 + N when killed by signal N
-    std::string out, err;
-};
-
-// Runs `linequad ARGS` through the shell (ARGS may redirect), in dir.
-Ran program(const std::string& args, const fs::path& dir) {
-    // The captures come first, so that a redirection in args (> /dev/full, >&-) overrides them.
-    std::string cmd = "cd '" + dir.string() + "' && '" + std::string(LINEQUAD_BIN) +
-                      "' > stdout.txt 2> stderr.txt " + args;
-    int raw = std::system(cmd.c_str());
-    Ran r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-    r.out = slurp(dir / "stdout.txt");
-    r.err = slurp(dir / "stderr.txt");
-    INFO("linequad " << args << "\nstatus " << r.status << "\nstderr: " << r.err);
-    return r;
-}
-
 // Runs a shell command line as it is (for ulimit and timeout) in dir; returns its status.
 int shell(const std::string& cmd, const fs::path& dir) {
     int raw = std::system(("cd '" + dir.string() + "' && " + cmd).c_str());

@@ -48,43 +48,46 @@ OrderedJson row_json(const RowKey& key, const Row& r) {
                          {"solver", w.solver_line},
                          {"oracle", w.oracle_line}});
     // mean, p50, p99, ... are for people reading the file; only the exact fields are read back.
-    return {{"family", key.family},
-            {"shape", key.shape},
-            {"solver", key.solver},
-            {"cases", r.cases},
-            {"binary32_cases", r.binary32_cases},
-            {"graded_roots", r.graded_roots},
-            {"graded_points", r.graded_coords},
-            {"cases_mismatched", r.cases_mismatched},
-            {"mismatches", mismatches},
-            {"t_ulps",
-             {{"max", r.t_max},
-              {"mean", mean(r.t_sum, r.graded_roots)},
-              {"p50", r.t_error.quantile(0.5)},
-              {"p99", r.t_error.quantile(0.99)},
-              {"p999", r.t_error.quantile(0.999)},
-              {"mean_bits", mean(r.t_bits_sum, r.graded_roots)},
-              {"sum", r.t_sum},
-              {"bits_sum", r.t_bits_sum},
-              {"histogram", pairs(r.t_error.count)}}},
-            {"point_ulps",
-             {{"max", r.p_max},
-              {"p99", r.p_error.quantile(0.99)},
-              {"histogram", pairs(r.p_error.count)}}},
-            {"ns_per_solve", {{"median", r.ns.median()}, {"histogram", pairs(r.ns.count)}}},
-            {"certified",
-             {{"uncertain", r.uncertain},
-              {"certain_wrong", r.certain_wrong},
-              {"bounded_roots", r.bounded_roots},
-              {"bound_violations", r.bound_violations},
-              {"tightness_p50", r.tightness.quantile(0.5)},
-              {"bound_below_half_ulp", r.bound_below_half_ulp},
-              {"tightness", pairs(r.tightness.count)}}},
-            {"rungs",
-             {{"newton", r.rungs[std::size_t(Rung::newton)]},
-              {"double_double", r.rungs[std::size_t(Rung::double_double)]},
-              {"exact", r.rungs[std::size_t(Rung::exact)]}}},
-            {"worst", worst}};
+    return {
+        {"family", key.family},
+        {"shape", key.shape},
+        {"solver", key.solver},
+        {"cases", r.cases},
+        {"binary32_cases", r.binary32_cases},
+        {"graded_roots", r.graded_roots},
+        {"graded_points", r.graded_coords},
+        {"cases_mismatched", r.cases_mismatched},
+        {"mismatches", mismatches},
+        {"t_ulps",
+         {{"max", r.t_max},
+          {"mean", mean(r.t_sum, r.graded_roots)},
+          {"p50", r.t_quantile(0.5)},
+          {"p99", r.t_quantile(0.99)},
+          {"p999", r.t_quantile(0.999)},
+          {"mean_bits", mean(r.t_bits_sum, r.graded_roots)},
+          {"sum", r.t_sum},
+          {"bits_sum", r.t_bits_sum},
+          {"histogram", pairs(r.t_error.count)}}},
+        {"point_ulps",
+         {{"max", r.p_max}, {"p99", r.p_quantile(0.99)}, {"histogram", pairs(r.p_error.count)}}},
+        {"scene_ulps",
+         {{"max", r.s_max}, {"p99", r.s_quantile(0.99)}, {"histogram", pairs(r.s_error.count)}}},
+        {"unrepresented", r.unrepresented},
+        {"foreign_refusals", r.foreign},
+        {"ns_per_solve", {{"median", r.ns.median()}, {"histogram", pairs(r.ns.count)}}},
+        {"certified",
+         {{"uncertain", r.uncertain},
+          {"certain_wrong", r.certain_wrong},
+          {"bounded_roots", r.bounded_roots},
+          {"bound_violations", r.bound_violations},
+          {"tightness_p50", r.tightness.quantile(0.5)},
+          {"bound_below_half_ulp", r.bound_below_half_ulp},
+          {"tightness", pairs(r.tightness.count)}}},
+        {"rungs",
+         {{"newton", r.rungs[std::size_t(Rung::newton)]},
+          {"double_double", r.rungs[std::size_t(Rung::double_double)]},
+          {"exact", r.rungs[std::size_t(Rung::exact)]}}},
+        {"worst", worst}};
 }
 
 OrderedJson curve_json(const CurveKey& key, const std::map<int, CurvePoint>& points) {
@@ -239,6 +242,28 @@ Row read_row(const Node& n) {
     check_total(p.at("histogram"), read_pairs(p.at("histogram"), r.p_error.count), r.graded_coords,
                 "graded_points");
     check_max(p.at("max"), r.p_max, r.p_error, r.graded_coords);
+    // Reports from before scene-relative errors and external solvers have neither.
+    if (n.find("scene_ulps")) {
+        Node sc = n.at("scene_ulps");
+        r.s_max = sc.at("max").count();
+        check_total(sc.at("histogram"), read_pairs(sc.at("histogram"), r.s_error.count),
+                    r.graded_roots, "graded_roots");
+        check_max(sc.at("max"), r.s_max, r.s_error, r.graded_roots);
+    }
+    if (n.find("unrepresented")) r.unrepresented = n.at("unrepresented").count();
+    if (n.find("foreign_refusals")) {
+        Node f = n.at("foreign_refusals");
+        if (!f.v.is_object()) f.fail("expected an object of counts by name");
+        std::uint64_t total = 0;
+        for (auto it = f.v.begin(); it != f.v.end(); ++it) {
+            Node x{*it, f.path + "." + it.key()};
+            std::uint64_t k = x.count(r.cases);
+            if (k == 0) x.fail("a zero count is not written");
+            r.foreign[it.key()] = k;
+            total += k;
+        }
+        if (total > r.mismatches[refused]) f.fail("counts more than the refused mismatches");
+    }
     read_pairs(n.at("ns_per_solve").at("histogram"), r.ns.count);
     Node c = n.at("certified");
     r.uncertain = c.at("uncertain").count(r.cases);
@@ -293,14 +318,30 @@ void read_report(const Json& root, Report* r) {
     r->seconds = top.at("seconds").real();
     r->seed = top.at("seed").count();
     r->cases_per_group = top.at("cases_per_group").count();
-    if (top.find("results_file")) {
-        r->results_file = top.at("results_file").text();
-        r->cases_file = top.at("cases_file").text();
+    if (top.find("results_file")) r->results_file = top.at("results_file").text();
+    if (top.find("cases_file")) r->cases_file = top.at("cases_file").text();
+    if (top.find("cases_count")) r->cases_count = top.at("cases_count").count();
+    if (top.find("external")) {
+        Node ex = top.at("external");
+        for (std::size_t i = 0, n = ex.size(); i < n; ++i) {
+            Node x = ex.item(i);
+            Report::External e;
+            std::string name = x.at("solver").text();
+            e.answers = x.at("answers").text();
+            e.parametrisation = x.at("parametrisation").text();
+            e.surface = x.at("surface").text();
+            e.mapping = x.at("mapping").text();
+            e.plugin = x.at("plugin").text();
+            e.points = x.at("points").flag();
+            if (r->external.count(name)) x.at("solver").fail("'" + name + "' appears twice");
+            r->external[name] = e;
+        }
     }
     auto any = [](const std::string&) { return std::string(); };
+    // A cases file's families are whatever its cases name.
     r->families = top.at("families").names([&](const std::string& f) {
         Family x;
-        return r->grades_results() || parse_family(f, &x) ? "" : "a family";
+        return r->from_cases_file() || parse_family(f, &x) ? "" : "a family";
     });
     r->shapes = top.at("shapes").names(
         [](const std::string& s) { return shape_index(s) < shape_count ? "" : "a shape"; });
@@ -387,9 +428,22 @@ std::string to_json(const Report& r) {
                         {"solvers", r.solvers},
                         {"shards", r.shards},
                         {"shards_included", r.shards_included}};
-    if (r.grades_results()) {
+    if (r.from_cases_file()) {
         head["cases_file"] = r.cases_file;
-        head["results_file"] = r.results_file;
+        head["cases_count"] = r.cases_count;
+    }
+    if (r.grades_results()) head["results_file"] = r.results_file;
+    if (!r.external.empty()) {
+        OrderedJson ex = OrderedJson::array();
+        for (const auto& [name, e] : r.external)
+            ex.push_back({{"solver", name},
+                          {"answers", e.answers},
+                          {"parametrisation", e.parametrisation},
+                          {"surface", e.surface},
+                          {"mapping", e.mapping},
+                          {"plugin", e.plugin},
+                          {"points", e.points}});
+        head["external"] = ex;
     }
     head["oracle_rounding_steps"] = r.oracle_steps;
     // One row and one curve per line, so that two reports diff line by line.

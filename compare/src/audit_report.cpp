@@ -39,14 +39,29 @@ std::string fmt_ulps(std::uint64_t u) {
     return u == UINT64_MAX ? "inf" : fmt(double(u));
 }
 
-// The shell command that replays a case: the solver and the oracle side by side.
-std::string replay(const Worst& w, const std::string& solver) {
+// The shell command that replays a case: the solver and the oracle side by side (a plugin's
+// solver with its plugin loaded; an external solver's case is the one it was posed).
+std::string replay(const Report& r, const Worst& w, const std::string& solver) {
     std::string quoted;
     for (char c : w.case_line)
         quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
     // `solve` takes one line at a time; batch's results are stable's, bit for bit.
     std::string scalar = solver == batch_name ? "stable" : solver;
-    return "echo '" + quoted + "' | linequad solve --solver " + scalar + ",exact";
+    std::string plugin;
+    if (auto it = r.external.find(solver); it != r.external.end() && !it->second.plugin.empty())
+        plugin = " --plugin " + it->second.plugin;
+    return "echo '" + quoted + "' | linequad solve" + plugin + " --solver " + scalar + ",exact";
+}
+
+// A point error where the answers carry points; a time where one was measured.
+std::string point_max(const Row& row) {
+    return row.graded_coords ? fmt_ulps(row.p_max) : "-";
+}
+std::string median_ns(const Row& row) {
+    return row.timed() ? fmt(row.ns.median()) : "-";
+}
+std::string scene_error(const Row& row) {
+    return row.graded_roots ? fmt(row.s_quantile(0.99)) + " / " + fmt_ulps(row.s_max) : "-";
 }
 
 // One solver's rows of one family, merged.
@@ -88,6 +103,34 @@ std::string precision_of(const Row& row) {
     return row.binary32_cases == row.cases ? "float" : "mixed";
 }
 
+// One row per family, one column per solver: misclassified of cases and the t error p99 (and
+// the scene error p99).
+void write_by_family(std::ostream& md, const Report& r, const std::vector<std::string>& columns,
+                     bool scene) {
+    md << "| family |";
+    for (const std::string& s : columns)
+        md << " " << s << " |";
+    md << "\n|---|";
+    for (std::size_t i = 0; i < columns.size(); ++i)
+        md << "---:|";
+    md << "\n";
+    for (const std::string& family : r.families) {
+        md << "| " << family << " |";
+        for (const std::string& name : columns) {
+            Row t = family_total(r, family, name);
+            if (t.cases == 0) {
+                md << " - |";
+                continue;
+            }
+            md << " " << t.cases_mismatched << " of " << t.cases << ", p99 "
+               << fmt(t.t_quantile(0.99));
+            if (scene) md << ", scene " << fmt(t.s_quantile(0.99));
+            md << " |";
+        }
+        md << "\n";
+    }
+}
+
 // How often the correct solvers (correct, and correct32 rounding to float) needed each rung of
 // their ladder, by family.
 void write_rungs(std::ostream& md, const Report& r) {
@@ -127,28 +170,42 @@ void write_float_beside_double(std::ostream& md, const Report& r) {
         if (std::find(r.solvers.begin(), r.solvers.end(), s + "32") != r.solvers.end())
             pairs.push_back(s);
     if (pairs.empty()) return;
+    std::vector<std::string> columns;
+    for (const std::string& s : pairs)
+        columns.push_back(s), columns.push_back(s + "32");
     md << "\n## Float beside double\n\n"
           "Each solver in float (binary32 cases, errors in float ulps) beside the same solver in "
           "double (binary64 cases, double ulps), family by family: cases misclassified (of "
-          "cases), and the t error p99.\n\n| family |";
-    for (const std::string& s : pairs)
-        md << " " << s << " | " << s << "32 |";
-    md << "\n|---|";
-    for (std::size_t i = 0; i < pairs.size(); ++i)
-        md << "---:|---:|";
-    md << "\n";
-    for (const std::string& family : r.families) {
-        md << "| " << family << " |";
-        for (const std::string& s : pairs)
-            for (const std::string& name : {s, s + "32"}) {
-                Row t = family_total(r, family, name);
-                md << " " << t.cases_mismatched << " of " << t.cases << ", p99 "
-                   << fmt(t.t_error.quantile(0.99)) << " |";
-            }
-        md << "\n";
-    }
+          "cases), and the t error p99.\n\n";
+    write_by_family(md, r, columns, false);
 }
 
+// Solvers from outside linequad beside linequad's, family by family.
+void write_external_by_family(std::ostream& md, const Report& r) {
+    if (r.external.empty()) return;
+    md << "\n## Every solver by family\n\n"
+          "Cases misclassified (of the cases each could take), the t error p99 in ulps of t, and "
+          "the scene error p99 (|t - t_oracle| |v| in ulps of the scene's magnitude), which stays "
+          "meaningful where t is near 0.\n\n";
+    write_by_family(md, r, r.solvers, true);
+}
+
+} // namespace
+
+namespace {
+// How each external solver was handed its cases.
+void write_external(std::ostream& md, const Report& r) {
+    if (r.external.empty()) return;
+    md << "## Solvers from outside linequad\n\nEach is graded on the case as it was posed to it, "
+          "against the exact reference for what it answers (every hit, the nearest, or the first "
+          "entry into the solid).\n\n| solver | answers | t | surfaces | mapping |\n"
+          "|---|---|---|---|---|\n";
+    for (const auto& [name, e] : r.external)
+        md << "| " << name << (e.plugin.empty() ? "" : " (`" + e.plugin + "`)") << " | "
+           << e.answers << " | " << e.parametrisation << " | " << e.surface << " | " << e.mapping
+           << " |\n";
+    md << "\n";
+}
 } // namespace
 
 std::string markdown(const Report& r) {
@@ -158,14 +215,18 @@ std::string markdown(const Report& r) {
     md << "| command | `" << r.command << "` |\n| commit | " << r.commit << " |\n| date | "
        << r.date << " |\n";
     md << "| machine | " << r.machine << " |\n| compiler | " << r.compiler << " |\n";
-    md << "| fast/ flags | `" << r.flags << "` |\n| seed | " << r.seed << " |\n";
-    md << "| cases per family, shape and range | " << r.cases_per_group << " |\n";
+    md << "| fast/ flags | `" << r.flags << "` |\n";
+    if (r.from_cases_file())
+        md << "| cases | `" << r.cases_file << "` (" << r.cases_count << " cases) |\n";
+    else
+        md << "| seed | " << r.seed << " |\n| cases per family, shape and range | "
+           << r.cases_per_group << " |\n";
     md << "| shapes | ";
     for (const std::string& s : r.shapes)
         md << s << (&s == &r.shapes.back() ? "" : ", ");
     md << " (frames: " << r.frames << ") |\n";
     if (r.grades_results())
-        md << "| graded | `" << r.results_file << "` against `" << r.cases_file << "` |\n";
+        md << "| graded | the answers in `" << r.results_file << "` (not timed) |\n";
     md << "| linequad | " << r.version << " |\n| shards | " << r.shards << " |\n| complete | "
        << status_line(r) << " |\n";
     md << "| run time | " << fmt(r.seconds) << " s |\n\n";
@@ -190,43 +251,56 @@ std::string markdown(const Report& r) {
           "shapes.\n\n";
 
     md << "## Headline: every family\n\n";
-    md << "| solver | precision | cases | mismatched | uncertain | bound violations | t max ulps "
-          "| t p99 | t p50 | mean bits | point max ulps | ns/solve (generic) |\n";
-    md << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    md << "Scene error: the t error as a distance, |t - t_oracle| |v|, in ulps of the scene's "
+          "magnitude (the largest of |L0|, |t v| and the shape's coordinates), p99 / max. "
+          "Unrepresented: cases the solver could not take (not graded). A dash: not measured "
+          "(no points in the answers, no time for answers read from a file).\n\n";
+    md << "| solver | precision | cases | unrepresented | mismatched | uncertain | bound "
+          "violations | t max ulps | t p99 | t p50 | mean bits | scene error | point max ulps | "
+          "ns/solve (generic) |\n";
+    md << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    bool timed = false;
     for (const std::string& s : r.solvers) {
         Row t = r.total(s), generic = family_total(r, "generic", s);
-        md << "| " << s << " | " << precision_of(t) << " | " << t.cases << " | "
-           << t.cases_mismatched << " | "
+        timed = timed || generic.timed();
+        md << "| " << s << " | " << precision_of(t) << " | " << t.cases << " | " << t.unrepresented
+           << " | " << t.cases_mismatched << " | "
            << (t.bounded_roots || t.uncertain ? num(t.uncertain) : "-") << " | "
            << (t.bounded_roots ? num(t.bound_violations) + " of " + num(t.bounded_roots) : "-")
-           << " | " << fmt_ulps(t.t_max) << " | " << fmt(t.t_error.quantile(0.99)) << " | "
-           << fmt(t.t_error.quantile(0.5)) << " | "
+           << " | " << fmt_ulps(t.t_max) << " | " << fmt(t.t_quantile(0.99)) << " | "
+           << fmt(t.t_quantile(0.5)) << " | "
            << fmt(t.graded_roots ? t.t_bits_sum / double(t.graded_roots) : 0) << " | "
-           << fmt_ulps(t.p_max) << " | " << fmt(generic.ns.median()) << " |\n";
+           << scene_error(t) << " | " << point_max(t) << " | " << median_ns(generic) << " |\n";
     }
-    md << "\n![run time against error](pareto.svg)\n\n";
+    if (timed) md << "\n![run time against error](pareto.svg)\n\n";
+    write_external(md, r);
 
     md << "## By family and shape\n\n";
-    md << "| family | shape | solver | cases | mismatched | by kind | uncertain | bound viol. | "
-          "bound/err p50 | t max | t p99 | t p99.9 | t mean | point max | ns/solve |\n";
-    md << "|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    md << "| family | shape | solver | cases | unrep. | mismatched | by kind | uncertain | "
+          "bound viol. | bound/err p50 | t max | t p99 | t p99.9 | t mean | scene error | "
+          "point max | ns/solve |\n";
+    md << "|---|---|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& [key, row] : r.rows) {
         std::string kinds;
         for (int m = 0; m < mismatch_kinds; ++m)
             if (row.mismatches[m])
                 kinds += (kinds.empty() ? "" : ", ") + std::string(mismatch_name(m)) + " " +
                          num(row.mismatches[m]);
+        // The solver's own refusals, by its names for them (crashes among them).
+        for (const auto& [name, n] : row.foreign)
+            kinds += (kinds.empty() ? "" : ", ") + ("'" + name + "' ") + num(n);
         md << "| " << key.family << " | " << key.shape << " | " << key.solver << " | " << row.cases
-           << " | " << row.cases_mismatched << " | " << kinds << " | "
+           << " | " << row.unrepresented << " | " << row.cases_mismatched << " | " << kinds << " | "
            << (row.bounded_roots || row.uncertain ? num(row.uncertain) : "-") << " | "
            << (row.bounded_roots ? num(row.bound_violations) : "-") << " | "
            << (row.bounded_roots ? fmt(row.tightness.quantile(0.5)) : "-") << " | "
-           << fmt_ulps(row.t_max) << " | " << fmt(row.t_error.quantile(0.99)) << " | "
-           << fmt(row.t_error.quantile(0.999)) << " | "
+           << fmt_ulps(row.t_max) << " | " << fmt(row.t_quantile(0.99)) << " | "
+           << fmt(row.t_quantile(0.999)) << " | "
            << fmt(row.graded_roots ? row.t_sum / double(row.graded_roots) : 0) << " | "
-           << fmt_ulps(row.p_max) << " | " << fmt(row.ns.median()) << " |\n";
+           << scene_error(row) << " | " << point_max(row) << " | " << median_ns(row) << " |\n";
     }
 
+    write_external_by_family(md, r);
     write_float_beside_double(md, r);
     write_rungs(md, r);
 
@@ -248,7 +322,7 @@ std::string markdown(const Report& r) {
                << "\n\n";
             md << "  ```\n  " << w.case_line << "\n  " << w.solver_line << "\n  " << w.oracle_line
                << "\n  ```\n\n";
-            md << "  `" << replay(w, key.solver) << "`\n\n";
+            md << "  `" << replay(r, w, key.solver) << "`\n\n";
         }
     }
     md << "## Oracle rounding\n\nValues rounded at 64, 128, 256, ... bits: ";
@@ -275,24 +349,30 @@ bool write_plots(const Report& r, const std::string& dir) {
     {
         std::ostringstream dat;
         dat << "# solver ns_generic max_ulps p99_ulps\n";
+        // Only solvers timed on generic cases: an answer read from a file has no time.
+        int points = 0;
         for (const std::string& s : r.solvers) {
             Row t = r.total(s), generic = family_total(r, "generic", s);
+            if (!generic.timed()) continue;
+            ++points;
             dat << s << " " << generic.ns.median() << " " << 1 + double(t.t_max) << " "
-                << 1 + t.t_error.quantile(0.99) << "\n";
+                << 1 + t.t_quantile(0.99) << "\n";
         }
         jsonl::write_file(dir + "/pareto.dat", dat.str());
-        both_terminals(
-            "pareto", "set title 'run time against error (every family)'\nset xlabel "
-                      "'ns per solve, median, generic cases'\n"
-                      "set ylabel '1 + t error in ulps of its precision (the *32 solvers: float)'\n"
-                      "set logscale y\nset grid\nset "
-                      "key outside bottom center horizontal\n"
-                      "set offsets graph 0.15, graph 0.15, graph 0.1, graph 0.1\n"
-                      "plot '" +
-                          dir +
-                          "/pareto.dat' using 2:3:1 with labels offset 0,1 notitle, "
-                          "'' using 2:3 with points pt 7 ps 1.5 title 'max', '' using "
-                          "2:4 with points pt 5 ps 1.5 title 'p99'\n");
+        if (points)
+            both_terminals(
+                "pareto",
+                "set title 'run time against error (every family)'\nset xlabel "
+                "'ns per solve, median, generic cases'\n"
+                "set ylabel '1 + t error in ulps of its precision (the *32 solvers: float)'\n"
+                "set logscale y\nset grid\nset "
+                "key outside bottom center horizontal\n"
+                "set offsets graph 0.15, graph 0.15, graph 0.1, graph 0.1\n"
+                "plot '" +
+                    dir +
+                    "/pareto.dat' using 2:3:1 with labels offset 0,1 notitle, "
+                    "'' using 2:3 with points pt 7 ps 1.5 title 'max', '' using "
+                    "2:4 with points pt 5 ps 1.5 title 'p99'\n");
     }
     // Error against difficulty, one figure per family, one curve per solver.
     std::map<std::string, std::vector<std::string>> families;

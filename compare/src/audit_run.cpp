@@ -1,5 +1,6 @@
 // The campaign loop, the grading of results files, and report provenance.
 #include "linequad/audit.hpp"
+#include "linequad/audit_solver.hpp"
 
 #include "shape_types.hpp"
 
@@ -164,16 +165,48 @@ std::vector<Group> groups_of(const Options& o) {
     return out;
 }
 
-std::vector<const Solver*> solvers_of(const Options& o) {
-    std::vector<const Solver*> out;
+// The solvers a run grades: linequad's own (by name) and the external ones named, in the order
+// named. An empty list: every fast solver, then every external one. A name that is neither is
+// refused.
+struct Solvers {
+    std::vector<const Solver*> own;
+    std::vector<const ExternalSolver*> external;
+    std::vector<std::string> names; // in order, batch included where named
+};
+
+Solvers solvers_of(const Options& o, const std::vector<ExternalSolver>& external) {
+    Solvers out;
+    auto find_external = [&](const std::string& name) -> const ExternalSolver* {
+        for (const ExternalSolver& e : external)
+            if (e.name == name) return &e;
+        return nullptr;
+    };
     if (o.solvers.empty()) {
         for (const Solver& s : fast_solvers())
-            out.push_back(find_solver(s.name));
+            out.own.push_back(find_solver(s.name)), out.names.emplace_back(s.name);
+        for (const ExternalSolver& e : external)
+            out.external.push_back(&e), out.names.push_back(e.name);
         return out;
     }
-    for (const std::string& name : o.solvers)
-        if (const Solver* s = find_solver(name)) out.push_back(s);
+    for (const std::string& name : o.solvers) {
+        if (const ExternalSolver* e = find_external(name))
+            out.external.push_back(e);
+        else if (const Solver* s = find_solver(name))
+            out.own.push_back(s);
+        else if (name != batch_name)
+            throw std::invalid_argument("audit: no solver named '" + name + "'");
+        if (name != batch_name) out.names.push_back(name);
+    }
     return out;
+}
+
+Report::External describe(const ExternalSolver& e) {
+    return {answers_name(e.answers),
+            parametrisation_name(e.parametrisation),
+            surface_name(e.surface),
+            e.mapping,
+            e.plugin,
+            e.points};
 }
 
 bool batch_wanted(const Options& o) {
@@ -282,10 +315,11 @@ Report grade_results(const Options& o) {
     Report rep;
     fill_provenance(rep, o);
     rep.cases_file = o.cases_file, rep.results_file = o.results_file;
-    rep.cases_per_group = 0;
+    rep.seed = 0, rep.cases_per_group = 0;
     rep.families.clear();
     auto start = std::chrono::steady_clock::now();
     std::vector<Case> cases = read_cases(o);
+    rep.cases_count = cases.size();
     std::unordered_map<std::string, std::size_t> index;
     for (std::size_t i = 0; i < cases.size(); ++i) {
         index[cases[i].id] = i;
@@ -381,18 +415,170 @@ void for_each_case(const Options& o, const std::function<void(const Case&)>& f) 
                 f(make_case(grp.family, grp.shape, grp.range, o.seed, i, o.frames, o.precision));
 }
 
+namespace {
+
+// Grades one chunk of cases (one family and shape, one precision) with every solver that answers
+// in that precision, into the report.
+class ChunkGrader {
+  public:
+    ChunkGrader(Report& rep, const Solvers& solvers, bool batch)
+        : rep_(rep), solvers_(solvers), batch_(batch) {}
+
+    // Whether any solver answers cases posed in p.
+    bool wanted(Precision p) const {
+        if (p == Precision::binary64 && batch_) return true;
+        for (const Solver* s : solvers_.own)
+            if (s->precision == p) return true;
+        for (const ExternalSolver* e : solvers_.external)
+            if (e->precision == p) return true;
+        return false;
+    }
+
+    void grade_chunk(const std::vector<Case>& cases, Precision precision, const std::string& family,
+                     const std::string& shape) {
+        oracle_.resize(cases.size());
+        got_.resize(cases.size());
+        for (std::size_t i = 0; i < cases.size(); ++i)
+            oracle_[i] = exact::intersect(cases[i].shape, cases[i].line, {}, precision);
+        for (const Solver* s : solvers_.own) {
+            if (s->precision != precision) continue;
+            std::string name(s->name);
+            Row& row = rep_.rows[{family, shape, name}];
+            auto t0 = std::chrono::steady_clock::now();
+            for (std::size_t i = 0; i < cases.size(); ++i)
+                got_[i] = (*s)(cases[i].shape, cases[i].line);
+            auto t1 = std::chrono::steady_clock::now();
+            row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
+                       double(cases.size()));
+            auto& curve = rep_.curves[{family, name}];
+            for (std::size_t i = 0; i < cases.size(); ++i)
+                grade(cases[i], name, got_[i], oracle_[i], row, &curve[cases[i].k]);
+        }
+        if (batch_ && precision == Precision::binary64) {
+            Row& row = rep_.rows[{family, shape, batch_name}];
+            row.ns.add(run_batch(cases, got_));
+            auto& curve = rep_.curves[{family, batch_name}];
+            for (std::size_t i = 0; i < cases.size(); ++i)
+                grade(cases[i], batch_name, got_[i], oracle_[i], row, &curve[cases[i].k]);
+        }
+        for (const ExternalSolver* e : solvers_.external)
+            if (e->precision == precision && e->takes(cases[0].shape))
+                grade_external(*e, cases, family, shape);
+    }
+
+  private:
+    // The library's cases are posed its way, and its reference solved for what it saw.
+    void grade_external(const ExternalSolver& e, const std::vector<Case>& cases,
+                        const std::string& family, const std::string& shape) {
+        Row& row = rep_.rows[{family, shape, e.name}];
+        posed_.clear();
+        from_.clear();
+        for (std::size_t i = 0; i < cases.size(); ++i)
+            if (std::optional<Case> p = posed_for(e, cases[i])) {
+                posed_.push_back(std::move(*p));
+                from_.push_back(i);
+            } else {
+                ++row.unrepresented;
+            }
+        if (posed_.empty()) return;
+        answers_.resize(posed_.size());
+        CrashGuard guard; // installed once for the chunk, outside the timing
+        auto t0 = std::chrono::steady_clock::now();
+        for (std::size_t j = 0; j < posed_.size(); ++j)
+            answers_[j] = e(posed_[j].shape, posed_[j].line);
+        auto t1 = std::chrono::steady_clock::now();
+        row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
+                   double(posed_.size()));
+        // The oracle's answer stands when the library saw the case as it is and answers all.
+        bool as_is = e.answers == Answers::all && e.surface == Surface::as_posed &&
+                     e.parametrisation == Parametrisation::line;
+        auto& curve = rep_.curves[{family, e.name}];
+        Grading what{e.points, e.kinds, e.parts};
+        for (std::size_t j = 0; j < posed_.size(); ++j) {
+            if (!answers_[j]) {
+                ++row.unrepresented;
+                continue;
+            }
+            Result ref = as_is ? oracle_[from_[j]] : reference_for(e.answers, posed_[j]);
+            grade(posed_[j], e.name, *answers_[j], ref, row, &curve[posed_[j].k], what);
+        }
+    }
+
+    Report& rep_;
+    const Solvers& solvers_;
+    bool batch_;
+    std::vector<Result> oracle_, got_;
+    std::vector<Case> posed_;
+    std::vector<std::size_t> from_;
+    std::vector<std::optional<Result>> answers_;
+};
+
+// Every solver on the cases of a cases file, grouped by family, shape and precision (in the
+// order the file first names them), in chunks.
+Report solve_cases_file(const Options& o, const Solvers& solvers, Report rep) {
+    std::vector<Case> all = read_cases(o);
+    rep.cases_file = o.cases_file, rep.cases_count = all.size();
+    rep.seed = 0, rep.cases_per_group = 0;
+    rep.families.clear(), rep.shapes.clear();
+    std::vector<std::tuple<std::string, std::string, Precision>> order;
+    std::map<std::tuple<std::string, std::string, Precision>, std::vector<Case>> groups;
+    for (Case& c : all) {
+        std::string family = c.family.empty() ? "cases" : c.family;
+        std::string shape = shape_name(c.shape);
+        if (std::find(rep.families.begin(), rep.families.end(), family) == rep.families.end())
+            rep.families.push_back(family);
+        if (std::find(rep.shapes.begin(), rep.shapes.end(), shape) == rep.shapes.end())
+            rep.shapes.push_back(shape);
+        auto key = std::make_tuple(family, shape, c.precision);
+        auto [it, fresh] = groups.try_emplace(key);
+        if (fresh) order.push_back(key);
+        it->second.push_back(std::move(c));
+    }
+    exact::rounding_stats() = {};
+    auto start = std::chrono::steady_clock::now();
+    Saver saver(o);
+    saver.begin(rep);
+    StopOnSignal stop;
+    ChunkGrader grader(rep, solvers, batch_wanted(o));
+    Progress progress(all.size());
+    constexpr std::size_t chunk = 256;
+    std::vector<Case> cases;
+    for (const auto& key : order) {
+        const auto& [family, shape, precision] = key;
+        const std::vector<Case>& group = groups[key];
+        for (std::size_t begin = 0; begin < group.size() && !stop_requested; begin += chunk) {
+            cases.assign(group.begin() + long(begin),
+                         group.begin() + long(std::min(group.size(), begin + chunk)));
+            if (grader.wanted(precision)) grader.grade_chunk(cases, precision, family, shape);
+            progress.advance(cases.size());
+            saver.maybe_save(rep, start);
+        }
+    }
+    rep.status = stop_requested ? Status::stopped : Status::complete;
+    saver.end(rep, o, start);
+    return rep;
+}
+
+} // namespace
+
 Report run(const Options& o) {
+    return run(o, {});
+}
+
+Report run(const Options& o, const std::vector<ExternalSolver>& external) {
     check_shard(o);
-    if (o.results_file.empty() != o.cases_file.empty())
+    if (!o.results_file.empty() && o.cases_file.empty())
         throw std::invalid_argument("audit: a results file is graded against its cases file");
     if (!o.results_file.empty()) return grade_results(o);
     Report rep;
     fill_provenance(rep, o);
-    std::vector<const Solver*> solvers = solvers_of(o);
-    for (const Solver* s : solvers)
-        rep.solvers.emplace_back(s->name);
+    Solvers solvers = solvers_of(o, external);
+    rep.solvers = solvers.names;
     bool batch = batch_wanted(o);
     if (batch) rep.solvers.emplace_back(batch_name);
+    for (const ExternalSolver* e : solvers.external)
+        rep.external[e->name] = describe(*e);
+    if (!o.cases_file.empty()) return solve_cases_file(o, solvers, rep);
     for (Family f : families_of(o))
         rep.families.emplace_back(family_name(f));
     std::vector<Group> groups = groups_of(o);
@@ -404,22 +590,17 @@ Report run(const Options& o) {
 
     // Each solver answers the family's cases posed in its own precision: the double solvers (and
     // batch) binary64 cases, the float solvers binary32 cases, each graded in its own ulps.
-    std::vector<const Solver*> by_precision[2];
-    for (const Solver* s : solvers)
-        by_precision[s->precision == Precision::binary32].push_back(s);
-    std::uint64_t passes = (by_precision[0].empty() && !batch ? 0 : 1) + !by_precision[1].empty();
+    ChunkGrader grader(rep, solvers, batch);
+    std::uint64_t passes = grader.wanted(Precision::binary64) + grader.wanted(Precision::binary32);
     Progress progress(passes * groups.size() * o.cases_per_group / std::uint64_t(o.shards));
     constexpr std::uint64_t chunk = 256;
     std::vector<Case> cases;
-    std::vector<Result> oracle, got;
     std::uint64_t g_base = 0;
     for (const Group& grp : groups) {
         std::string family = family_name(grp.family), shape = shape_name_at(grp.shape);
         for (std::uint64_t begin = 0; begin < o.cases_per_group && !stop_requested; begin += chunk)
             for (Precision precision : {Precision::binary64, Precision::binary32}) {
-                bool single = precision == Precision::binary32;
-                bool with_batch = batch && !single;
-                if (by_precision[single].empty() && !with_batch) continue;
+                if (!grader.wanted(precision)) continue;
                 std::uint64_t end = std::min(o.cases_per_group, begin + chunk);
                 cases.clear();
                 for (std::uint64_t i = begin; i < end; ++i)
@@ -427,30 +608,7 @@ Report run(const Options& o) {
                         cases.push_back(make_case(grp.family, grp.shape, grp.range, o.seed, i,
                                                   o.frames, precision));
                 if (cases.empty()) continue;
-                oracle.resize(cases.size());
-                got.resize(cases.size());
-                for (std::size_t i = 0; i < cases.size(); ++i)
-                    oracle[i] = exact::intersect(cases[i].shape, cases[i].line, {}, precision);
-                for (const Solver* s : by_precision[single]) {
-                    std::string name(s->name);
-                    Row& row = rep.rows[{family, shape, name}];
-                    auto t0 = std::chrono::steady_clock::now();
-                    for (std::size_t i = 0; i < cases.size(); ++i)
-                        got[i] = (*s)(cases[i].shape, cases[i].line);
-                    auto t1 = std::chrono::steady_clock::now();
-                    row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
-                               double(cases.size()));
-                    auto& curve = rep.curves[{family, name}];
-                    for (std::size_t i = 0; i < cases.size(); ++i)
-                        grade(cases[i], name, got[i], oracle[i], row, &curve[cases[i].k]);
-                }
-                if (with_batch) {
-                    Row& row = rep.rows[{family, shape, batch_name}];
-                    row.ns.add(run_batch(cases, got));
-                    auto& curve = rep.curves[{family, batch_name}];
-                    for (std::size_t i = 0; i < cases.size(); ++i)
-                        grade(cases[i], batch_name, got[i], oracle[i], row, &curve[cases[i].k]);
-                }
+                grader.grade_chunk(cases, precision, family, shape);
                 progress.advance(cases.size());
                 saver.maybe_save(rep, start);
             }

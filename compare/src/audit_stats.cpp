@@ -1,5 +1,6 @@
 // Mergeable statistics and the grading of one result against the oracle's.
 #include "linequad/audit.hpp"
+#include "linequad/audit_solver.hpp"
 
 #include "linequad/case_io.hpp"
 
@@ -127,10 +128,58 @@ std::uint64_t point_ulps(Vec3 got, Vec3 want, const Line& l, double t, Precision
     double u = std::ceil(err / ulp);
     return u >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(u);
 }
+
+// The scene's magnitude for the scene-relative error: the largest coordinate of the shape's
+// defining points and sizes, of L0, and of t v.
+double scene_size(const Case& c, double t) {
+    double m = std::max(max_abs(c.line.L0), std::fabs(t) * max_abs(c.line.v));
+    std::visit(
+        [&](const auto& x) {
+            using S = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<S, Cylinder>)
+                m = std::max({m, max_abs(x.C), max_abs(x.H), std::fabs(x.r)});
+            if constexpr (std::is_same_v<S, EllipticCylinder>)
+                m = std::max({m, max_abs(x.C), max_abs(x.a), max_abs(x.b), max_abs(x.c)});
+            if constexpr (std::is_same_v<S, EllipticCone>)
+                m = std::max({m, max_abs(x.C), max_abs(x.H), max_abs(x.a), max_abs(x.b)});
+            if constexpr (std::is_same_v<S, Frustum>)
+                m = std::max({m, max_abs(x.C0), max_abs(x.C1), std::fabs(x.r0), std::fabs(x.r1)});
+        },
+        c.shape);
+    return m;
+}
+
+// |t - t_oracle| |v| in ulps (of the case's format) of the scene's magnitude, rounded up.
+std::uint64_t scene_ulps(const Case& c, double got, double want) {
+    if (got == want) return 0;
+    double err = std::fabs(got - want) * max_abs(c.line.v);
+    double ulp = 2 * half_ulp_of(scene_size(c, want), c.precision);
+    if (!std::isfinite(err) || !(ulp > 0)) return std::numeric_limits<std::uint64_t>::max();
+    double u = std::ceil(err / ulp);
+    return u >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t(u);
+}
+
+double capped(const Histogram& h, double q, std::uint64_t max) {
+    return std::min(h.quantile(q), double(max));
+}
 } // namespace
+
+double Row::t_quantile(double q) const {
+    return capped(t_error, q, t_max);
+}
+double Row::p_quantile(double q) const {
+    return capped(p_error, q, p_max);
+}
+double Row::s_quantile(double q) const {
+    return capped(s_error, q, s_max);
+}
 
 void Row::merge(const Row& o) {
     cases += o.cases, graded_roots += o.graded_roots, graded_coords += o.graded_coords;
+    s_error.merge(o.s_error), s_max = std::max(s_max, o.s_max);
+    unrepresented += o.unrepresented;
+    for (const auto& [name, n] : o.foreign)
+        foreign[name] += n;
     binary32_cases += o.binary32_cases;
     for (int m = 0; m < mismatch_kinds; ++m)
         mismatches[m] += o.mismatches[m];
@@ -151,8 +200,15 @@ void Row::merge(const Row& o) {
 
 void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
            Row& row, CurvePoint* curve, bool points) {
+    grade(c, solver, got, oracle, row, curve, Grading{points, true, true});
+}
+
+void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
+           Row& row, CurvePoint* curve, const Grading& what) {
     bool flags[mismatch_kinds] = {};
+    bool points = what.points;
     ++row.cases;
+    if (got.error_code == ErrorCode::foreign) ++row.foreign[got.error_field];
     row.binary32_cases += c.precision == Precision::binary32;
     if (got.ok() && got.rung != Rung::none) ++row.rungs[std::size_t(got.rung)];
     std::uint64_t case_max = 0;
@@ -169,7 +225,8 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
                 n += r.hits[i].kind == HitKind::tangent;
             return n;
         };
-        int to = tangents(oracle), tg = tangents(got);
+        // A solver that does not tell tangents from crossings is graded on its count of hits.
+        int to = tangents(oracle), tg = what.kinds ? tangents(got) : to;
         if (to > tg) flags[tangent_missed] = true;
         if (tg > to) flags[tangent_invented] = true;
         if (oracle.count != got.count) flags[hit_count] = true;
@@ -178,7 +235,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
             bool parts = !oracle.on_surface || oracle.surface_part == got.surface_part;
             for (int i = 0; i < oracle.count; ++i)
                 parts = parts && oracle.hits[i].part == got.hits[i].part;
-            flags[part_wrong] = !parts;
+            flags[part_wrong] = what.parts && !parts;
         }
         // Hits on other parts are other roots: no t error or bound is measured between them.
         if (classified && !flags[part_wrong]) {
@@ -205,6 +262,9 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
                 row.t_bits_sum += std::log2(1.0 + double(u));
                 ++row.graded_roots;
                 case_max = std::max(case_max, u);
+                std::uint64_t su = std::isinf(o) && g == o ? 0 : scene_ulps(c, g, o);
+                row.s_error.add(su);
+                row.s_max = std::max(row.s_max, su);
             };
             if (oracle.on_surface) {
                 add_t(got.s0, oracle.s0);
@@ -244,7 +304,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
         Worst w;
         w.mismatch = mismatch, w.ulps = case_max;
         w.case_line = format_case(c);
-        w.solver_line = format_result(c.id, solver, got);
+        w.solver_line = format_result(c.id, solver, got, points);
         w.oracle_line = format_result(c.id, "exact", oracle);
         keep(row.worst, std::move(w));
     }
@@ -272,8 +332,8 @@ std::string joined(const std::vector<std::string>& v) {
 } // namespace
 
 std::string unmergeable(const Report& a, const Report& b) {
-    if (a.grades_results() || b.grades_results())
-        return "it grades a results file; merge combines the shards of one campaign";
+    if (a.from_cases_file() || b.from_cases_file())
+        return "it grades a cases file; merge combines the shards of one campaign";
     auto differ = [](const char* what, const std::string& x, const std::string& y) {
         return std::string(what) + " differ: " + y + " here, " + x + " in the first report";
     };

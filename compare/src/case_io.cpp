@@ -9,8 +9,19 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <mutex>
+#include <set>
 
 namespace linequad {
+
+const char* interned(std::string_view name) {
+    static std::mutex m;
+    static std::set<std::string, std::less<>> names;
+    std::lock_guard<std::mutex> lock(m);
+    auto it = names.find(name);
+    if (it == names.end()) it = names.emplace(name).first;
+    return it->c_str();
+}
 
 std::string hex(double x) {
     if (std::isnan(x)) return "nan";
@@ -351,12 +362,13 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
         const Json* code = r.find("code");
         if (code && !code->is_string()) return r.fail("code", "expected a string");
         pr->error_code = code ? code->get<std::string>() : "error";
-        // The code names the kind of refusal. One that no solver of linequad's gives stands as
-        // out_of_range, a refusal the oracle never makes: it is graded as refused.
-        pr->result.error_code = ErrorCode::out_of_range;
-        for (int c = int(ErrorCode::not_a_number); c <= int(ErrorCode::not_binary32); ++c)
-            if (pr->error_code == code_name(ErrorCode(c))) pr->result.error_code = ErrorCode(c);
-        pr->result.error_field = "";
+        // The code names the kind of refusal. One that is not linequad's is the solver's own
+        // (ErrorCode::foreign), kept by its name: a refusal the oracle never makes.
+        pr->result.error_code = ErrorCode::foreign;
+        pr->result.error_field = interned(pr->error_code);
+        for (int c = int(ErrorCode::not_a_number); c < int(ErrorCode::foreign); ++c)
+            if (pr->error_code == code_name(ErrorCode(c)))
+                pr->result.error_code = ErrorCode(c), pr->result.error_field = "";
         return true;
     }
     const Json* hits = r.need("hits");

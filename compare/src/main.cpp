@@ -4,10 +4,12 @@
 // incomplete merge, a diff that got worse); 2 the command cannot run (bad options, unreadable
 // input, unwritable output); 130 an audit stopped early by a signal (its report says so).
 #include "linequad/audit.hpp"
+#include "linequad/audit_solver.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/registry.hpp"
 
 #include "jsonl.hpp"
+#include "peers/peers.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -69,8 +71,36 @@ std::string shard_error(const std::string& text, int* k, int* n) {
     return "";
 }
 
-std::string solver_error(const std::string& name, bool batch_too) {
-    if (find_solver(name) || (batch_too && name == audit::batch_name)) return "";
+// The solvers from outside linequad this run knows: the peer libraries built in, then those of
+// the plugins given (--plugin), loaded once.
+std::vector<audit::ExternalSolver> external_solvers(const std::vector<std::string>& plugins) {
+    std::vector<audit::ExternalSolver> out = peers::solvers();
+    for (const std::string& path : plugins)
+        for (audit::ExternalSolver& e : audit::load_plugin(path)) {
+            for (const audit::ExternalSolver& x : out)
+                if (x.name == e.name)
+                    throw std::invalid_argument(path + ": solver '" + e.name +
+                                                "' is already defined (by " +
+                                                (x.plugin.empty() ? "linequad" : x.plugin) + ")");
+            if (find_solver(e.name))
+                throw std::invalid_argument(path + ": solver '" + e.name +
+                                            "' has the name of one of linequad's");
+            out.push_back(std::move(e));
+        }
+    return out;
+}
+
+const audit::ExternalSolver* find_external(const std::vector<audit::ExternalSolver>& ext,
+                                           const std::string& name) {
+    for (const audit::ExternalSolver& e : ext)
+        if (e.name == name) return &e;
+    return nullptr;
+}
+
+std::string solver_error(const std::string& name, bool batch_too,
+                         const std::vector<audit::ExternalSolver>& ext) {
+    if (find_solver(name) || find_external(ext, name) || (batch_too && name == audit::batch_name))
+        return "";
     return "no solver named '" + name + "' (see: linequad solvers)";
 }
 
@@ -115,17 +145,43 @@ int fail(const std::string& msg) {
 
 struct SolveArgs {
     std::string solvers = "stable", need = "all", file = "-", max_line_bytes = "1048576";
+    std::vector<std::string> plugins;
     bool no_points = false;
 };
 
+// One of linequad's solvers, or one from outside posed its way (the case it sees may differ from
+// the line given: see audit::posed_for).
+struct NamedSolver {
+    const Solver* own = nullptr;
+    const audit::ExternalSolver* external = nullptr;
+    std::string name() const { return own ? std::string(own->name) : external->name; }
+    std::string answer_line(const Case& c, Query q) const {
+        if (own) return format_result(c.id, own->name, answer(*own, c, q), q.points);
+        std::optional<Case> posed = audit::posed_for(*external, c);
+        std::optional<Result> r;
+        if (posed) r = (*external)(posed->shape, posed->line);
+        if (!r)
+            return format_failure(c.id, external->name, "unrepresented",
+                                  "the solver cannot represent this case");
+        return format_result(c.id, external->name, *r, q.points && external->points);
+    }
+};
+
 int run_solve(const SolveArgs& a) {
-    std::vector<const Solver*> solvers;
-    if (a.solvers == "all")
+    std::vector<audit::ExternalSolver> ext = external_solvers(a.plugins);
+    std::vector<NamedSolver> solvers;
+    if (a.solvers == "all") {
         for (const Solver& s : all_solvers())
-            solvers.push_back(&s);
-    else
-        for (const std::string& name : split_list(a.solvers))
-            solvers.push_back(find_solver(name));
+            solvers.push_back({&s, nullptr});
+        for (const audit::ExternalSolver& e : ext)
+            solvers.push_back({nullptr, &e});
+    } else {
+        for (const std::string& name : split_list(a.solvers)) {
+            if (std::string why = solver_error(name, false, ext); !why.empty())
+                return fail("--solver: " + why);
+            solvers.push_back({find_solver(name), find_external(ext, name)});
+        }
+    }
     Query query;
     query.need = a.need == "any" ? Need::any : a.need == "nearest" ? Need::nearest : Need::all;
     query.points = !a.no_points;
@@ -154,9 +210,9 @@ int run_solve(const SolveArgs& a) {
                 why = "line " + std::to_string(in.number()) + ": out of memory while reading it";
             }
         }
-        for (const Solver* s : solvers)
-            out.line(parsed ? format_result(c.id, s->name, answer(*s, c, query), query.points)
-                            : format_failure(c.id, s->name, "malformed_case", why));
+        for (const NamedSolver& s : solvers)
+            out.line(parsed ? s.answer_line(c, query)
+                            : format_failure(c.id, s.name(), "malformed_case", why));
         if (!parsed) {
             ++errors;
             std::fprintf(stderr, "linequad: %s\n", why.c_str());
@@ -172,6 +228,7 @@ struct CampaignArgs {
     std::string cases = "100000", seed = "1", shard = "0/1", out = "reports/latest";
     std::string cases_file, results_file, max_line_bytes = "1048576", families, solvers;
     std::string shapes, frames = "any", precision = "binary64";
+    std::vector<std::string> plugins;
     bool no_plots = false, check = false;
 
     audit::Options options() const {
@@ -243,7 +300,20 @@ void add_campaign_options(CLI::App* app, CampaignArgs& a) {
 int run_audit(const CampaignArgs& a, const std::string& command) {
     audit::Options o = a.options();
     o.command = command;
-    audit::Report r = audit::run(o);
+    std::vector<audit::ExternalSolver> ext = external_solvers(a.plugins);
+    for (const std::string& name : o.solvers)
+        if (std::string why = solver_error(name, true, ext); !why.empty())
+            return fail("--solvers: " + why);
+    // Without --solvers: linequad's own and the plugins' (the peer libraries when named).
+    if (o.solvers.empty() && !a.plugins.empty()) {
+        for (const Solver& s : fast_solvers())
+            o.solvers.emplace_back(s.name);
+        o.solvers.emplace_back(audit::batch_name);
+        for (const audit::ExternalSolver& e : ext)
+            if (!e.plugin.empty()) o.solvers.push_back(e.name);
+    }
+    if (o.solvers.empty()) ext.clear();
+    audit::Report r = audit::run(o, ext);
     std::fprintf(stderr, "audit: %s/report.md (%.1f s)\n", o.out_dir.c_str(), r.seconds);
     std::uint64_t graded = 0;
     for (const std::string& s : r.solvers) {
@@ -252,7 +322,7 @@ int run_audit(const CampaignArgs& a, const std::string& command) {
         std::printf("%-10s cases %8llu  mismatched %6llu  t max %12s ulps  p99 %8.3g\n", s.c_str(),
                     (unsigned long long)t.cases, (unsigned long long)t.cases_mismatched,
                     t.t_max == UINT64_MAX ? "inf" : std::to_string(t.t_max).c_str(),
-                    t.t_error.quantile(0.99));
+                    t.t_quantile(0.99));
     }
     if (std::fflush(stdout) != 0)
         throw std::runtime_error(std::string("cannot write standard output: ") +
@@ -290,9 +360,9 @@ int run_merge(const std::vector<std::string>& inputs, const std::string& out,
         std::string why;
         if (!audit::read_json(inputs[i], &r, &why)) return fail(why);
         if (i == 0) {
-            if (r.grades_results())
+            if (r.from_cases_file())
                 return fail(inputs[i] +
-                            ": it grades a results file; merge combines the shards of one "
+                            ": it grades a cases file; merge combines the shards of one "
                             "campaign");
             merged = std::move(r);
             continue;
@@ -367,11 +437,15 @@ int run_version() {
 
 int run_solvers() {
     jsonl::Output out;
-    for (const Solver& s : all_solvers()) {
-        std::string name(s.name);
-        out.line(name + std::string(name.size() < 8 ? 8 - name.size() : 0, ' ') + " " +
-                 std::string(s.summary));
-    }
+    auto line = [&](std::string name, const std::string& summary) {
+        out.line(name + std::string(name.size() < 9 ? 9 - name.size() : 0, ' ') + " " + summary);
+    };
+    for (const Solver& s : all_solvers())
+        line(std::string(s.name), std::string(s.summary));
+    for (const audit::ExternalSolver& e : peers::solvers())
+        line(e.name, std::string("(peer library) ") + audit::answers_name(e.answers) + ", " +
+                         audit::parametrisation_name(e.parametrisation) + ", " +
+                         audit::surface_name(e.surface) + ": " + e.mapping);
     out.finish();
     return 0;
 }
@@ -389,15 +463,11 @@ int main_checked(int argc, char** argv) {
                  "field.");
     s->add_option("--solver", solve.solvers, "solvers, or all")
         ->type_name("S[,S...]")
-        ->check(CLI::Validator(
-            [](const std::string& list) {
-                if (list == "all") return std::string();
-                for (const std::string& name : split_list(list))
-                    if (std::string why = solver_error(name, false); !why.empty()) return why;
-                return std::string();
-            },
-            ""))
         ->capture_default_str();
+    s->add_option("--plugin", solve.plugins,
+                  "a shared library of solvers (the C ABI of linequad/audit_plugin.h)")
+        ->type_name("LIB.so")
+        ->check(CLI::ExistingFile);
     s->add_option("--need", solve.need, "what to find: any, nearest or all")
         ->type_name("WHAT")
         ->check(CLI::IsMember({"any", "nearest", "all"}))
@@ -416,9 +486,14 @@ int main_checked(int argc, char** argv) {
                  "DIR/report.json, report.md and plots. Or grade someone else's answers "
                  "(--cases-file with --results).");
     add_campaign_options(a, audit_args);
-    a->add_option("--solvers", audit_args.solvers, "solvers (default: every fast one and batch)")
-        ->type_name("S[,S...]")
-        ->check(each_of_list([](const std::string& n) { return solver_error(n, true); }));
+    a->add_option("--solvers", audit_args.solvers,
+                  "solvers: linequad's, the peer libraries built in (linequad solvers lists "
+                  "them) and the plugins' (default: every fast one, batch, and the plugins')")
+        ->type_name("S[,S...]");
+    a->add_option("--plugin", audit_args.plugins,
+                  "audit the solvers of a shared library (the C ABI of linequad/audit_plugin.h)")
+        ->type_name("LIB.so")
+        ->check(CLI::ExistingFile);
     a->add_option("--out", audit_args.out, "the report's directory")
         ->type_name("DIR")
         ->capture_default_str();
@@ -426,14 +501,15 @@ int main_checked(int argc, char** argv) {
     a->add_flag("--check", audit_args.check,
                 "exit 1 if a solver breaks a claim the README makes for it");
     CLI::Option* cases_file =
-        a->add_option("--cases-file", audit_args.cases_file, "cases (JSON Lines) to grade")
+        a->add_option("--cases-file", audit_args.cases_file,
+                      "cases (JSON Lines) instead of the families: solved by the solvers, or "
+                      "with --results, someone else's answers graded")
             ->type_name("FILE")
             ->check(CLI::ExistingFile);
     CLI::Option* results =
         a->add_option("--results", audit_args.results_file, "answers to those cases")
             ->type_name("FILE")
             ->check(CLI::ExistingFile);
-    cases_file->needs(results);
     results->needs(cases_file);
     a->add_option("--max-line-bytes", audit_args.max_line_bytes,
                   "the longest line read from those files")

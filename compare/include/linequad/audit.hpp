@@ -73,6 +73,17 @@ struct Row {
     std::uint64_t cases_mismatched = 0;
     Histogram t_error, p_error;
     std::uint64_t t_max = 0, p_max = 0;
+    // The t error as a distance in the scene: |t - t_oracle| |v| in ulps of the scene's magnitude
+    // (the largest of |L0|, |t v| and the shape's coordinates). An exact zero of t, where ulps of
+    // t are meaningless, reads here as what it is: how far the hit is from the true one.
+    Histogram s_error;
+    std::uint64_t s_max = 0;
+    // Cases the solver could not be posed or could not represent (an external library's shapes
+    // and semantics): not graded, not in `cases`.
+    std::uint64_t unrepresented = 0;
+    // Refusals of the solver's own (ErrorCode::foreign: another library's errors, crashes
+    // included), by name; each is also a refused mismatch.
+    std::map<std::string, std::uint64_t> foreign;
     double t_sum = 0, t_bits_sum = 0; // for the mean in ulps and in bits (Herbie)
     TimeHistogram ns;
     // Certified results: classifications the solver called uncertain (not counted as
@@ -88,6 +99,11 @@ struct Row {
     std::vector<Worst> worst; // at most keep_worst, worst first
     static constexpr std::size_t keep_worst = 3;
     void merge(const Row& o);
+    // Quantiles from the histograms, never above the largest error seen.
+    double t_quantile(double q) const;
+    double p_quantile(double q) const;
+    double s_quantile(double q) const;
+    bool timed() const { return ns.median() > 0; } // a row graded from a results file is not
 };
 
 // Error against difficulty k, per (family, solver), over all shapes and ranges.
@@ -134,8 +150,16 @@ struct Report {
     std::string frames = "any"; // the frames the shapes were built on (families.hpp)
     int shards = 1;
     std::vector<int> shards_included{0}; // the shards whose cases this report holds, ascending
-    // Set instead when the report grades a results file (not a campaign: it does not merge).
+    // Set instead when the report grades a results file, or runs solvers on a cases file (not a
+    // campaign: it does not merge); cases_count is then the file's number of cases.
     std::string cases_file, results_file;
+    std::uint64_t cases_count = 0;
+    // Solvers from outside linequad, by name: what they answer and how a case is handed over.
+    struct External {
+        std::string answers, parametrisation, surface, mapping, plugin;
+        bool points = true;
+    };
+    std::map<std::string, External> external;
     Status status = Status::complete;
     // Statistics.
     std::map<RowKey, Row> rows;
@@ -148,6 +172,7 @@ struct Report {
         return status == Status::complete && int(shards_included.size()) == shards;
     }
     bool grades_results() const { return !results_file.empty(); }
+    bool from_cases_file() const { return !cases_file.empty(); }
     // Adds another shard of the same campaign (see mergeable()).
     void merge(const Report& o);
     Row total(const std::string& solver) const; // all rows of one solver
@@ -177,9 +202,11 @@ struct Options {
     Precision precision = Precision::binary64;
     std::vector<std::string> solvers; // empty: every fast solver, and batch
     int shard = 0, shards = 1;
-    std::string out_dir;                  // reports/<run>; empty: nothing written
-    std::string results_file, cases_file; // grade someone else's answers
-    std::string command;                  // how it was invoked, for the report
+    std::string out_dir; // reports/<run>; empty: nothing written
+    // A cases file instead of the families: graded with results_file (someone else's answers),
+    // or without it, solved by the solvers.
+    std::string results_file, cases_file;
+    std::string command; // how it was invoked, for the report
     bool plots = true;
     std::size_t max_line_bytes = std::size_t(1) << 20; // per line of a cases or results file
 };

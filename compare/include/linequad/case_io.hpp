@@ -44,6 +44,10 @@ std::string format_result(const std::string& id, std::string_view solver, const 
 std::string format_failure(const std::string& id, std::string_view solver, std::string_view code,
                            std::string_view message);
 
+// A stable copy of a name, for Result::error_field (which holds a C string) when the name comes
+// from outside: another library's own error. The same text gives the same pointer.
+const char* interned(std::string_view name);
+
 struct ParsedResult {
     std::string id, solver; // id as compact JSON text; solver empty when the line names none
     bool has_id = false;    // set once the id is read, even if the rest is malformed

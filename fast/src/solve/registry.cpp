@@ -57,6 +57,8 @@ const char* code_name(ErrorCode c) {
         return "bad_option";
     case ErrorCode::not_binary32:
         return "not_binary32";
+    case ErrorCode::foreign:
+        return "foreign";
     }
     return "?";
 }
@@ -87,6 +89,8 @@ std::string message(const Error& e) {
                            : f + ": not an option this shape takes (nappes is 1 or 2)";
     case ErrorCode::not_binary32:
         return f + " is not a binary32 value (a float solver takes float inputs)";
+    case ErrorCode::foreign:
+        return f + " (the solver's own refusal, not one of linequad's)";
     }
     return "?";
 }

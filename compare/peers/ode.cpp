@@ -1,0 +1,67 @@
+// ODE 0.16 (double precision): dCollide of a dRay with a dCylinder (flat caps), the ray query of
+// ODE's collision detection.
+#include "peers/peers.hpp"
+
+#include <ode/ode.h>
+
+#include <cmath>
+
+namespace linequad::peers {
+
+namespace {
+
+struct World {
+    World() { dInitODE2(0); }
+    ~World() { dCloseODE(); }
+};
+
+// ODE's rays have a length; the audit's rays none. Long enough for any case, short enough that
+// length times a unit direction stays finite.
+constexpr double ray_length = 0x1p500;
+
+} // namespace
+
+audit::ExternalSolver ode() {
+    audit::ExternalSolver s;
+    s.name = "ode";
+    s.answers = audit::Answers::nearest;
+    s.parametrisation = audit::Parametrisation::unit_direction;
+    s.surface = audit::Surface::closed;
+    s.kinds = false, s.parts = false;
+    s.mapping = "dCollide(dCreateRay(0, length), dCreateCylinder(0, r, |H - C|), 1 contact) "
+                "with dGeomRaySetClosestHit; the ray from L0 along u = v/|v| (ODE normalises it "
+                "again), length t1 (2^500 for a ray); the answer is the contact's depth (the "
+                "distance along u) and pos. The cylinder placed at the axis' midpoint by a "
+                "rotation taking z to the axis (rounded). ODE's rays start at L0: lines and "
+                "ranges from t0 > 0 cannot be represented, nor open or infinite shapes, cones, "
+                "frusta, the elliptic shapes.";
+    s.cylinder = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
+        static World world;
+        Vec3 axis = c.H - c.C;
+        double h = norm(axis);
+        if (l.range.t0 != 0 || !(c.r > 0) || !(h > 0)) return std::nullopt;
+        double length = std::isinf(l.range.t1) ? ray_length : l.range.t1;
+        dGeomID ray = dCreateRay(nullptr, length);
+        dGeomID cyl = dCreateCylinder(nullptr, c.r, h);
+        Basis b = basis_along(axis);
+        dMatrix3 R = {b.x.x, b.y.x, b.z.x, 0, b.x.y, b.y.y, b.z.y, 0, b.x.z, b.y.z, b.z.z, 0};
+        Vec3 mid = 0.5 * (c.C + c.H);
+        dGeomSetPosition(cyl, mid.x, mid.y, mid.z);
+        dGeomSetRotation(cyl, R);
+        dGeomRaySet(ray, l.L0.x, l.L0.y, l.L0.z, l.v.x, l.v.y, l.v.z);
+        dGeomRaySetClosestHit(ray, 1);
+        dContactGeom contact;
+        int n = dCollide(ray, cyl, 1, &contact, sizeof contact);
+        dGeomDestroy(ray);
+        dGeomDestroy(cyl);
+        Result r;
+        if (n > 0)
+            r.hits[r.count++] = Hit{contact.depth, {contact.pos[0], contact.pos[1], contact.pos[2]},
+                                    NAN,           HitKind::cross,
+                                    Part::lateral, false};
+        return r;
+    };
+    return s;
+}
+
+} // namespace linequad::peers
