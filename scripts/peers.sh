@@ -11,3 +11,29 @@ if [ -z "$peers" ]; then
 fi
 $linequad audit --solvers "correct$peers" --frames axis --cases "${PEER_CASES:-5000}" --seed 1 \
   --out reports/peers
+
+# Instructions per solve under callgrind (repeatable on a loaded machine): each peer on posed
+# generic segments of each shape it takes, (Ir(N) - Ir(0)) / N; correct beside it from
+# bench/instructions.sh's generic cylinder.
+if command -v valgrind >/dev/null; then
+  exe=./build/compare/linequad_peer_instructions
+  n=2048
+  ir() {
+    valgrind --tool=callgrind --callgrind-out-file=/tmp/peers.callgrind.$$ "$exe" "$@" \
+      >/dev/null 2>&1 || { echo "-"; return; }
+    awk '/^(summary|totals):/ { print $2; exit }' /tmp/peers.callgrind.$$
+    rm -f /tmp/peers.callgrind.$$
+  }
+  {
+    echo "# instructions per solve (bash scripts/peers.sh; posed generic segments, axis frames)"
+    printf '%-8s %-18s %10s\n' solver shape instructions
+    for peer in ${peers//,/ }; do
+      for shape in cylinder elliptic_cylinder elliptic_cone frustum; do
+        base=$(ir "$peer" "$shape" 0)
+        [ "$base" = "-" ] && continue
+        full=$(ir "$peer" "$shape" "$n")
+        printf '%-8s %-18s %10d\n' "$peer" "$shape" $(( (full - base) / n ))
+      done
+    done
+  } | tee reports/peers/instructions.txt
+fi
