@@ -90,6 +90,15 @@ TEST_CASE("result format round trip", "[case_io]") {
     CHECK(back.result.on_surface);
     CHECK(back.result.s0 == -INFINITY);
     CHECK(back.result.s1 == 2.5);
+
+    // Another library's own error code is kept by its name, and writes back under it.
+    line = R"({"id":2,"solver":"ode","error":"cannot","code":"unrepresented"})";
+    REQUIRE(parse_result(line, &back, &why));
+    CHECK(back.result.error_code == ErrorCode::foreign);
+    std::string once = format_result("2", "ode", back.result);
+    CHECK(once.find(R"("code":"unrepresented")") != std::string::npos);
+    REQUIRE(parse_result(once, &back, &why));
+    CHECK(format_result("2", "ode", back.result) == once);
 }
 
 TEST_CASE("case format: malformed lines name the field", "[case_io]") {

@@ -8,6 +8,8 @@
 #include "linequad/solvers.hpp"
 #include "peers/peers.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdlib>
 
 using namespace linequad;
@@ -72,6 +74,9 @@ TEST_CASE("a segment is posed so that from + v is exactly to", "[external]") {
                 // from and to are the range's ends, to within the rounding of the format.
                 double want_from = c.line.L0[k] + c.line.range.t0 * c.line.v[k];
                 double want_to = c.line.L0[k] + c.line.range.t1 * c.line.v[k];
+                // Forming L(t) rounds once (half an ulp), the format's rounding and the Fast2Sum
+                // move once more each (half an ulp of to): 1.5 ulps of the larger end, and an ulp
+                // is at most 2^-52 (2^-23) of it; 2^-50 (2^-22) leaves a little room.
                 double tol = (p == Precision::binary32 ? 0x1p-22 : 0x1p-50) *
                              std::max({std::fabs(want_from), std::fabs(want_to), 1e-300});
                 CHECK(std::fabs(from - want_from) <= tol);
@@ -196,8 +201,12 @@ TEST_CASE("a results file's unknown error code is named, and p99 never exceeds m
         << R"({"id":1,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"r":1,"L0":[-2,0,0.5],"v":[1,0,0]})"
         << "\n"
         << R"({"id":2,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"r":1,"L0":[-2,0,0.5],"v":[1,0,0]})"
+        << "\n"
+        << R"({"id":3,"shape":"cylinder","C":[0,0,0],"H":[0,0,1],"r":1,"L0":[-2,0,0.5],"v":[1,0,0]})"
         << "\n";
     std::ofstream(dir / "results.jsonl")
+        << R"({"id":3,"solver":"mine","error":"cannot","code":"unrepresented"})"
+        << "\n"
         << R"({"id":1,"solver":"mine","error":"gave up","code":"E_TOO_CLOSE"})"
         << "\n"
         << R"({"id":2,"solver":"mine","hits":[{"t":"0x1.0000000000001p+0","kind":"cross"},{"t":3,"kind":"cross"}]})"
@@ -211,11 +220,13 @@ TEST_CASE("a results file's unknown error code is named, and p99 never exceeds m
     CHECK(t.foreign.at("E_TOO_CLOSE") == 1);
     CHECK(t.t_max == 1);
     CHECK(t.t_quantile(0.99) <= double(t.t_max));
-    CHECK(r.cases_count == 2);
+    CHECK(r.cases_count == 3);
+    CHECK(t.unrepresented == 1); // as linequad solve writes it for an external solver
+    CHECK(t.cases == 2);
     CHECK_FALSE(t.timed());
     std::string md = slurp(dir / "out" / "report.md");
     CHECK(md.find("'E_TOO_CLOSE' 1") != std::string::npos);
-    CHECK(md.find("(2 cases)") != std::string::npos);
+    CHECK(md.find("(3 cases)") != std::string::npos);
     CHECK(md.find("| seed |") == std::string::npos);
     CHECK(md.find("pareto.svg") == std::string::npos); // nothing was timed
 }
@@ -311,4 +322,27 @@ TEST_CASE("the peer libraries built in are audited through their adapters", "[ex
         // or range would show here at once.
         if (p.name == "occt" || p.name == "ode") CHECK(generic.cases_mismatched == 0);
     }
+}
+
+TEST_CASE("a report from before scene errors reads, and writes back a fixed point", "[external]") {
+    audit::Options o;
+    o.cases_per_group = 4;
+    o.families = {Family::generic};
+    o.shapes = {0};
+    o.solvers = {"correct"};
+    auto j = nlohmann::json::parse(audit::to_json(audit::run(o)));
+    for (auto& row : j["rows"])
+        row.erase("scene_ulps");
+    audit::Report old_report, again;
+    std::string why;
+    REQUIRE(audit::from_json(j.dump(), &old_report, &why));
+    CHECK(old_report.total("correct").s_error.total() == 0);
+    std::string once = audit::to_json(old_report);
+    REQUIRE(audit::from_json(once, &again, &why));
+    CHECK(audit::to_json(again) == once);
+    // A scene histogram holding more values than the row graded is still refused.
+    auto bad = nlohmann::json::parse(audit::to_json(audit::run(o)));
+    bad["rows"][0]["scene_ulps"]["histogram"] = {{0, 1000}};
+    CHECK_FALSE(audit::from_json(bad.dump(), &again, &why));
+    CHECK(why.find("scene_ulps.histogram") != std::string::npos);
 }

@@ -120,7 +120,8 @@ std::optional<Result> guarded(const ShapeCallable<S>& f, const S& s, const Line&
     sigjmp_buf here;
     sigjmp_buf* outer = crash_target;
     crash_target = &here;
-    if (sigsetjmp(here, 1)) {
+    // No mask to restore (a system call per solve): with SA_NODEFER nothing stays blocked.
+    if (sigsetjmp(here, 0)) {
         crash_target = outer;
         return Result::failure(ErrorCode::foreign, crash_name(crash_signal));
     }
@@ -199,10 +200,14 @@ bool pose_unit_direction(Line& l, Precision p) {
     double n = std::hypot(std::hypot(l.v.x, l.v.y), l.v.z);
     if (!(n > 0) || !std::isfinite(n)) return true; // the library sees v as it is, and refuses
     l.v = {in_format(l.v.x / n, p), in_format(l.v.y / n, p), in_format(l.v.z / n, p)};
-    // Ends at 0 and infinity stay; a finite end becomes a distance.
+    // Ends at 0 and infinity stay; a finite end becomes a distance, which must stay finite.
     auto scaled = [&](double t) { return t == 0 || std::isinf(t) ? t : in_format(t * n, p); };
-    l.range = {scaled(l.range.t0), scaled(l.range.t1)};
-    return std::isfinite(l.range.t0) || std::isinf(l.range.t0);
+    Interval range{scaled(l.range.t0), scaled(l.range.t1)};
+    if (std::isfinite(l.range.t0) != std::isfinite(range.t0) ||
+        std::isfinite(l.range.t1) != std::isfinite(range.t1))
+        return false;
+    l.range = range;
+    return true;
 }
 
 } // namespace

@@ -201,12 +201,8 @@ Solvers solvers_of(const Options& o, const std::vector<ExternalSolver>& external
 }
 
 Report::External describe(const ExternalSolver& e) {
-    return {answers_name(e.answers),
-            parametrisation_name(e.parametrisation),
-            surface_name(e.surface),
-            e.mapping,
-            e.plugin,
-            e.points};
+    return {answers_name(e.answers), parametrisation_name(e.parametrisation),
+            surface_name(e.surface), e.mapping, e.plugin};
 }
 
 bool batch_wanted(const Options& o) {
@@ -385,10 +381,13 @@ Report grade_results(const Options& o) {
                 // No answer, or none we can read: a refusal the oracle never makes.
                 Result none = Result::failure(ErrorCode::out_of_range,
                                               a == by_case.end() ? "no answer" : "malformed");
-                grade(c, solver, none, oracle, row, nullptr, false);
+                grade(c, solver, none, oracle, row, nullptr, Grading{false});
+            } else if (a->second.result.error_code == "unrepresented") {
+                // What `linequad solve` writes for a case an external solver cannot take.
+                ++row.unrepresented;
             } else {
                 grade(c, solver, a->second.result.result, oracle, row,
-                      &rep.curves[{family, solver}][c.k], a->second.result.has_points);
+                      &rep.curves[{family, solver}][c.k], Grading{a->second.result.has_points});
             }
         }
         saver.maybe_save(rep, start);

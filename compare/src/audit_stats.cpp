@@ -1,6 +1,5 @@
 // Mergeable statistics and the grading of one result against the oracle's.
 #include "linequad/audit.hpp"
-#include "linequad/audit_solver.hpp"
 
 #include "linequad/case_io.hpp"
 
@@ -196,11 +195,6 @@ void Row::merge(const Row& o) {
         rungs[i] += o.rungs[i];
     for (const Worst& w : o.worst)
         keep(worst, w);
-}
-
-void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
-           Row& row, CurvePoint* curve, bool points) {
-    grade(c, solver, got, oracle, row, curve, Grading{points, true, true});
 }
 
 void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,

@@ -306,7 +306,12 @@ std::string format_case(const Case& c) {
 
 std::string format_result(const std::string& id, std::string_view solver, const Result& r,
                           bool points) {
-    if (!r.ok()) return format_failure(id, solver, code_name(r.error_code), message(r.error()));
+    // A refusal of another library's own is written under its own name, as it was read.
+    if (!r.ok())
+        return format_failure(id, solver,
+                              r.error_code == ErrorCode::foreign ? r.error_field
+                                                                 : code_name(r.error_code),
+                              message(r.error()));
     std::string out = "{\"id\":" + id + ",\"solver\":" + json_string(solver) + ",\"hits\":[";
     for (int i = 0; i < r.count; ++i) {
         const Hit& h = r.hits[i];

@@ -157,7 +157,6 @@ struct Report {
     // Solvers from outside linequad, by name: what they answer and how a case is handed over.
     struct External {
         std::string answers, parametrisation, surface, mapping, plugin;
-        bool points = true;
     };
     std::map<std::string, External> external;
     Status status = Status::complete;
@@ -182,11 +181,16 @@ struct Report {
 // the difference; empty when it can.
 std::string unmergeable(const Report& a, const Report& b);
 
+// What a solver's answers carry, and so are graded on: hit points, tangent-or-cross kinds, the
+// part of each hit (a solver from outside linequad may report none of them).
+struct Grading {
+    bool points = true, kinds = true, parts = true;
+};
+
 // Grades one solver result against the oracle's for one case, into a row and a curve point,
-// in ulps of the case's precision (the oracle's answer rounded to it). points: whether the
-// solver's result carries hit points to grade.
+// in ulps of the case's precision (the oracle's answer rounded to it).
 void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
-           Row& row, CurvePoint* curve, bool points = true);
+           Row& row, CurvePoint* curve, const Grading& what = {});
 
 // The audit's name for stable's batch path (many lines against one shape): not a Solver, since
 // it takes lines in arrays. Graded like stable, whose results it equals bit for bit.

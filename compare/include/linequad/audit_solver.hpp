@@ -105,13 +105,6 @@ std::optional<Case> posed_for(const ExternalSolver& s, const Case& c);
 // the first entry into the solid.
 Result reference_for(Answers a, const Case& posed);
 
-// What a solver's answers are graded on.
-struct Grading {
-    bool points = true, kinds = true, parts = true;
-};
-void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
-           Row& row, CurvePoint* curve, const Grading& what);
-
 // Runs a campaign (or grades a cases file) with these solvers beside linequad's own: each one
 // named in o.solvers (an empty o.solvers: linequad's own and all of these).
 Report run(const Options& o, const std::vector<ExternalSolver>& external);
