@@ -69,37 +69,9 @@ void solve_prepared(benchmark::State& state, int shape, Query q, Solve solve) {
         benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// One shape, 1024 generic lines aimed at it, in R: the scalar solver in a loop, and the batch
-// (stable in double, stable32 in float: the shape and lines rounded to float).
-template <class R>
-struct OneShape {
-    Shape shape;
-    std::vector<R> soa[6];
-    LineArraysT<R> lines() const {
-        return {soa[0].data(), soa[1].data(), soa[2].data(), soa[3].data(),
-                soa[4].data(), soa[5].data(), soa[0].size(), Range::line};
-    }
-};
-template <class R>
-OneShape<R> one_shape(int shape) {
-    constexpr bool in_float = std::is_same_v<R, float>;
-    auto cases = bench::generic_cases(shape, 1024);
-    OneShape<R> o{in_float ? rounded_to_binary32(cases[0].shape) : cases[0].shape, {}};
-    // Re-aim each line at this one shape: through a point near its middle (the generic cases'
-    // own lines aim at their own shapes; their middle is where they aimed).
-    Vec3 middle = cases[0].line.L0 + cases[0].line.v;
-    for (std::size_t i = 0; i < cases.size(); ++i) {
-        Vec3 from = cases[i].line.L0, target = middle + 0.1 * cases[i].line.v;
-        Vec3 v = target - from;
-        for (int a = 0; a < 3; ++a)
-            o.soa[a].push_back(R(from[a])), o.soa[3 + a].push_back(R(v[a]));
-    }
-    return o;
-}
-
 template <class R>
 void stable_scalar_loop(benchmark::State& state, int shape) {
-    OneShape<R> o = one_shape<R>(shape);
+    bench::OneShape<R> o = bench::one_shape<R>(shape);
     LineArraysT<R> l = o.lines();
     std::string_view name = std::is_same_v<R, float> ? "stable32" : "stable";
     const Solver& solver = *std::find_if(fast_solvers().begin(), fast_solvers().end(),
@@ -114,23 +86,26 @@ void stable_scalar_loop(benchmark::State& state, int shape) {
     state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
 }
 template <class R>
-void stable_batch(benchmark::State& state, int shape) {
-    OneShape<R> o = one_shape<R>(shape);
+void stable_batch(benchmark::State& state, int shape, Lanes lanes) {
+    bench::OneShape<R> o = bench::one_shape<R>(shape);
     LineArraysT<R> l = o.lines();
     std::vector<Result> out(l.count);
     for (auto _ : state) {
         std::visit(
             [&](const auto& s) {
                 if constexpr (std::is_same_v<R, float>)
-                    stable32::intersect(s, l, {}, out.data());
+                    stable32::intersect(s, l, {}, out.data(), lanes);
                 else
-                    stable::intersect(s, l, {}, out.data());
+                    stable::intersect(s, l, {}, out.data(), lanes);
             },
             o.shape);
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
-    state.SetLabel(batch_uses_avx2() ? "avx2" : "scalar path");
+    // Float lines run on AVX2's eight lanes on an AVX-512 machine too.
+    Lanes used = std::min(lanes, batch_lanes());
+    if (std::is_same_v<R, float>) used = std::min(used, Lanes::avx2);
+    state.SetLabel(lanes_name(used));
 }
 
 int register_all() {
@@ -138,11 +113,16 @@ int register_all() {
         std::string name = name_of(shape) + "/stable/1024_lines/";
         benchmark::RegisterBenchmark((name + "scalar_loop").c_str(), stable_scalar_loop<double>,
                                      shape);
-        benchmark::RegisterBenchmark((name + "batch").c_str(), stable_batch<double>, shape);
+        // Every path this machine runs, to compare them in one (interleaved) run.
+        for (Lanes lanes : {Lanes::avx2, Lanes::avx512})
+            if (lanes <= batch_lanes())
+                benchmark::RegisterBenchmark((name + "batch_" + lanes_name(lanes)).c_str(),
+                                             stable_batch<double>, shape, lanes);
         std::string name32 = name_of(shape) + "/stable32/1024_lines/";
         benchmark::RegisterBenchmark((name32 + "scalar_loop").c_str(), stable_scalar_loop<float>,
                                      shape);
-        benchmark::RegisterBenchmark((name32 + "batch").c_str(), stable_batch<float>, shape);
+        benchmark::RegisterBenchmark((name32 + "batch").c_str(), stable_batch<float>, shape,
+                                     batch_lanes());
     }
     std::vector<const Solver*> solvers;
     for (const Solver& s : fast_solvers())

@@ -2,6 +2,7 @@
 // most cross twice), reproducible from a seed.
 #pragma once
 
+#include "linequad/batch.hpp"
 #include "linequad/shapes.hpp"
 
 #include <random>
@@ -84,6 +85,34 @@ inline std::vector<GenericCase> generic_cases(int shape_index, int n, unsigned s
             out.push_back({s, l});
     }
     return out;
+}
+
+// One shape, n generic lines aimed at it, in R, as a batch takes them (stable in double, stable32
+// in float: the shape and lines rounded to float).
+template <class R>
+struct OneShape {
+    Shape shape;
+    std::vector<R> soa[6];
+    LineArraysT<R> lines() const {
+        return {soa[0].data(), soa[1].data(), soa[2].data(), soa[3].data(),
+                soa[4].data(), soa[5].data(), soa[0].size(), Range::line};
+    }
+};
+template <class R>
+OneShape<R> one_shape(int shape, int n = 1024) {
+    constexpr bool in_float = std::is_same_v<R, float>;
+    auto cases = generic_cases(shape, n);
+    OneShape<R> o{in_float ? rounded_to_binary32(cases[0].shape) : cases[0].shape, {}};
+    // Re-aim each line at this one shape: through a point near its middle (the generic cases'
+    // own lines aim at their own shapes; their middle is where they aimed).
+    Vec3 middle = cases[0].line.L0 + cases[0].line.v;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        Vec3 from = cases[i].line.L0, target = middle + 0.1 * cases[i].line.v;
+        Vec3 v = target - from;
+        for (int a = 0; a < 3; ++a)
+            o.soa[a].push_back(R(from[a])), o.soa[3 + a].push_back(R(v[a]));
+    }
+    return o;
 }
 
 } // namespace linequad::bench

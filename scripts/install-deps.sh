@@ -5,6 +5,8 @@ packages=(build-essential cmake pkg-config git
           libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev catch2 libbenchmark-dev
           gnuplot-nox clang libclang-rt-14-dev
           nlohmann-json3-dev libcli11-dev
+          # The measurement scripts (bench/*.sh): callgrind, GNU time, bc.
+          valgrind time bc
           # The peer libraries the audit grades beside linequad (compare/peers/).
           libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev
           libembree-dev libbullet-dev libode-dev)

@@ -2,9 +2,12 @@
 // result files, malformed input and interruption.
 #include "support.hpp"
 
+#include "ordered_pool.hpp"
+
 #include "linequad/audit.hpp"
 #include "linequad/exact.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -77,6 +80,67 @@ TEST_CASE("families: every case is valid, reproducible alone, and exercises its 
             tangent += r.count == 1 && r.hits[0].kind == HitKind::tangent;
         }
     CHECK(tangent >= 55); // 60 lines; a few may touch outside the finite extent
+}
+
+TEST_CASE("audit: the worker pool does every item once and in order and stops when told",
+          "[audit]") {
+    // Many tiny items on more workers than cores: the workers race for every item.
+    for (int threads : {1, 2, 8}) {
+        INFO(threads << " threads");
+        constexpr std::size_t n = 20000;
+        std::vector<std::size_t> seen;
+        audit::in_order<std::size_t>(
+            n, threads, [](std::size_t i) { return 3 * i; },
+            [&](std::size_t i, std::size_t&& r) {
+                REQUIRE(r == 3 * i);
+                seen.push_back(i);
+            },
+            [] { return false; });
+        REQUIRE(seen.size() == n);
+        for (std::size_t i = 0; i < n; ++i)
+            REQUIRE(seen[i] == i);
+        // A stop: what is consumed is a prefix of the items, each once.
+        std::atomic<std::size_t> made{0};
+        seen.clear();
+        audit::in_order<std::size_t>(
+            n, threads, [&](std::size_t i) { return ++made, i; },
+            [&](std::size_t i, std::size_t&&) { seen.push_back(i); },
+            [&] { return made.load() >= 100; });
+        REQUIRE(seen.size() < n);
+        for (std::size_t i = 0; i < seen.size(); ++i)
+            REQUIRE(seen[i] == i);
+        // An exception in an item stops the pool and reaches the caller.
+        CHECK_THROWS_AS(audit::in_order<std::size_t>(
+                            n, threads,
+                            [](std::size_t i) -> std::size_t {
+                                if (i == 777) throw std::runtime_error("item 777");
+                                return i;
+                            },
+                            [](std::size_t, std::size_t&&) {}, [] { return false; }),
+                        std::runtime_error);
+    }
+}
+
+TEST_CASE("audit: the report is the same for any number of threads (timings aside)", "[audit]") {
+    // Three chunks of 256 cases per family, shape, range and precision: more chunks than workers,
+    // finishing out of order.
+    audit::Options o = small(700);
+    o.families = {Family::generic, Family::near_tangent, Family::scale};
+    o.threads = 1;
+    audit::Report one = audit::run(o);
+    auto without_timings = [](audit::Report r) {
+        r.seconds = 0, r.date.clear();
+        for (auto& [key, row] : r.rows)
+            row.ns = {};
+        return audit::to_json(r);
+    };
+    for (int threads : {2, 3, 8}) {
+        INFO(threads << " threads");
+        o.threads = threads;
+        audit::Report many = audit::run(o);
+        CHECK(many.complete());
+        CHECK(without_timings(many) == without_timings(one));
+    }
 }
 
 TEST_CASE("audit: shards merge into exactly the unsharded report", "[audit]") {

@@ -1,6 +1,7 @@
 // The batch solvers return the scalar solvers' results bit for bit, on every family's cases,
-// bad lines and the lanes that fall back to the scalar solver included: stable in four double
-// lanes, stable32 in eight float lanes.
+// bad lines and the lanes that fall back to the scalar solver included, on every path this
+// machine runs: stable in eight (AVX-512) or four (AVX2) double lanes, stable32 in eight float
+// lanes, and the scalar loop.
 #include "support.hpp"
 
 #include "linequad/batch.hpp"
@@ -27,13 +28,13 @@ Result scalar(const Shape& s, const Line& l, Query q) {
         s);
 }
 template <class R>
-void batch(const Shape& s, const LineArraysT<R>& lines, Query q, Result* out) {
+void batch(const Shape& s, const LineArraysT<R>& lines, Query q, Result* out, Lanes lanes) {
     std::visit(
         [&](const auto& shape) {
             if constexpr (std::is_same_v<R, float>)
-                stable32::intersect(shape, lines, q, out);
+                stable32::intersect(shape, lines, q, out, lanes);
             else
-                stable::intersect(shape, lines, q, out);
+                stable::intersect(shape, lines, q, out, lanes);
         },
         s);
 }
@@ -41,7 +42,7 @@ void batch(const Shape& s, const LineArraysT<R>& lines, Query q, Result* out) {
 // Every family's cases in R's precision, one shape against `per_shape` lines: two full batches
 // and a scalar tail, with a zero direction and a NaN among them. Returns the lines compared.
 template <class R>
-std::size_t compare_with_scalar(std::size_t per_shape) {
+std::size_t compare_with_scalar(std::size_t per_shape, Lanes lanes) {
     constexpr Precision precision =
         std::is_same_v<R, float> ? Precision::binary32 : Precision::binary64;
     const R nan = std::numeric_limits<R>::quiet_NaN();
@@ -70,7 +71,7 @@ std::size_t compare_with_scalar(std::size_t per_shape) {
                                          per_shape,     cases[first].line.range};
                     for (Query q : {Query{}, Query{Need::nearest, false}}) {
                         std::vector<Result> got(per_shape);
-                        batch(shape, lines, q, got.data());
+                        batch(shape, lines, q, got.data(), lanes);
                         for (std::size_t j = 0; j < per_shape; ++j) {
                             Line l{{soa[0][j], soa[1][j], soa[2][j]},
                                    {soa[3][j], soa[4][j], soa[5][j]},
@@ -91,12 +92,29 @@ std::size_t compare_with_scalar(std::size_t per_shape) {
 
 } // namespace
 
-TEST_CASE("batch: stable equals the scalar solver bit for bit, for every shape", "[batch]") {
-    INFO("AVX2 path: " << batch_uses_avx2());
-    CHECK(compare_with_scalar<double>(11) > 35000);
+namespace {
+// Every path up to the widest this machine has (a machine without AVX-512 tests the others).
+std::vector<Lanes> paths() {
+    std::vector<Lanes> out;
+    for (Lanes l : {Lanes::scalar, Lanes::avx2, Lanes::avx512})
+        if (l <= batch_lanes()) out.push_back(l);
+    return out;
+}
+} // namespace
+
+TEST_CASE("batch: stable equals the scalar solver bit for bit, for every shape and path",
+          "[batch]") {
+    for (Lanes lanes : paths()) {
+        INFO("lanes: " << lanes_name(lanes));
+        // 19 lines per shape: two batches of eight and a tail of three, or four of four and three.
+        CHECK(compare_with_scalar<double>(19, lanes) > 35000);
+    }
 }
 
-TEST_CASE("batch: stable32 equals the scalar solver bit for bit, for every shape", "[batch]") {
-    INFO("AVX2 path: " << batch_uses_avx2());
-    CHECK(compare_with_scalar<float>(19) > 35000);
+TEST_CASE("batch: stable32 equals the scalar solver bit for bit, for every shape and path",
+          "[batch]") {
+    for (Lanes lanes : paths()) {
+        INFO("lanes: " << lanes_name(lanes));
+        CHECK(compare_with_scalar<float>(19, lanes) > 35000);
+    }
 }

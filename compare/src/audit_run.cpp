@@ -10,6 +10,7 @@
 #include "linequad/registry.hpp"
 
 #include "jsonl.hpp"
+#include "ordered_pool.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -19,7 +20,9 @@
 #include <ctime>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <optional>
+#include <thread>
 #include <unistd.h>
 #include <unordered_map>
 
@@ -263,9 +266,6 @@ class Saver {
     void end(Report& rep, const Options& o, std::chrono::steady_clock::time_point start) {
         rep.seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const auto& st = exact::rounding_stats();
-        for (int i = 0; i < 8; ++i)
-            rep.oracle_steps[i] = st.by_steps[i];
         if (!dir_) return;
         if (o.plots)
             dir_->save_with_plots(rep);
@@ -313,6 +313,7 @@ Report grade_results(const Options& o) {
     rep.cases_file = o.cases_file, rep.results_file = o.results_file;
     rep.seed = 0, rep.cases_per_group = 0;
     rep.families.clear();
+    exact::rounding_stats() = {};
     auto start = std::chrono::steady_clock::now();
     std::vector<Case> cases = read_cases(o);
     rep.cases_count = cases.size();
@@ -393,6 +394,8 @@ Report grade_results(const Options& o) {
         saver.maybe_save(rep, start);
     }
     rep.status = Status::complete;
+    const auto& steps = exact::rounding_stats().by_steps;
+    std::copy(std::begin(steps), std::end(steps), rep.oracle_steps.begin());
     saver.end(rep, o, start);
     return rep;
 }
@@ -417,11 +420,10 @@ void for_each_case(const Options& o, const std::function<void(const Case&)>& f) 
 namespace {
 
 // Grades one chunk of cases (one family and shape, one precision) with every solver that answers
-// in that precision, into the report.
+// in that precision, into a report of the chunk's own. One per worker thread (its scratch space).
 class ChunkGrader {
   public:
-    ChunkGrader(Report& rep, const Solvers& solvers, bool batch)
-        : rep_(rep), solvers_(solvers), batch_(batch) {}
+    ChunkGrader(const Solvers& solvers, bool batch) : solvers_(solvers), batch_(batch) {}
 
     // Whether any solver answers cases posed in p.
     bool wanted(Precision p) const {
@@ -433,8 +435,11 @@ class ChunkGrader {
         return false;
     }
 
-    void grade_chunk(const std::vector<Case>& cases, Precision precision, const std::string& family,
-                     const std::string& shape) {
+    // The chunk's statistics, its oracle's rounding steps among them.
+    Report grade_chunk(const std::vector<Case>& cases, Precision precision,
+                       const std::string& family, const std::string& shape) {
+        Report out;
+        exact::rounding_stats() = {};
         oracle_.resize(cases.size());
         got_.resize(cases.size());
         for (std::size_t i = 0; i < cases.size(); ++i)
@@ -442,34 +447,37 @@ class ChunkGrader {
         for (const Solver* s : solvers_.own) {
             if (s->precision != precision) continue;
             std::string name(s->name);
-            Row& row = rep_.rows[{family, shape, name}];
+            Row& row = out.rows[{family, shape, name}];
             auto t0 = std::chrono::steady_clock::now();
             for (std::size_t i = 0; i < cases.size(); ++i)
                 got_[i] = (*s)(cases[i].shape, cases[i].line);
             auto t1 = std::chrono::steady_clock::now();
             row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
                        double(cases.size()));
-            auto& curve = rep_.curves[{family, name}];
+            auto& curve = out.curves[{family, name}];
             for (std::size_t i = 0; i < cases.size(); ++i)
                 grade(cases[i], name, got_[i], oracle_[i], row, &curve[cases[i].k]);
         }
         if (batch_ && precision == Precision::binary64) {
-            Row& row = rep_.rows[{family, shape, batch_name}];
+            Row& row = out.rows[{family, shape, batch_name}];
             row.ns.add(run_batch(cases, got_));
-            auto& curve = rep_.curves[{family, batch_name}];
+            auto& curve = out.curves[{family, batch_name}];
             for (std::size_t i = 0; i < cases.size(); ++i)
                 grade(cases[i], batch_name, got_[i], oracle_[i], row, &curve[cases[i].k]);
         }
         for (const ExternalSolver* e : solvers_.external)
             if (e->precision == precision && e->takes(cases[0].shape))
-                grade_external(*e, cases, family, shape);
+                grade_external(*e, cases, family, shape, out);
+        const auto& steps = exact::rounding_stats().by_steps;
+        std::copy(std::begin(steps), std::end(steps), out.oracle_steps.begin());
+        return out;
     }
 
   private:
     // The library's cases are posed its way, and its reference solved for what it saw.
     void grade_external(const ExternalSolver& e, const std::vector<Case>& cases,
-                        const std::string& family, const std::string& shape) {
-        Row& row = rep_.rows[{family, shape, e.name}];
+                        const std::string& family, const std::string& shape, Report& out) {
+        Row& row = out.rows[{family, shape, e.name}];
         posed_.clear();
         from_.clear();
         for (std::size_t i = 0; i < cases.size(); ++i)
@@ -481,17 +489,23 @@ class ChunkGrader {
             }
         if (posed_.empty()) return;
         answers_.resize(posed_.size());
-        CrashGuard guard; // installed once for the chunk, outside the timing
-        auto t0 = std::chrono::steady_clock::now();
-        for (std::size_t j = 0; j < posed_.size(); ++j)
-            answers_[j] = e(posed_[j].shape, posed_[j].line);
-        auto t1 = std::chrono::steady_clock::now();
-        row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
-                   double(posed_.size()));
+        {
+            // Another library's thread safety is not known (nor declared by the plugin ABI), and
+            // the crash guard's handlers are the process's: one thread calls them at a time.
+            static std::mutex one_at_a_time;
+            std::lock_guard<std::mutex> lock(one_at_a_time);
+            CrashGuard guard; // installed once for the chunk, outside the timing
+            auto t0 = std::chrono::steady_clock::now();
+            for (std::size_t j = 0; j < posed_.size(); ++j)
+                answers_[j] = e(posed_[j].shape, posed_[j].line);
+            auto t1 = std::chrono::steady_clock::now();
+            row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
+                       double(posed_.size()));
+        }
         // The oracle's answer stands when the library saw the case as it is and answers all.
         bool as_is = e.answers == Answers::all && e.surface == Surface::as_posed &&
                      e.parametrisation == Parametrisation::line;
-        auto& curve = rep_.curves[{family, e.name}];
+        auto& curve = out.curves[{family, e.name}];
         Grading what{e.points, e.kinds, e.parts};
         for (std::size_t j = 0; j < posed_.size(); ++j) {
             if (!answers_[j]) {
@@ -503,7 +517,6 @@ class ChunkGrader {
         }
     }
 
-    Report& rep_;
     const Solvers& solvers_;
     bool batch_;
     std::vector<Result> oracle_, got_;
@@ -511,6 +524,65 @@ class ChunkGrader {
     std::vector<std::size_t> from_;
     std::vector<std::optional<Result>> answers_;
 };
+
+// A chunk of a run: cases [begin, end) of one source of cases (a campaign's group, a cases
+// file's group), posed in one precision. The cases are made by the worker that grades it.
+struct Chunk {
+    std::size_t source;
+    std::uint64_t begin, end;
+    Precision precision;
+};
+constexpr std::uint64_t chunk_size = 256;
+
+// Where chunks come from: the cases of chunk c, and the family and shape its rows are under.
+struct ChunkSource {
+    std::function<std::vector<Case>(const Chunk&)> cases;
+    std::function<std::pair<std::string, std::string>(std::size_t)> names;
+};
+
+// Grades the chunks on o.threads workers, each with a grader of its own, and merges their
+// statistics into rep in chunk order (so the report does not depend on the number of threads),
+// saving as it goes; marks rep complete or stopped.
+void grade_chunks(const Options& o, const Solvers& solvers, bool batch,
+                  const std::vector<Chunk>& chunks, const ChunkSource& source,
+                  std::uint64_t total_cases, Report& rep) {
+    auto start = std::chrono::steady_clock::now();
+    Saver saver(o);
+    saver.begin(rep);
+    Progress progress(total_cases);
+    struct Graded {
+        Report stats;
+        std::uint64_t cases = 0;
+    };
+    std::mutex graders_lock;
+    std::map<std::thread::id, ChunkGrader> graders;
+    auto grader = [&]() -> ChunkGrader& {
+        std::lock_guard<std::mutex> lock(graders_lock);
+        return graders.try_emplace(std::this_thread::get_id(), solvers, batch).first->second;
+    };
+    in_order<Graded>(
+        chunks.size(), threads_for(o.threads),
+        [&](std::size_t i) {
+            const Chunk& c = chunks[i];
+            std::vector<Case> cases = source.cases(c);
+            Graded g;
+            g.cases = cases.size();
+            if (!cases.empty()) {
+                auto [family, shape] = source.names(c.source);
+                g.stats = grader().grade_chunk(cases, c.precision, family, shape);
+            }
+            return g;
+        },
+        [&](std::size_t, Graded&& g) {
+            rep.merge_statistics(g.stats);
+            progress.advance(g.cases);
+            saver.maybe_save(rep, start);
+        },
+        [] { return bool(stop_requested); });
+    rep.status = stop_requested ? Status::stopped : Status::complete;
+    if (stop_requested) std::fprintf(stderr, "\naudit: stopped early; writing what was measured\n");
+    saver.end(rep, o, start);
+}
 
 // Every solver on the cases of a cases file, grouped by family, shape and precision (in the
 // order the file first names them), in chunks.
@@ -533,28 +605,27 @@ Report solve_cases_file(const Options& o, const Solvers& solvers, Report rep) {
         if (fresh) order.push_back(key);
         it->second.push_back(std::move(c));
     }
-    exact::rounding_stats() = {};
-    auto start = std::chrono::steady_clock::now();
-    Saver saver(o);
-    saver.begin(rep);
-    StopOnSignal stop;
-    ChunkGrader grader(rep, solvers, batch_wanted(o));
-    Progress progress(all.size());
-    constexpr std::size_t chunk = 256;
-    std::vector<Case> cases;
-    for (const auto& key : order) {
-        const auto& [family, shape, precision] = key;
-        const std::vector<Case>& group = groups[key];
-        for (std::size_t begin = 0; begin < group.size() && !stop_requested; begin += chunk) {
-            cases.assign(group.begin() + long(begin),
-                         group.begin() + long(std::min(group.size(), begin + chunk)));
-            if (grader.wanted(precision)) grader.grade_chunk(cases, precision, family, shape);
-            progress.advance(cases.size());
-            saver.maybe_save(rep, start);
-        }
+    bool batch = batch_wanted(o);
+    ChunkGrader probe(solvers, batch);
+    std::vector<Chunk> chunks;
+    std::uint64_t total = 0;
+    for (std::size_t g = 0; g < order.size(); ++g) {
+        const std::vector<Case>& group = groups[order[g]];
+        total += group.size();
+        for (std::uint64_t begin = 0; begin < group.size(); begin += chunk_size)
+            chunks.push_back({g, begin, std::min<std::uint64_t>(group.size(), begin + chunk_size),
+                              std::get<2>(order[g])});
     }
-    rep.status = stop_requested ? Status::stopped : Status::complete;
-    saver.end(rep, o, start);
+    ChunkSource source{[&](const Chunk& c) {
+                           const std::vector<Case>& group = groups.at(order[c.source]);
+                           if (!probe.wanted(c.precision)) return std::vector<Case>();
+                           return std::vector<Case>(group.begin() + long(c.begin),
+                                                    group.begin() + long(c.end));
+                       },
+                       [&](std::size_t g) {
+                           return std::pair{std::get<0>(order[g]), std::get<1>(order[g])};
+                       }};
+    grade_chunks(o, solvers, batch, chunks, source, total, rep);
     return rep;
 }
 
@@ -569,6 +640,7 @@ Report run(const Options& o, const std::vector<ExternalSolver>& external) {
     if (!o.results_file.empty() && o.cases_file.empty())
         throw std::invalid_argument("audit: a results file is graded against its cases file");
     if (!o.results_file.empty()) return grade_results(o);
+    StopOnSignal stop; // before any work: a stop while the chunks are laid out ends the run too
     Report rep;
     fill_provenance(rep, o);
     Solvers solvers = solvers_of(o, external);
@@ -580,43 +652,45 @@ Report run(const Options& o, const std::vector<ExternalSolver>& external) {
     if (!o.cases_file.empty()) return solve_cases_file(o, solvers, rep);
     for (Family f : families_of(o))
         rep.families.emplace_back(family_name(f));
-    std::vector<Group> groups = groups_of(o);
-    exact::rounding_stats() = {};
-    auto start = std::chrono::steady_clock::now();
-    Saver saver(o);
-    saver.begin(rep);
-    StopOnSignal stop;
 
     // Each solver answers the family's cases posed in its own precision: the double solvers (and
     // batch) binary64 cases, the float solvers binary32 cases, each graded in its own ulps.
-    ChunkGrader grader(rep, solvers, batch);
-    std::uint64_t passes = grader.wanted(Precision::binary64) + grader.wanted(Precision::binary32);
-    Progress progress(passes * groups.size() * o.cases_per_group / std::uint64_t(o.shards));
-    constexpr std::uint64_t chunk = 256;
-    std::vector<Case> cases;
-    std::uint64_t g_base = 0;
-    for (const Group& grp : groups) {
-        std::string family = family_name(grp.family), shape = shape_name_at(grp.shape);
-        for (std::uint64_t begin = 0; begin < o.cases_per_group && !stop_requested; begin += chunk)
+    ChunkGrader probe(solvers, batch);
+    std::vector<Group> groups = groups_of(o);
+    auto shard_share = [&](std::uint64_t first, std::uint64_t begin, std::uint64_t end) {
+        // i in [begin, end) with (first + i) mod shards = shard
+        auto upto = [&](std::uint64_t n) { // i in [0, n)
+            std::uint64_t k = std::uint64_t(o.shards), r = std::uint64_t(o.shard);
+            std::uint64_t offset = (r + k - first % k) % k; // the first such i
+            return n > offset ? (n - offset + k - 1) / k : 0;
+        };
+        return upto(end) - upto(begin);
+    };
+    std::vector<Chunk> chunks;
+    std::uint64_t total = 0;
+    for (std::size_t g = 0; g < groups.size(); ++g)
+        for (std::uint64_t begin = 0; begin < o.cases_per_group; begin += chunk_size)
             for (Precision precision : {Precision::binary64, Precision::binary32}) {
-                if (!grader.wanted(precision)) continue;
-                std::uint64_t end = std::min(o.cases_per_group, begin + chunk);
-                cases.clear();
-                for (std::uint64_t i = begin; i < end; ++i)
-                    if ((g_base + i) % std::uint64_t(o.shards) == std::uint64_t(o.shard))
-                        cases.push_back(make_case(grp.family, grp.shape, grp.range, o.seed, i,
-                                                  o.frames, precision));
-                if (cases.empty()) continue;
-                grader.grade_chunk(cases, precision, family, shape);
-                progress.advance(cases.size());
-                saver.maybe_save(rep, start);
+                if (!probe.wanted(precision)) continue;
+                std::uint64_t end = std::min(o.cases_per_group, begin + chunk_size);
+                total += shard_share(g * o.cases_per_group, begin, end);
+                chunks.push_back({g, begin, end, precision});
             }
-        g_base += o.cases_per_group;
-        if (stop_requested) break;
-    }
-    rep.status = stop_requested ? Status::stopped : Status::complete;
-    if (stop_requested) std::fprintf(stderr, "\naudit: stopped early; writing what was measured\n");
-    saver.end(rep, o, start);
+    ChunkSource source{[&](const Chunk& c) {
+                           const Group& grp = groups[c.source];
+                           std::uint64_t first = c.source * o.cases_per_group;
+                           std::vector<Case> out;
+                           for (std::uint64_t i = c.begin; i < c.end; ++i)
+                               if ((first + i) % std::uint64_t(o.shards) == std::uint64_t(o.shard))
+                                   out.push_back(make_case(grp.family, grp.shape, grp.range, o.seed,
+                                                           i, o.frames, c.precision));
+                           return out;
+                       },
+                       [&](std::size_t g) {
+                           return std::pair{std::string(family_name(groups[g].family)),
+                                            shape_name_at(groups[g].shape)};
+                       }};
+    grade_chunks(o, solvers, batch, chunks, source, total, rep);
     return rep;
 }
 

@@ -353,6 +353,16 @@ std::string unmergeable(const Report& a, const Report& b) {
 }
 
 void Report::merge(const Report& o) {
+    merge_statistics(o);
+    // The least finished status stands for the whole.
+    status = std::min(status, o.status);
+    seconds += o.seconds;
+    shards_included.insert(shards_included.end(), o.shards_included.begin(),
+                           o.shards_included.end());
+    std::sort(shards_included.begin(), shards_included.end());
+}
+
+void Report::merge_statistics(const Report& o) {
     for (const auto& [key, row] : o.rows)
         rows[key].merge(row);
     for (const auto& [key, points] : o.curves)
@@ -364,12 +374,6 @@ void Report::merge(const Report& o) {
         }
     for (int i = 0; i < 8; ++i)
         oracle_steps[i] += o.oracle_steps[i];
-    // The least finished status stands for the whole.
-    status = std::min(status, o.status);
-    seconds += o.seconds;
-    shards_included.insert(shards_included.end(), o.shards_included.begin(),
-                           o.shards_included.end());
-    std::sort(shards_included.begin(), shards_included.end());
 }
 
 Row Report::total(const std::string& solver) const {

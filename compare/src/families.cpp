@@ -29,8 +29,24 @@ std::uint64_t splitmix(std::uint64_t x) {
     return x ^ (x >> 31);
 }
 
+// SplitMix64 (Steele, Lea and Flood) as a generator: a counter passed through splitmix. A case's
+// stream starts from one hash of (family, shape, range, seed, index), so that every case is a
+// pure function of them and costs no seeding (a Mersenne Twister's 312-word state, filled per
+// case, had been half of case generation).
+struct SplitMix64 {
+    using result_type = std::uint64_t;
+    std::uint64_t state;
+    static constexpr result_type min() { return 0; }
+    static constexpr result_type max() { return ~result_type(0); }
+    result_type operator()() {
+        result_type x = splitmix(state);
+        state += 0x9e3779b97f4a7c15ull;
+        return x;
+    }
+};
+
 struct Rng {
-    std::mt19937_64 g;
+    SplitMix64 g;
     double real(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(g); }
     int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(g); }
     bool coin() { return g() & 1; }
@@ -713,7 +729,7 @@ Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint
     std::uint64_t key =
         splitmix(seed) ^
         splitmix(std::uint64_t(fam) * 1000003 + std::uint64_t(shape) * 101 + std::uint64_t(range));
-    Rng r{std::mt19937_64(splitmix(key ^ splitmix(index)))};
+    Rng r{SplitMix64{splitmix(key ^ splitmix(index))}};
     int k = difficulty(fam, index, precision);
     Case c = with_shape_type(std::size_t(shape), [&](auto tag) {
         return make<typename decltype(tag)::type>(fam, r, k, frames, precision);

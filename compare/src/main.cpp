@@ -227,7 +227,7 @@ int run_solve(const SolveArgs& a) {
 struct CampaignArgs {
     std::string cases = "100000", seed = "1", shard = "0/1", out = "reports/latest";
     std::string cases_file, results_file, max_line_bytes = "1048576", families, solvers;
-    std::string shapes, frames = "any", precision = "binary64";
+    std::string shapes, frames = "any", precision = "binary64", threads = "0";
     std::vector<std::string> plugins;
     bool no_plots = false, check = false;
 
@@ -253,6 +253,7 @@ struct CampaignArgs {
         if (!solvers.empty()) o.solvers = split_list(solvers);
         o.out_dir = out;
         o.plots = !no_plots;
+        o.threads = int(to_whole(threads));
         o.cases_file = cases_file, o.results_file = results_file;
         o.max_line_bytes = std::size_t(to_whole(max_line_bytes));
         return o;
@@ -496,6 +497,12 @@ int main_checked(int argc, char** argv) {
         ->check(CLI::ExistingFile);
     a->add_option("--out", audit_args.out, "the report's directory")
         ->type_name("DIR")
+        ->capture_default_str();
+    a->add_option("--threads", audit_args.threads,
+                  "worker threads (0: one per core); the report is the same for any number, "
+                  "timings aside")
+        ->type_name("N")
+        ->check(WholeNumber(0, 1024))
         ->capture_default_str();
     a->add_flag("--no-plots", audit_args.no_plots, "no gnuplot figures");
     a->add_flag("--check", audit_args.check,

@@ -174,6 +174,9 @@ struct Report {
     bool from_cases_file() const { return !cases_file.empty(); }
     // Adds another shard of the same campaign (see mergeable()).
     void merge(const Report& o);
+    // Adds another report's statistics (rows, curves, oracle steps) and nothing else: how the
+    // audit's worker threads' chunks join the report, in chunk order.
+    void merge_statistics(const Report& o);
     Row total(const std::string& solver) const; // all rows of one solver
 };
 
@@ -212,6 +215,9 @@ struct Options {
     std::string results_file, cases_file;
     std::string command; // how it was invoked, for the report
     bool plots = true;
+    // Worker threads grading chunks of cases; 0: one per core. The report is the same for any
+    // number (timings aside): each chunk is graded on its own and merged in order.
+    int threads = 0;
     std::size_t max_line_bytes = std::size_t(1) << 20; // per line of a cases or results file
 };
 

@@ -6,12 +6,30 @@
 
 namespace linequad {
 
-bool batch_uses_avx2() {
+const char* lanes_name(Lanes l) {
+    switch (l) {
+    case Lanes::avx512:
+        return "avx512";
+    case Lanes::avx2:
+        return "avx2";
+    default:
+        return "scalar";
+    }
+}
+
+Lanes batch_lanes() {
 #if defined(__x86_64__) && defined(LINEQUAD_HAVE_AVX2_KERNELS)
-    static const bool yes = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    return yes;
+    static const Lanes widest = [] {
+#if defined(LINEQUAD_HAVE_AVX512_KERNELS)
+        if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq"))
+            return Lanes::avx512;
+#endif
+        if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return Lanes::avx2;
+        return Lanes::scalar;
+    }();
+    return widest;
 #else
-    return false;
+    return Lanes::scalar;
 #endif
 }
 
@@ -26,11 +44,48 @@ Result solve_one(const S& shape, const Line& l, Query q) {
         return stable::intersect(shape, l, q);
 }
 
-// Lanes of lines at a time through the kernel; the lanes it does not take, bad lines, a bad
-// shape and the tail through the scalar solver, which names any problem.
-template <class R, class S>
-void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* out) {
+// The kernel for lines in R on N lanes: stable_x8 or stable_x4 for double, stable32_x8 for float.
+template <class R, int N>
+struct Kernel {
+    template <class S>
+    static void run(const S& s, double extent, const R* const soa[6], std::size_t i, Interval range,
+                    detail::LaneResult* out) {
+        if constexpr (std::is_same_v<R, float>)
+            detail::stable32_x8(s, extent, soa, i, range, out);
+        else if constexpr (N == 8)
+            detail::stable_x8(s, extent, soa, i, range, out);
+        else
+            detail::stable_x4(s, extent, soa, i, range, out);
+    }
+};
+
+// Lines [i, i + N) of the batch that the kernel takes: their results, assembled from the lanes;
+// the lanes it does not take (bad lines, the branches of the scalar solver) by the scalar
+// solver, which names any problem. Returns the first line it has not done.
+template <class R, int N, class S, class LineAt>
+std::size_t run_lanes(const S& shape, const LineArraysT<R>& lines, Query q, Result* out,
+                      LineAt line_at) {
     auto src = detail::source(shape);
+    const R* const soa[6] = {lines.x, lines.y, lines.z, lines.vx, lines.vy, lines.vz};
+    double shape_extent = src.magnitude();
+    detail::LaneResult lane[N];
+    std::size_t i = 0;
+    for (; i + N <= lines.count; i += N) {
+        Kernel<R, N>::run(src.shape, shape_extent, soa, i, lines.range, lane);
+        for (int k = 0; k < N; ++k) {
+            if (lane[k].generic) {
+                detail::reset(out[i + k]);
+                detail::assemble(lane[k], lane[k].count, q, out[i + k]);
+            } else {
+                out[i + k] = solve_one<R>(shape, line_at(i + k), q);
+            }
+        }
+    }
+    return i;
+}
+
+template <class R, class S>
+void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* out, Lanes lanes) {
     auto line_at = [&](std::size_t i) {
         return Line{{lines.x[i], lines.y[i], lines.z[i]},
                     {lines.vx[i], lines.vy[i], lines.vz[i]},
@@ -38,30 +93,20 @@ void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* o
     };
     std::size_t i = 0;
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
-    // The shape is checked once, and the range (for float lines: that they are floats); a bad
-    // line goes to the scalar solver, which names it. A closed shape's discs are the scalar
-    // solver's too.
+    // The shape is checked once, and the range (for float lines: that they are floats). A closed
+    // shape's discs are the scalar solver's.
+    auto src = detail::source(shape);
     Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
     bool shape_ok = src.validity().error.ok() && !detail::closed(src.shape) &&
                     detail::check_line(probe).ok() && detail::real_error<R>(src, probe).ok();
-    if (batch_uses_avx2() && shape_ok) {
-        using Kernel = detail::BatchKernel<R>;
-        constexpr int N = Kernel::lanes;
-        const R* const soa[6] = {lines.x, lines.y, lines.z, lines.vx, lines.vy, lines.vz};
-        double shape_extent = src.magnitude();
-        detail::LaneResult lane[N];
-        for (; i + N <= lines.count; i += N) {
-            Kernel::run(src.shape, shape_extent, soa, i, lines.range, lane);
-            for (int k = 0; k < N; ++k) {
-                Line l = line_at(i + k);
-                bool line_ok = is_finite(l.L0) && is_finite(l.v) && l.v != Vec3{};
-                if (lane[k].generic && line_ok) {
-                    detail::reset(out[i + k]);
-                    detail::assemble(lane[k], lane[k].count, q, out[i + k]);
-                } else
-                    out[i + k] = solve_one<R>(shape, l, q);
-            }
-        }
+    lanes = std::min(lanes, batch_lanes());
+    if (shape_ok && lanes != Lanes::scalar) {
+#if defined(LINEQUAD_HAVE_AVX512_KERNELS)
+        if (lanes == Lanes::avx512 && std::is_same_v<R, double>)
+            i = run_lanes<R, 8>(shape, lines, q, out, line_at);
+        else
+#endif
+            i = run_lanes < R, std::is_same_v<R, float> ? 8 : 4 > (shape, lines, q, out, line_at);
     }
 #endif
     for (; i < lines.count; ++i)
@@ -71,19 +116,21 @@ void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* o
 } // namespace
 
 template <class S, if_solvable<S>>
-void stable::intersect(const S& shape, const LineArrays& lines, Query q, Result* out) {
-    solve_batch(shape, lines, q, out);
+void stable::intersect(const S& shape, const LineArrays& lines, Query q, Result* out, Lanes lanes) {
+    solve_batch(shape, lines, q, out, lanes);
 }
 template <class S, if_solvable<S>>
-void stable32::intersect(const S& shape, const LineArrays32& lines, Query q, Result* out) {
-    solve_batch(shape, lines, q, out);
+void stable32::intersect(const S& shape, const LineArrays32& lines, Query q, Result* out,
+                         Lanes lanes) {
+    solve_batch(shape, lines, q, out, lanes);
 }
 
 #define LINEQUAD_INSTANTIATE_BATCH(S)                                                              \
-    template void stable::intersect(const S&, const LineArrays&, Query, Result*);                  \
-    template void stable::intersect(const Prepared<S>&, const LineArrays&, Query, Result*);        \
-    template void stable32::intersect(const S&, const LineArrays32&, Query, Result*);              \
-    template void stable32::intersect(const Prepared<S>&, const LineArrays32&, Query, Result*);
+    template void stable::intersect(const S&, const LineArrays&, Query, Result*, Lanes);           \
+    template void stable::intersect(const Prepared<S>&, const LineArrays&, Query, Result*, Lanes); \
+    template void stable32::intersect(const S&, const LineArrays32&, Query, Result*, Lanes);       \
+    template void stable32::intersect(const Prepared<S>&, const LineArrays32&, Query, Result*,     \
+                                      Lanes);
 LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_INSTANTIATE_BATCH)
 
 } // namespace linequad

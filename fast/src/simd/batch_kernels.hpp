@@ -39,24 +39,13 @@ struct LaneResult {
 template <class S>
 void stable_x4(const S& s, double shape_extent, const double* const soa[6], std::size_t i,
                Interval range, LaneResult out[4]);
-// Lines [i, i + 8) in float lanes (stable32).
+// Lines [i, i + 8) in double lanes; AVX-512F and DQ.
+template <class S>
+void stable_x8(const S& s, double shape_extent, const double* const soa[6], std::size_t i,
+               Interval range, LaneResult out[8]);
+// Lines [i, i + 8) in float lanes (stable32); AVX2 and FMA.
 template <class S>
 void stable32_x8(const S& s, double shape_extent, const float* const soa[6], std::size_t i,
                  Interval range, LaneResult out[8]);
-
-// The kernel for lines in R: stable_x4 for double, stable32_x8 for float.
-template <class R>
-struct BatchKernel {
-    static constexpr bool in_float = std::is_same_v<R, float>;
-    static constexpr int lanes = in_float ? 8 : 4;
-    template <class S>
-    static void run(const S& s, double extent, const R* const soa[6], std::size_t i, Interval range,
-                    LaneResult* out) {
-        if constexpr (in_float)
-            stable32_x8(s, extent, soa, i, range, out);
-        else
-            stable_x4(s, extent, soa, i, range, out);
-    }
-};
 
 } // namespace linequad::detail

@@ -4,7 +4,7 @@
 // for translation units built with AVX2/FMA.
 #pragma once
 
-#include "solve/prescale.hpp"
+#include "simd/lanes.hpp"
 
 #include <immintrin.h>
 
@@ -87,16 +87,6 @@ inline D4 power_of_two_inverse(D4 x) {
     __m256d zero = _mm256_cmp_pd(p, _mm256_setzero_pd(), _CMP_EQ_OQ);
     return D4(_mm256_blendv_pd(_mm256_div_pd(_mm256_set1_pd(1.0), p), _mm256_set1_pd(1.0), zero));
 }
-
-// prescale_for()'s powers of two per lane, from the exponents' bits: 2^-k for positions, 2^-j for
-// directions, 2^(k - j) for t, with k and j the exponents of the scene's extent and of max |v|.
-// `ok` drops the lanes that prescale_for() would take down another path (a subnormal magnitude,
-// exponents or k - j beyond the moderate range): they go back to the scalar solver.
-template <class L>
-struct ScaleLanes {
-    L to_unit, dir_to_unit, t_scale;
-    decltype(L() < L()) ok;
-};
 
 // The integer steps of ScaleLanes on W-bit lanes (64 for D4, 32 for F8): the exponent of each
 // lane of m (0 for zero), clearing `ok` where it is subnormal or beyond +-limit, and 2^e from e.
@@ -260,19 +250,12 @@ inline void store(double* p, D4 x) {
 inline void store(float* p, F8 x) {
     _mm256_storeu_ps(p, x.v);
 }
-// The larger of a and b by the max instructions, and max |coordinate| (the batch's own prescaling,
-// whose inputs are finite).
+// The larger of a and b by the max instructions.
 inline D4 maximum(D4 a, D4 b) {
     return D4(_mm256_max_pd(a.v, b.v));
 }
 inline F8 maximum(F8 a, F8 b) {
     return F8(_mm256_max_ps(a.v, b.v));
 }
-template <class L>
-L max_abs(Vec3T<L> a) {
-    return maximum(maximum(fabs(a.x), fabs(a.y)), fabs(a.z));
-}
-template <class L>
-constexpr int lane_count = sizeof(L) / sizeof(Real<L>);
 
 } // namespace linequad::detail

@@ -1,0 +1,120 @@
+// The batch kernels' steps around each shape's stable core (its ShapeTraits<S>::Stable, shapes/),
+// written once over the lane type L (D4, F8: lanes_avx2.hpp; D8: lanes_avx512.hpp): the steps
+// the scalar solver takes, in lanes: prescaling, the pairing of roots, and finish()'s facts.
+// Included only by translation units built for L's instruction set.
+#pragma once
+
+#include "shapes/all.hpp"
+#include "simd/batch_kernels.hpp"
+#include "simd/lanes.hpp"
+
+#include <limits>
+
+namespace linequad::detail {
+
+template <class L>
+using MaskOf = decltype(L() < L());
+
+// A line's lanes: L0 and v as given, and prescale_for()'s powers of two (ScaleLanes).
+template <class L>
+struct LineLanes {
+    Vec3T<L> L0, v;
+    ScaleLanes<L> scale;
+};
+
+// prescale_for()'s powers of two, per lane, with Prescale's pos, len and dir.
+template <class L>
+struct LanePrescale {
+    L to_unit, dir_to_unit;
+    Vec3T<L> pos(Vec3 p) const { return to_unit * Vec3T<L>{L(p.x), L(p.y), L(p.z)}; }
+    Vec3T<L> pos(Vec3T<L> p) const { return to_unit * p; }
+    L len(double x) const { return to_unit * L(x); }
+    Vec3T<L> dir(Vec3T<L> v) const { return dir_to_unit * v; }
+};
+
+template <class L>
+LineLanes<L> line_lanes(const Real<L>* const soa[6], std::size_t i, double shape_extent) {
+    LineLanes<L> ln;
+    ln.L0 = {load(soa[0] + i), load(soa[1] + i), load(soa[2] + i)};
+    ln.v = {load(soa[3] + i), load(soa[4] + i), load(soa[5] + i)};
+    ln.scale = scale_lanes(maximum(max_abs(ln.L0), L(shape_extent)), max_abs(ln.v));
+    return ln;
+}
+
+// The lanes whose line the scalar checks pass: every coordinate finite (0 x is 0 only for
+// finite x), v nonzero. The others go back to the scalar solver, which names what is wrong.
+template <class L>
+MaskOf<L> usual_line(const LineLanes<L>& ln) {
+    L zero(Real<L>(0));
+    L sum = (ln.L0.x * zero + ln.L0.y * zero) + (ln.L0.z * zero + ln.v.x * zero) +
+            (ln.v.y * zero + ln.v.z * zero);
+    auto finite = !(sum != zero);
+    return finite & ((ln.v.x != zero) | (ln.v.y != zero) | (ln.v.z != zero));
+}
+
+// From the moved roots to assemble()'s facts, as shift_back() and finish() do for one line; e is
+// the extent.
+template <class L, class Core>
+void finish_lanes(const Core& k, MaskOf<L> generic, const LineLanes<L>& ln, ExtentT<L> e,
+                  Interval range, LaneResult* out) {
+    using R = Real<L>;
+    constexpr int N = lane_count<L>;
+    L zero(R(0)), sm[2];
+    auto two = k.D >= zero;
+    stable_pair(k.A, k.B, k.Cc, k.D, sm);
+    // The root of larger magnitude directly, the other from Vieta's product when it cancelled.
+    L ta = k.tc + sm[0], tb = k.tc + sm[1];
+    auto far_is_a = fabs(ta) >= fabs(tb);
+    L t_far = select(far_is_a, ta, tb), t_near = select(far_is_a, tb, ta);
+    auto vieta = (t_far != zero) & (fabs(t_near) < L(R(0.5)) * fabs(k.tc)) & two & generic;
+    if (bits(vieta)) t_near = select(vieta, (k.C0_at_origin() / k.A) / t_far, t_near);
+    L t[2] = {select(far_is_a, t_far, t_near), select(far_is_a, t_near, t_far)};
+    MaskOf<L> from_vieta[2] = {(!far_is_a) & vieta, far_is_a & vieta};
+    L big(std::numeric_limits<R>::max());
+    const Vec3T<L>& L0 = ln.L0;
+    const Vec3T<L>& v = ln.v;
+    R tt[2][N], px[2][N], py[2][N], pz[2][N];
+    int bad[2], keep[2];
+    for (int j = 0; j < 2; ++j) {
+        L z = k.z_lanes(t[j], sm[j], from_vieta[j]);
+        L tcall = t[j] * ln.scale.t_scale;
+        auto in = (z >= e.lo) & (z <= e.hi) & (tcall >= L(R(range.t0))) & (tcall <= L(R(range.t1)));
+        bad[j] = bits((!(fabs(tcall) <= big)) | (z != z));
+        keep[j] = bits(in);
+        store(tt[j], tcall);
+        store(px[j], fma(tcall, v.x, L0.x));
+        store(py[j], fma(tcall, v.y, L0.y));
+        store(pz[j], fma(tcall, v.z, L0.z));
+    }
+    int g = bits(generic), tw = bits(two);
+    for (int lane = 0; lane < N; ++lane) {
+        LaneResult& o = out[lane];
+        o.generic = (g >> lane) & 1;
+        o.count = (tw >> lane) & 1 ? 2 : 0;
+        for (int j = 0; j < 2; ++j)
+            o.root[j] = {tt[j][lane],
+                         HitKind::cross,
+                         bool((bad[j] >> lane) & 1),
+                         bool((keep[j] >> lane) & 1),
+                         {px[j][lane], py[j][lane], pz[j][lane]}};
+    }
+}
+
+// The lanes the scalar solver would branch on (sizes out of reach, A or D zero or in the
+// underflow zone, the scalar-only steps of a core) are not generic: they go back to it.
+template <class L, class S>
+void stable_lanes(const S& s, double shape_extent, const Real<L>* const soa[6], std::size_t i,
+                  Interval range, LaneResult* out) {
+    using R = Real<L>;
+    LineLanes<L> ln = line_lanes<L>(soa, i, shape_extent);
+    auto k = ShapeTraits<S>::template stable_core<L>(
+        AsGiven<S>{s}, LanePrescale<L>{ln.scale.to_unit, ln.scale.dir_to_unit}, ln.L0, ln.v);
+    L tiny(Guards<R>::tiny_decisive);
+    auto generic = ln.scale.ok & usual_line(ln) & !k.smaller_than(Guards<R>::min_relative_size) &
+                   (fabs(k.A) >= tiny);
+    k.discriminant();
+    generic = generic & !k.scalar_only() & (fabs(k.D) >= tiny);
+    finish_lanes(k, generic, ln, k.extent(s), range, out);
+}
+
+} // namespace linequad::detail
