@@ -15,6 +15,14 @@ struct World {
     ~World() { dCloseODE(); }
 };
 
+// ODE keeps data per thread, and the audit calls it from whichever of its workers grades the
+// chunk (one at a time): each calling thread allocates its own once.
+void enter_ode() {
+    static World world;
+    thread_local bool ready = dAllocateODEDataForThread(dAllocateMaskAll) != 0;
+    (void)ready;
+}
+
 // ODE's rays have a length; the audit's rays none. Long enough for any case, short enough that
 // length times a unit direction stays finite.
 constexpr double ray_length = 0x1p500;
@@ -36,7 +44,7 @@ audit::ExternalSolver ode() {
                 "ranges from t0 > 0 cannot be represented, nor open or infinite shapes, cones, "
                 "frusta, the elliptic shapes.";
     s.cylinder = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
-        static World world;
+        enter_ode();
         Vec3 axis = c.H - c.C;
         double h = norm(axis);
         if (l.range.t0 != 0 || !(c.r > 0) || !(h > 0)) return std::nullopt;
