@@ -49,13 +49,13 @@ template <class R, int N>
 struct Kernel {
     template <class S>
     static void run(const S& s, double extent, const R* const soa[6], std::size_t i, Interval range,
-                    detail::LaneResult* out) {
+                    Query q, detail::LaneBlock<R, N>& out) {
         if constexpr (std::is_same_v<R, float>)
-            detail::stable32_x8(s, extent, soa, i, range, out);
+            detail::stable32_x8(s, extent, soa, i, range, q, out);
         else if constexpr (N == 8)
-            detail::stable_x8(s, extent, soa, i, range, out);
+            detail::stable_x8(s, extent, soa, i, range, q, out);
         else
-            detail::stable_x4(s, extent, soa, i, range, out);
+            detail::stable_x4(s, extent, soa, i, range, q, out);
     }
 };
 
@@ -68,17 +68,15 @@ std::size_t run_lanes(const S& shape, const LineArraysT<R>& lines, Query q, Resu
     auto src = detail::source(shape);
     const R* const soa[6] = {lines.x, lines.y, lines.z, lines.vx, lines.vy, lines.vz};
     double shape_extent = src.magnitude();
-    detail::LaneResult lane[N];
+    detail::LaneBlock<R, N> block;
     std::size_t i = 0;
     for (; i + N <= lines.count; i += N) {
-        Kernel<R, N>::run(src.shape, shape_extent, soa, i, lines.range, lane);
+        Kernel<R, N>::run(src.shape, shape_extent, soa, i, lines.range, q, block);
         for (int k = 0; k < N; ++k) {
-            if (lane[k].generic) {
-                detail::reset(out[i + k]);
-                detail::assemble(lane[k], lane[k].count, q, out[i + k]);
-            } else {
+            if ((block.generic >> k) & 1)
+                detail::write_result(block, k, q, out[i + k]);
+            else
                 out[i + k] = solve_one<R>(shape, line_at(i + k), q);
-            }
         }
     }
     return i;

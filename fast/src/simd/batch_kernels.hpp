@@ -1,7 +1,7 @@
-// What a batch kernel hands back for each lane: either "solve this line with the scalar solver"
-// (a branch the lanes do not take together: parallel, tangent, underflow, bad input), or the
-// roots' facts, from which assemble() (solve/finish.hpp) makes the Result as the scalar solver
-// would.
+// What a batch kernel hands back for a block of lanes: for each lane either "solve this line with
+// the scalar solver" (a branch the lanes do not take together: parallel, tangent, underflow, bad
+// input), or the two roots' facts, already in the order assemble() (solve/finish.hpp) takes them,
+// from which write_result() makes the Result as the scalar solver would.
 #pragma once
 
 #include "solve/finish.hpp"
@@ -11,41 +11,52 @@
 
 namespace linequad::detail {
 
-// A root's facts: t in the caller's units; t or z not finite; inside extent and range; its
-// point fma(t, v, L0).
-struct FinishedCandidate {
-    double t;
-    HitKind kind;
-    bool bad, keep;
-    Vec3 p;
+// N lanes of lines in R; bit k of each mask is lane k. Root 0 is the one assemble() looks at first
+// (the smaller t, except for a hit test, which takes them as found).
+template <class R, int N>
+struct LaneBlock {
+    unsigned generic; // 0: the scalar solver takes the line
+    unsigned two;     // two real roots (else none)
+    unsigned bad;     // a root's t or z not finite
+    unsigned keep[2]; // the root inside the extent and the range
+    unsigned finite_point[2];
+    R t[2][N];    // in the caller's units
+    R p[2][3][N]; // fma(t, v, L0)
 };
 
-struct LaneResult {
-    bool generic = false; // false: use the scalar solver for this line
-    int count = 0;        // 0 (misses) or 2
-    FinishedCandidate root[2];
-
-    double t(int i) const { return root[i].t; }
-    HitKind kind(int i) const { return root[i].kind; }
-    Part part(int) const { return Part::lateral; } // closed shapes take the scalar solver
-    bool bad(int i) const { return root[i].bad; }
-    bool keep(int i) const { return root[i].keep; }
-    Vec3 point(int i) const { return root[i].p; }
-};
+// Lane k's Result, as assemble() makes it from the same facts.
+template <class R, int N>
+LINEQUAD_INLINE void write_result(const LaneBlock<R, N>& b, int k, Query q, Result& r) {
+    reset(r);
+    if (!((b.two >> k) & 1)) return;
+    if ((b.bad >> k) & 1) return fail(r, ErrorCode::out_of_range, "t");
+    bool points = q.points && q.need != Need::any;
+    int count = 0;
+    for (int j = 0; j < 2; ++j) {
+        if (!((b.keep[j] >> k) & 1)) continue;
+        if (points && !((b.finite_point[j] >> k) & 1)) return fail(r, ErrorCode::out_of_range, "p");
+        Hit& h = r.hits[count++];
+        h.t = b.t[j][k], h.kind = HitKind::cross, h.part = Part::lateral; // closed: scalar
+        h.bound = no_bound, h.certain = false;
+        h.p = points ? Vec3{b.p[j][0][k], b.p[j][1][k], b.p[j][2][k]} : Vec3{};
+        if (q.need != Need::all) break; // the first kept is the nearest
+    }
+    r.count = std::uint8_t(count);
+}
 
 // Lines [i, i + 4) of the arrays (x, y, z, vx, vy, vz) against the shape, in double lanes;
 // AVX2 and FMA. shape_extent: the largest magnitude among the shape's points and vectors
 // (prescaling).
 template <class S>
 void stable_x4(const S& s, double shape_extent, const double* const soa[6], std::size_t i,
-               Interval range, LaneResult out[4]);
+               Interval range, Query q, LaneBlock<double, 4>& out);
 // Lines [i, i + 8) in double lanes; AVX-512F and DQ.
 template <class S>
 void stable_x8(const S& s, double shape_extent, const double* const soa[6], std::size_t i,
-               Interval range, LaneResult out[8]);
+               Interval range, Query q, LaneBlock<double, 8>& out);
 // Lines [i, i + 8) in float lanes (stable32); AVX2 and FMA.
 template <class S>
 void stable32_x8(const S& s, double shape_extent, const float* const soa[6], std::size_t i,
-                 Interval range, LaneResult out[8]);
+                 Interval range, Query q, LaneBlock<float, 8>& out);
 
 } // namespace linequad::detail

@@ -52,13 +52,13 @@ MaskOf<L> usual_line(const LineLanes<L>& ln) {
     return finite & ((ln.v.x != zero) | (ln.v.y != zero) | (ln.v.z != zero));
 }
 
-// From the moved roots to assemble()'s facts, as shift_back() and finish() do for one line; e is
-// the extent.
+// From the moved roots to write_result()'s facts, as shift_back() and finish() do for one line;
+// e is the extent. The roots are put in the order assemble() takes them: the smaller t first,
+// except for a hit test, which takes them as found.
 template <class L, class Core>
 void finish_lanes(const Core& k, MaskOf<L> generic, const LineLanes<L>& ln, ExtentT<L> e,
-                  Interval range, LaneResult* out) {
+                  Interval range, Query q, LaneBlock<Real<L>, lane_count<L>>& out) {
     using R = Real<L>;
-    constexpr int N = lane_count<L>;
     L zero(R(0)), sm[2];
     auto two = k.D >= zero;
     stable_pair(k.A, k.B, k.Cc, k.D, sm);
@@ -73,38 +73,42 @@ void finish_lanes(const Core& k, MaskOf<L> generic, const LineLanes<L>& ln, Exte
     L big(std::numeric_limits<R>::max());
     const Vec3T<L>& L0 = ln.L0;
     const Vec3T<L>& v = ln.v;
-    R tt[2][N], px[2][N], py[2][N], pz[2][N];
-    int bad[2], keep[2];
+    L tcall[2], p[2][3];
+    MaskOf<L> in[2], finite[2];
+    unsigned bad = 0;
     for (int j = 0; j < 2; ++j) {
         L z = k.z_lanes(t[j], sm[j], from_vieta[j]);
-        L tcall = t[j] * ln.scale.t_scale;
-        auto in = (z >= e.lo) & (z <= e.hi) & (tcall >= L(R(range.t0))) & (tcall <= L(R(range.t1)));
-        bad[j] = bits((!(fabs(tcall) <= big)) | (z != z));
-        keep[j] = bits(in);
-        store(tt[j], tcall);
-        store(px[j], fma(tcall, v.x, L0.x));
-        store(py[j], fma(tcall, v.y, L0.y));
-        store(pz[j], fma(tcall, v.z, L0.z));
+        tcall[j] = t[j] * ln.scale.t_scale;
+        in[j] =
+            (z >= e.lo) & (z <= e.hi) & (tcall[j] >= L(R(range.t0))) & (tcall[j] <= L(R(range.t1)));
+        bad |= unsigned(bits((!(fabs(tcall[j]) <= big)) | (z != z)));
+        p[j][0] = fma(tcall[j], v.x, L0.x);
+        p[j][1] = fma(tcall[j], v.y, L0.y);
+        p[j][2] = fma(tcall[j], v.z, L0.z);
+        finite[j] = (fabs(p[j][0]) <= big) & (fabs(p[j][1]) <= big) & (fabs(p[j][2]) <= big);
     }
-    int g = bits(generic), tw = bits(two);
-    for (int lane = 0; lane < N; ++lane) {
-        LaneResult& o = out[lane];
-        o.generic = (g >> lane) & 1;
-        o.count = (tw >> lane) & 1 ? 2 : 0;
-        for (int j = 0; j < 2; ++j)
-            o.root[j] = {tt[j][lane],
-                         HitKind::cross,
-                         bool((bad[j] >> lane) & 1),
-                         bool((keep[j] >> lane) & 1),
-                         {px[j][lane], py[j][lane], pz[j][lane]}};
+    // assemble()'s order: the second root first where it is smaller (not for a hit test).
+    auto swap = tcall[1] < tcall[0];
+    if (q.need == Need::any) swap = zero < zero; // no lane: a hit test takes them as found
+    auto in_order = !swap;
+    for (int j = 0; j < 2; ++j) {
+        int from = j, other = 1 - j;
+        store(out.t[j], select(swap, tcall[other], tcall[from]));
+        for (int c = 0; c < 3; ++c)
+            store(out.p[j][c], select(swap, p[other][c], p[from][c]));
+        out.keep[j] = unsigned(bits((swap & in[other]) | (in_order & in[from])));
+        out.finite_point[j] = unsigned(bits((swap & finite[other]) | (in_order & finite[from])));
     }
+    out.generic = unsigned(bits(generic));
+    out.two = unsigned(bits(two));
+    out.bad = bad;
 }
 
 // The lanes the scalar solver would branch on (sizes out of reach, A or D zero or in the
 // underflow zone, the scalar-only steps of a core) are not generic: they go back to it.
 template <class L, class S>
 void stable_lanes(const S& s, double shape_extent, const Real<L>* const soa[6], std::size_t i,
-                  Interval range, LaneResult* out) {
+                  Interval range, Query q, LaneBlock<Real<L>, lane_count<L>>& out) {
     using R = Real<L>;
     LineLanes<L> ln = line_lanes<L>(soa, i, shape_extent);
     auto k = ShapeTraits<S>::template stable_core<L>(
@@ -114,7 +118,7 @@ void stable_lanes(const S& s, double shape_extent, const Real<L>* const soa[6], 
                    (fabs(k.A) >= tiny);
     k.discriminant();
     generic = generic & !k.scalar_only() & (fabs(k.D) >= tiny);
-    finish_lanes(k, generic, ln, k.extent(s), range, out);
+    finish_lanes(k, generic, ln, k.extent(s), range, q, out);
 }
 
 } // namespace linequad::detail
