@@ -5,6 +5,11 @@ packages=(build-essential cmake pkg-config git
           libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev catch2 libbenchmark-dev
           gnuplot-nox clang libclang-rt-14-dev
           nlohmann-json3-dev libcli11-dev
+          # report.html (cmark-gfm), and the test that opens it in headless Chromium.
+          libcmark-gfm-dev libcmark-gfm-extensions-dev chromium
+          # Campaigns under GNU parallel (scripts/campaign.sh; its test reads the Kubernetes Job with
+          # python3-yaml); the audit's history (SQLite).
+          parallel libsqlite3-dev python3-yaml
           # The measurement scripts (bench/*.sh): callgrind, GNU time, bc.
           valgrind time bc
           # The peer libraries the audit grades beside linequad (compare/peers/).

@@ -349,3 +349,51 @@ TEST_CASE("cli: diff exits 1 when a report got worse and writes JUnit XML", "[cl
     CHECK_THAT(bad.err, Catch::Contains("--max-growth"));
     fs::remove_all(dir);
 }
+
+TEST_CASE("cli: audit and merge append to the history, which prints and plots a trend", "[cli]") {
+    fs::path dir = scratch("cli_history");
+    three_shards(dir);
+    Ran first = program("audit --cases 6 --seed 3 --solvers stable --families generic --no-plots "
+                        "--out a --history h.db --commit one",
+                        dir);
+    REQUIRE(first.status == 0);
+    CHECK_THAT(first.err, Catch::Contains("rows added to h.db"));
+    CHECK(fs::exists(dir / "a" / "report.html"));
+    Ran merged = program("merge --out m --history h.db --commit two shard0/report.json "
+                         "shard1/report.json shard2/report.json",
+                         dir);
+    REQUIRE(merged.status == 0);
+    Ran shown = program("history h.db --solver stable", dir);
+    REQUIRE(shown.status == 0);
+    // The two runs in the order they were added, each under its commit; different campaigns.
+    CHECK_THAT(shown.out, Catch::Contains("| 1 | one |") && Catch::Contains("| 2 | two |") &&
+                              Catch::Contains("another campaign"));
+    Ran family = program("history h.db --solver correct --family near_tangent", dir);
+    CHECK_THAT(family.out, Catch::Contains("correct: near_tangent") && Catch::Contains("| two |"));
+    Ran plotted = program("history h.db --solver stable --plot trend.svg", dir);
+    CHECK(plotted.status == 0);
+    CHECK_THAT(slurp(dir / "trend.svg"), Catch::Contains("<svg"));
+    // Refusals: a plot of two solvers, --commit without --add, a file that is not a database.
+    CHECK(program("history h.db --plot t.svg", dir).status == 2);
+    CHECK(program("history h.db --commit x", dir).status == 2);
+    Ran not_db = program("history m/report.json", dir);
+    CHECK(not_db.status == 2);
+    CHECK_THAT(not_db.err, Catch::Contains("m/report.json") && Catch::Contains("not a database"));
+    // An audit refuses an unusable history before it runs.
+    Ran early = program("audit --cases 100000 --out b --history m/report.json", dir);
+    CHECK(early.status == 2);
+    CHECK_FALSE(fs::exists(dir / "b"));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("cli: html writes report.html again from report.md", "[cli]") {
+    fs::path dir = scratch("cli_html");
+    three_shards(dir);
+    fs::remove(dir / "shard0" / "report.html");
+    Ran html = program("html shard0", dir);
+    CHECK(html.status == 0);
+    std::string page = slurp(dir / "shard0" / "report.html");
+    CHECK_THAT(page, Catch::Contains("<table>") && Catch::Contains("not drawn"));
+    CHECK(program("html no-such-dir", dir).status == 2);
+    fs::remove_all(dir);
+}

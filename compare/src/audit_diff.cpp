@@ -2,6 +2,8 @@
 // job summary and as JUnit XML for CI test views.
 #include "linequad/audit.hpp"
 
+#include "jsonl.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -102,30 +104,6 @@ const char* verdict_name(Change::Verdict v) {
     return "";
 }
 
-std::string xml(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-        case '&':
-            out += "&amp;";
-            break;
-        case '<':
-            out += "&lt;";
-            break;
-        case '>':
-            out += "&gt;";
-            break;
-        case '"':
-            out += "&quot;";
-            break;
-        default:
-            // Control characters are not allowed in XML 1.0, even escaped.
-            if (static_cast<unsigned char>(c) >= 0x20 || c == '\n' || c == '\t') out += c;
-        }
-    }
-    return out;
-}
-
 std::size_t count(const Diff& d, Change::Verdict v) {
     std::size_t n = 0;
     for (const Change& c : d.changes)
@@ -210,22 +188,22 @@ std::string diff_junit(const Diff& d, const std::string& old_name, const std::st
         for (const Change* c : by_pair[pair])
             if (c->verdict == Change::worse)
                 failed += c->measure + ": " + c->old_value + " -> " + c->new_value + "\n";
-        cases << "    <testcase classname=\"" << xml(pair.first) << "\" name=\"" << xml(pair.second)
-              << "\"";
+        cases << "    <testcase classname=\"" << jsonl::markup_text(pair.first) << "\" name=\""
+              << jsonl::markup_text(pair.second) << "\"";
         if (failed.empty()) {
             cases << "/>\n";
             continue;
         }
         ++failures;
-        cases << ">\n      <failure message=\"got worse\">" << xml(failed)
+        cases << ">\n      <failure message=\"got worse\">" << jsonl::markup_text(failed)
               << "</failure>\n    </testcase>\n";
     }
     std::size_t tests = d.compared.size();
     std::ostringstream x;
     x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"linequad diff\" tests=\""
       << tests << "\" failures=\"" << failures << "\">\n  <testsuite name=\""
-      << xml(old_name + " -> " + new_name) << "\" tests=\"" << tests << "\" failures=\"" << failures
-      << "\">\n"
+      << jsonl::markup_text(old_name + " -> " + new_name) << "\" tests=\"" << tests
+      << "\" failures=\"" << failures << "\">\n"
       << cases.str() << "  </testsuite>\n</testsuites>\n";
     return x.str();
 }

@@ -305,10 +305,9 @@ std::string markdown(const Report& r) {
     write_rungs(md, r);
 
     md << "\n## Error against difficulty\n\n";
-    for (const char* f : {"near_tangent", "axis_parallel", "apex", "generator", "degenerate_frame",
-                          "scale", "extent_edge"})
+    for (const std::string& f : r.families)
         for (const auto& [key, points] : r.curves)
-            if (key.family == f) {
+            if (key.family == f && f != "generic") { // write_plots() draws these
                 md << "![" << f << "](difficulty_" << f << ".svg)\n\n";
                 break;
             }
@@ -414,14 +413,15 @@ bool write_plots(const Report& r, const std::string& dir) {
 
 namespace {
 
-// Files an earlier run left that would describe another report.
+// Files an earlier run left that would describe another report (report.html is written when
+// the run ends).
 bool earlier_figure(const std::string& name) {
     auto ends = [&](const char* e) {
         std::size_t n = std::strlen(e);
         return name.size() >= n && name.compare(name.size() - n, n, e) == 0;
     };
     bool figure = ends(".svg") || ends(".png") || ends(".dat");
-    return name == "plots.gp" ||
+    return name == "plots.gp" || name == "report.html" ||
            (figure && (name.rfind("pareto.", 0) == 0 || name.rfind("difficulty_", 0) == 0));
 }
 

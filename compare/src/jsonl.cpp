@@ -204,6 +204,29 @@ LineReader::Status LineReader::next(std::string* out) {
     return too_long ? Status::too_long : Status::line;
 }
 
+std::string markup_text(std::string_view s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        default:
+            if (static_cast<unsigned char>(c) >= 0x20 || c == '\n' || c == '\t') out += c;
+        }
+    }
+    return out;
+}
+
 std::string too_long_message(long line, std::size_t max_bytes) {
     return "line " + std::to_string(line) + " is longer than the limit of " +
            std::to_string(max_bytes) + " bytes (--max-line-bytes)";

@@ -63,6 +63,10 @@ inline bool blank(std::string_view line) {
     return line.find_first_not_of(" \t\r") == std::string_view::npos;
 }
 
+// Text made safe inside XML or HTML, in an element or a quoted attribute: & < > " escaped, and
+// the control characters XML 1.0 forbids even escaped left out.
+std::string markup_text(std::string_view s);
+
 // "line 12 is longer than the limit of 1048576 bytes (--max-line-bytes)"
 std::string too_long_message(long line, std::size_t max_bytes);
 

@@ -8,8 +8,10 @@
 #include "linequad/case_io.hpp"
 #include "linequad/registry.hpp"
 
+#include "history.hpp"
 #include "jsonl.hpp"
 #include "peers/peers.hpp"
+#include "report_html.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -21,6 +23,7 @@
 #include <cstring>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -230,6 +233,7 @@ struct CampaignArgs {
     std::string shapes, frames = "any", precision = "binary64", threads = "0";
     std::vector<std::string> plugins;
     bool no_plots = false, check = false;
+    std::string history, commit; // the history database to append to, and under which commit
 
     audit::Options options() const {
         audit::Options o;
@@ -314,8 +318,17 @@ int run_audit(const CampaignArgs& a, const std::string& command) {
             if (!e.plugin.empty()) o.solvers.push_back(e.name);
     }
     if (o.solvers.empty()) ext.clear();
+    // Opened before the run: a database it cannot use is refused before hours of work.
+    std::optional<audit::History> history;
+    if (!a.history.empty()) history.emplace(a.history);
     audit::Report r = audit::run(o, ext);
-    std::fprintf(stderr, "audit: %s/report.md (%.1f s)\n", o.out_dir.c_str(), r.seconds);
+    if (!o.out_dir.empty()) audit::write_report_html(o.out_dir);
+    if (history) {
+        std::size_t n = history->add(r, a.commit);
+        std::fprintf(stderr, "audit: %zu rows added to %s\n", n, a.history.c_str());
+    }
+    std::fprintf(stderr, "audit: %s/report.md and report.html (%.1f s)\n", o.out_dir.c_str(),
+                 r.seconds);
     std::uint64_t graded = 0;
     for (const std::string& s : r.solvers) {
         audit::Row t = r.total(s);
@@ -344,6 +357,55 @@ int run_audit(const CampaignArgs& a, const std::string& command) {
     return r.status == audit::Status::stopped ? 130 : 0;
 }
 
+// ---- history
+
+void add_history_options(CLI::App* app, std::string& history, std::string& commit) {
+    CLI::Option* db =
+        app->add_option("--history", history,
+                        "append the report's summary to this SQLite database (linequad history)")
+            ->type_name("DB");
+    app->add_option("--commit", commit,
+                    "the commit to record it under (default: linequad's own, as the report "
+                    "names it): your solver's commit when you audit your solver")
+        ->type_name("ID")
+        ->needs(db);
+}
+
+struct HistoryArgs {
+    std::string db, add, commit, solvers, family = "*", shape = "*", plot;
+};
+
+int run_history(const HistoryArgs& h) {
+    if (!h.commit.empty() && h.add.empty()) return fail("history: --commit goes with --add");
+    audit::History history(h.db);
+    if (!h.add.empty()) {
+        audit::Report r;
+        std::string why;
+        if (!audit::read_json(h.add, &r, &why)) return fail(why);
+        std::size_t n = history.add(r, h.commit);
+        std::fprintf(stderr, "history: %zu rows of %s added to %s\n", n, h.add.c_str(),
+                     h.db.c_str());
+    }
+    std::vector<std::string> solvers =
+        h.solvers.empty() ? history.solvers() : split_list(h.solvers);
+    if (!h.plot.empty() && solvers.size() != 1)
+        return fail("history: --plot draws one solver's trend (--solver S)");
+    jsonl::Output out;
+    for (const std::string& s : solvers) {
+        std::vector<audit::HistoryPoint> points = history.trend(s, h.family, h.shape);
+        out.line(audit::trend_markdown(points, s, h.family, h.shape));
+        if (!h.plot.empty()) {
+            if (points.empty()) return fail("history: no run of " + s + " to plot");
+            std::string title = s + ": " + (h.family == "*" ? "every family" : h.family) + ", " +
+                                (h.shape == "*" ? "every shape" : h.shape);
+            if (!audit::plot_trend(points, title, h.plot)) return 1;
+            std::fprintf(stderr, "history: %s\n", h.plot.c_str());
+        }
+    }
+    out.finish();
+    return 0;
+}
+
 int run_cases(const CampaignArgs& a) {
     jsonl::Output out;
     audit::for_each_case(a.options(), [&](const Case& c) { out.line(format_case(c)); });
@@ -354,7 +416,10 @@ int run_cases(const CampaignArgs& a) {
 // ---- merge
 
 int run_merge(const std::vector<std::string>& inputs, const std::string& out,
-              const std::string& command) {
+              const std::string& command, const std::string& history_path,
+              const std::string& commit) {
+    std::optional<audit::History> history;
+    if (!history_path.empty()) history.emplace(history_path);
     audit::Report merged;
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         audit::Report r;
@@ -375,7 +440,13 @@ int run_merge(const std::vector<std::string>& inputs, const std::string& out,
     merged.command = command;
     audit::OutputDirectory dir(out);
     dir.save_with_plots(merged);
-    std::fprintf(stderr, "merge: %zu reports into %s/report.md\n", inputs.size(), out.c_str());
+    audit::write_report_html(out);
+    std::fprintf(stderr, "merge: %zu reports into %s/report.md and report.html\n", inputs.size(),
+                 out.c_str());
+    if (history) {
+        std::size_t n = history->add(merged, commit);
+        std::fprintf(stderr, "merge: %zu rows added to %s\n", n, history_path.c_str());
+    }
     if (merged.complete()) return 0;
     std::string missing;
     for (int k = 0; k < merged.shards; ++k)
@@ -505,6 +576,7 @@ int main_checked(int argc, char** argv) {
         ->check(WholeNumber(0, 1024))
         ->capture_default_str();
     a->add_flag("--no-plots", audit_args.no_plots, "no gnuplot figures");
+    add_history_options(a, audit_args.history, audit_args.commit);
     a->add_flag("--check", audit_args.check,
                 "exit 1 if a solver breaks a claim the README makes for it");
     CLI::Option* cases_file =
@@ -544,6 +616,8 @@ int main_checked(int argc, char** argv) {
     m->add_option("--out", merge_out, "the merged report's directory")
         ->type_name("DIR")
         ->required();
+    std::string merge_history, merge_commit;
+    add_history_options(m, merge_history, merge_commit);
     m->add_option("reports", inputs, "report.json files")
         ->type_name("REPORT.json")
         ->required()
@@ -590,6 +664,36 @@ int main_checked(int argc, char** argv) {
         ->capture_default_str();
     dcmd->add_option("--junit", diff.junit_file, "also write JUnit XML here")->type_name("FILE");
 
+    std::string html_dir;
+    CLI::App* html = app.add_subcommand(
+        "html", "Write DIR/report.html again from DIR/report.md and its figures (the audit and "
+                "merge write it themselves).");
+    html->add_option("dir", html_dir, "a report's directory")
+        ->type_name("DIR")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+
+    HistoryArgs history_args;
+    CLI::App* hist = app.add_subcommand(
+        "history", "The audit's history across commits (a SQLite database that audit --history "
+                   "and merge --history append to): add a report to it, print a solver's trend "
+                   "as markdown, plot it.");
+    hist->add_option("db", history_args.db, "the history database")->type_name("DB")->required();
+    hist->add_option("--add", history_args.add, "append this report first")
+        ->type_name("REPORT.json")
+        ->check(CLI::ExistingFile);
+    hist->add_option("--commit", history_args.commit,
+                     "with --add: the commit to record it under (default: the report's)")
+        ->type_name("ID");
+    hist->add_option("--solver", history_args.solvers, "the solvers to show (default: every one)")
+        ->type_name("S[,S...]");
+    hist->add_option("--family", history_args.family, "one family (default: every family)")
+        ->type_name("F");
+    hist->add_option("--shape", history_args.shape, "one shape (default: every shape)")
+        ->type_name("SHAPE");
+    hist->add_option("--plot", history_args.plot, "draw the trend (one solver) as an SVG file")
+        ->type_name("FILE.svg");
+
     CLI::App* list = app.add_subcommand("solvers", "List the solver names.");
     CLI::App* v = app.add_subcommand("version", "Version, compiler and floating-point flags.");
 
@@ -615,8 +719,14 @@ int main_checked(int argc, char** argv) {
     if (s->parsed()) return run_solve(solve);
     if (a->parsed()) return run_audit(audit_args, command);
     if (c->parsed()) return run_cases(cases_args);
-    if (m->parsed()) return run_merge(inputs, merge_out, command);
+    if (m->parsed()) return run_merge(inputs, merge_out, command, merge_history, merge_commit);
+    if (hist->parsed()) return run_history(history_args);
     if (dcmd->parsed()) return run_diff(diff);
+    if (html->parsed()) {
+        audit::write_report_html(html_dir);
+        std::fprintf(stderr, "html: %s/report.html\n", html_dir.c_str());
+        return 0;
+    }
     std::fputs(app.help().c_str(), stderr);
     return 2;
 }
