@@ -50,6 +50,9 @@ TEST_CASE("report.html: raw HTML from a report is text, never markup", "[html]")
     CHECK_FALSE(has(html, "<script>alert"));
     CHECK_FALSE(has(html, "<div onclick"));
     CHECK_FALSE(has(html, "src=\"http"));
+    // Nor a link: the page's CSP allows inline script, which a javascript: URL would be.
+    std::string linked = page("| solver |\n|---|\n| [x](javascript:alert(1)) |\n", {});
+    CHECK_FALSE(has(linked, "javascript:"));
 }
 
 TEST_CASE("report.html: a figure named by a path or a URL is not read", "[html]") {

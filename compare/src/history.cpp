@@ -159,13 +159,12 @@ std::string campaign_of(const Report& r) {
     return c.str();
 }
 
-History::History(const std::string& path) : db_(new Db), path_(path) {
+History::History(const std::string& path) : db_(std::make_unique<Db>()), path_(path) {
     db_->path = path;
     if (sqlite3_open_v2(path.c_str(), &db_->handle, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE,
                         nullptr) != SQLITE_OK) {
         std::string why = db_->handle ? sqlite3_errmsg(db_->handle) : "cannot open";
         sqlite3_close(db_->handle);
-        delete db_;
         throw std::runtime_error(path + ": " + why);
     }
     try {
@@ -185,15 +184,13 @@ History::History(const std::string& path) : db_(new Db), path_(path) {
         }
         db_->exec("COMMIT");
     } catch (...) {
-        sqlite3_close(db_->handle);
-        delete db_;
+        sqlite3_close(db_->handle); // rolls the transaction back
         throw;
     }
 }
 
 History::~History() {
     sqlite3_close(db_->handle);
-    delete db_;
 }
 
 std::size_t History::add(const Report& r, const std::string& commit) {

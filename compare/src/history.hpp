@@ -5,6 +5,7 @@
 
 #include "linequad/audit.hpp"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,8 +43,8 @@ class History {
     std::vector<std::string> solvers() const;
 
   private:
-    struct Db;
-    Db* db_;
+    struct Db; // the SQLite handle (history.cpp)
+    std::unique_ptr<Db> db_;
     std::string path_;
 };
 

@@ -185,7 +185,8 @@ report_html(const std::string& markdown,
     doc.root = cmark_parser_finish(doc.parser);
     if (!doc.root) throw std::bad_alloc();
 
-    // Raw HTML becomes text; figures become data: URIs, or a note where one was not drawn.
+    // Raw HTML becomes text, links lose their targets, figures become data: URIs (or a note where
+    // one was not drawn).
     std::vector<cmark_node*> missing;
     cmark_iter* it = cmark_iter_new(doc.root);
     for (cmark_event_type ev; (ev = cmark_iter_next(it)) != CMARK_EVENT_DONE;) {
@@ -195,6 +196,8 @@ report_html(const std::string& markdown,
             ev == CMARK_EVENT_ENTER) {
             const char* raw = cmark_node_get_literal(node);
             cmark_node_set_literal(node, jsonl::markup_text(raw ? raw : "").c_str());
+        } else if (type == CMARK_NODE_LINK && ev == CMARK_EVENT_ENTER) {
+            cmark_node_set_url(node, ""); // a report links nowhere; a javascript: URL would run
         } else if (type == CMARK_NODE_IMAGE && ev == CMARK_EVENT_ENTER) {
             const char* url = cmark_node_get_url(node);
             std::string name = url ? url : "";
@@ -222,7 +225,8 @@ report_html(const std::string& markdown,
         cmark_node_free(image);
     }
 
-    // Unsafe only in name: no raw HTML is left, and the only URLs are the figures' data: URIs.
+    // Unsafe only in name: no raw HTML is left, and the only URLs are the figures' data: URIs
+    // (CMARK_OPT_SAFE would drop those: it allows no SVG data).
     char* body = cmark_render_html(doc.root, CMARK_OPT_UNSAFE,
                                    cmark_parser_get_syntax_extensions(doc.parser));
     if (!body) throw std::bad_alloc();
