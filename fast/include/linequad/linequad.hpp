@@ -10,6 +10,7 @@
 #include "linequad/batch.hpp"
 #include "linequad/prepared.hpp"
 #include "linequad/result.hpp"
+#include "linequad/scene.hpp"
 #include "linequad/shapes.hpp"
 #include "linequad/solvers.hpp"
 #include "linequad/vec3.hpp"

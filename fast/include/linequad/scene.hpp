@@ -1,0 +1,78 @@
+// Many shapes, one line: which of them it hits, and in what order.
+//     linequad::Scene scene(shapes);                   // built once: prepared, bounded, a BVH
+//     linequad::SceneAnswer a;                         // reused: no allocation once it is warm
+//     scene.intersect(ray, {Need::nearest, true}, a);  // a.hits[0]: the nearest hit, its shape
+// Each shape is solved by the scene's solver (stable or correct) over the line's range; shapes
+// whose bounding box the line misses are never solved. The boxes are rounded outward and the
+// line's slab test is widened by its own rounding error, so culling never loses a hit.
+#pragma once
+
+#include "linequad/prepared.hpp"
+#include "linequad/result.hpp"
+#include "linequad/shapes.hpp"
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace linequad {
+
+// The solver a scene answers with: stable (fast; t within a few ulps, the order of two hits
+// closer than that not certain) or correct (t and points correctly rounded; hits are ordered
+// by their rounded t, and two hits that round to the same double are named as tied).
+enum class SceneSolver : std::uint8_t { stable, correct };
+
+inline constexpr std::uint32_t no_shape = std::numeric_limits<std::uint32_t>::max();
+
+struct SceneHit {
+    Hit hit;
+    std::uint32_t shape; // the shape's index in the scene
+    // Another hit of this answer, on another shape, has the same t: the order between them is
+    // not decided at double precision (both are listed, in shape order).
+    bool tied;
+};
+
+// A line's answer. need = any: at most one hit, the first proven (not the nearest); nearest: the
+// nearest hit and every hit tied with it; all: every hit, in order of t. A line along a surface
+// (the solver's on_surface) adds the interval's first point in the range as a hit of kind
+// tangent. error: the line's or the scene's (error_shape names the shape, or no_shape for the
+// line); no hit is then given.
+struct SceneAnswer {
+    std::vector<SceneHit> hits;
+    Error error;
+    std::uint32_t error_shape = no_shape;
+    std::uint32_t shapes_solved = 0; // how many shapes were solved (the others were culled)
+    bool ok() const { return error.ok(); }
+};
+
+// An axis-aligned box, lo <= hi in each coordinate (infinite for shapes that are not finite).
+struct Box {
+    Vec3 lo, hi;
+};
+
+class Scene {
+  public:
+    // Prepares every shape and builds the hierarchy of boxes. A shape that cannot be solved
+    // (validate()'s errors) is kept as the scene's error: every query then returns it, naming
+    // the shape.
+    explicit Scene(const std::vector<Shape>& shapes, SceneSolver solver = SceneSolver::correct);
+    ~Scene();
+    Scene(Scene&&) noexcept;
+    Scene& operator=(Scene&&) noexcept;
+
+    std::size_t size() const;
+    SceneSolver solver() const;
+    Error error() const;               // the first bad shape's error, or none
+    std::uint32_t error_shape() const; // that shape, or no_shape
+    Box bounds(std::uint32_t i) const; // shape i's box, rounded outward
+
+    // The line against every shape, as the query asks (see SceneAnswer). out is overwritten.
+    void intersect(const Line& line, Query query, SceneAnswer& out) const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace linequad

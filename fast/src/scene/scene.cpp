@@ -1,0 +1,378 @@
+// The scene: prepared shapes, their boxes, and a bounding volume hierarchy over the boxes,
+// traversed in double with a slab test widened by its own rounding error; in a leaf, a capsule
+// around each shape's axis is tested before the shape is solved.
+#include "linequad/scene.hpp"
+
+#include "linequad/solvers.hpp"
+#include "scene/bounds.hpp"
+#include "shapes/traits.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <variant>
+
+namespace linequad {
+
+namespace {
+
+using PreparedShape = std::variant<Prepared<Cylinder>, Prepared<EllipticCylinder>,
+                                   Prepared<EllipticCone>, Prepared<Frustum>>;
+
+// A node's shapes are order[first, first + count) when it is a leaf (count > 0); otherwise its
+// children are the next node and node `second`.
+struct Node {
+    Box box;
+    std::uint32_t first = 0, count = 0, second = 0;
+};
+
+constexpr std::uint32_t leaf_size = 4;
+
+Box merged(const Box& a, const Box& b) {
+    return {{std::min(a.lo.x, b.lo.x), std::min(a.lo.y, b.lo.y), std::min(a.lo.z, b.lo.z)},
+            {std::max(a.hi.x, b.hi.x), std::max(a.hi.y, b.hi.y), std::max(a.hi.z, b.hi.z)}};
+}
+
+// The line as the slab test takes it: 1 / v_i per axis, where that is finite.
+struct SlabLine {
+    Vec3 L0, inv;
+    bool exact_axis[3]; // v_i = 0: the line stays in the slab's plane or never meets it
+    bool divide[3];     // 1 / v_i overflowed: divide by v_i instead
+    Vec3 v;
+    explicit SlabLine(const Line& l) : L0(l.L0), v(l.v) {
+        for (int i = 0; i < 3; ++i) {
+            double vi = detail::at(v, i);
+            (&inv.x)[i] = 1 / vi;
+            exact_axis[i] = vi == 0;
+            divide[i] = !std::isfinite(detail::at(inv, i));
+        }
+    }
+};
+
+// The part [t0, t1] of the line's range where it may be inside the box, or false when it cannot
+// be. Each slab's t = (bound - L0_i) / v_i, as three roundings ((bound - L0_i), 1 / v_i and
+// their product), lies within 2^-51 |t| of the exact quotient (or is 0, or has overflowed); it is
+// widened by 2^-50 |t| and the smallest subnormal, or not used at all when it overflowed from
+// finite numbers (the box's bounds are finite).
+bool slab(const Box& box, const SlabLine& line, double& t0, double& t1) {
+    constexpr double tiny = 0x1p-1074;
+    for (int i = 0; i < 3; ++i) {
+        double L = detail::at(line.L0, i);
+        double lo = detail::at(box.lo, i), hi = detail::at(box.hi, i);
+        if (line.exact_axis[i]) {
+            if (L < lo || L > hi) return false;
+            continue;
+        }
+        double ta, tb;
+        if (line.divide[i]) {
+            double vi = detail::at(line.v, i);
+            ta = (lo - L) / vi, tb = (hi - L) / vi;
+        } else {
+            double inv = detail::at(line.inv, i);
+            ta = (lo - L) * inv, tb = (hi - L) * inv;
+        }
+        if (ta > tb) std::swap(ta, tb);
+        if (std::isfinite(ta)) t0 = std::max(t0, ta - (std::fabs(ta) * 0x1p-50 + tiny));
+        if (std::isfinite(tb)) t1 = std::min(t1, tb + (std::fabs(tb) * 0x1p-50 + tiny));
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+// The smallest t that is not tied with best: hits at t <= tie_end(best) may round to best.
+double tie_end(double best) {
+    return best == std::numeric_limits<double>::infinity()
+               ? best
+               : std::nextafter(best, std::numeric_limits<double>::infinity());
+}
+
+} // namespace
+
+struct Scene::Impl {
+    SceneSolver solver;
+    std::vector<PreparedShape> shapes;
+    std::vector<Box> boxes;
+    std::vector<detail::Capsule> capsules; // of the bounded shapes (indexed like shapes)
+    std::vector<std::uint32_t> order;      // the bounded shapes, in the hierarchy's leaf order
+    std::vector<std::uint32_t> unbounded;  // shapes that are not finite: solved for every line
+    std::vector<Node> nodes;
+    Error error;
+    std::uint32_t error_shape = no_shape;
+
+    // Nodes over order[first, last), split by the surface area heuristic over 16 bins of the
+    // boxes' centres along each axis (the split that least expects a line through the node to
+    // meet boxes on both sides); at the median of the widest axis when every centre coincides.
+    std::uint32_t build(std::uint32_t first, std::uint32_t last) {
+        std::uint32_t index = std::uint32_t(nodes.size());
+        nodes.emplace_back();
+        Box box = boxes[order[first]];
+        Box centres{detail::everything().hi, detail::everything().lo};
+        for (std::uint32_t k = first; k < last; ++k) {
+            const Box& b = boxes[order[k]];
+            box = merged(box, b);
+            Vec3 c = 0.5 * (b.lo + b.hi);
+            centres = merged(centres, {c, c});
+        }
+        nodes[index].box = box;
+        if (last - first <= leaf_size) {
+            nodes[index].first = first, nodes[index].count = last - first;
+            return index;
+        }
+        std::uint32_t middle = split(first, last, centres);
+        build(first, middle);
+        std::uint32_t second = build(middle, last);
+        nodes[index].second = second;
+        return index;
+    }
+
+    static double area(const Box& b) {
+        Vec3 e = b.hi - b.lo;
+        return e.x * e.y + e.y * e.z + e.z * e.x;
+    }
+
+    std::uint32_t split(std::uint32_t first, std::uint32_t last, const Box& centres) {
+        constexpr int bins = 16;
+        auto centre = [&](std::uint32_t s, int axis) {
+            return 0.5 * (detail::at(boxes[s].lo, axis) + detail::at(boxes[s].hi, axis));
+        };
+        double best_cost = std::numeric_limits<double>::infinity();
+        int best_axis = -1;
+        double best_at = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            double lo = detail::at(centres.lo, axis), hi = detail::at(centres.hi, axis);
+            if (!(hi > lo) || !std::isfinite(hi - lo)) continue;
+            double scale = bins / (hi - lo);
+            Box bin_box[bins];
+            std::uint32_t count[bins] = {};
+            for (std::uint32_t k = first; k < last; ++k) {
+                int b = std::min(bins - 1, int((centre(order[k], axis) - lo) * scale));
+                bin_box[b] = count[b]++ ? merged(bin_box[b], boxes[order[k]]) : boxes[order[k]];
+            }
+            // Cost of splitting after bin j: area(left) n(left) + area(right) n(right).
+            double right_area[bins];
+            std::uint32_t right_count[bins];
+            Box acc{};
+            std::uint32_t n = 0;
+            for (int j = bins - 1; j > 0; --j) {
+                if (count[j]) acc = n ? merged(acc, bin_box[j]) : bin_box[j], n += count[j];
+                right_area[j] = n ? area(acc) : 0, right_count[j] = n;
+            }
+            n = 0;
+            for (int j = 0; j < bins - 1; ++j) {
+                if (count[j]) acc = n ? merged(acc, bin_box[j]) : bin_box[j], n += count[j];
+                if (n == 0 || right_count[j + 1] == 0) continue;
+                double cost = area(acc) * n + right_area[j + 1] * right_count[j + 1];
+                if (cost < best_cost)
+                    best_cost = cost, best_axis = axis, best_at = lo + (j + 1) / scale;
+            }
+        }
+        auto begin = order.begin() + first, end = order.begin() + last;
+        if (best_axis >= 0) {
+            auto middle = std::partition(
+                begin, end, [&](std::uint32_t s) { return centre(s, best_axis) < best_at; });
+            if (middle != begin && middle != end) return std::uint32_t(middle - order.begin());
+        }
+        Vec3 spread = centres.hi - centres.lo;
+        int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : spread.y >= spread.z ? 1 : 2;
+        std::uint32_t middle = first + (last - first) / 2;
+        std::nth_element(begin, order.begin() + middle, end, [&](std::uint32_t a, std::uint32_t b) {
+            return centre(a, axis) < centre(b, axis);
+        });
+        return middle;
+    }
+
+    Result solve(std::uint32_t i, const Line& line, Query q) const {
+        return std::visit(
+            [&](const auto& p) {
+                return solver == SceneSolver::correct ? correct::intersect(p, line, q)
+                                                      : stable::intersect(p, line, q);
+            },
+            shapes[i]);
+    }
+
+    // Calls visit(shape) for every shape whose box and capsule the line may cross within its
+    // range: the unbounded first, then nearer subtrees first. visit returns the range end still
+    // of interest (or -infinity to stop).
+    template <class Visit>
+    void traverse(const Line& line, Visit&& visit) const {
+        constexpr double stop = -std::numeric_limits<double>::infinity();
+        double end = line.range.t1;
+        for (std::uint32_t s : unbounded)
+            if ((end = visit(s)) == stop) return;
+        if (nodes.empty()) return;
+        SlabLine slab_line(line);
+        struct Entry {
+            std::uint32_t node;
+            double t0; // where the line may enter the node's box
+        };
+        Entry stack[64];
+        int top = 0;
+        double t0 = line.range.t0, t1 = end;
+        if (!slab(nodes[0].box, slab_line, t0, t1)) return;
+        stack[top++] = {0, t0};
+        while (top > 0) {
+            Entry e = stack[--top];
+            if (e.t0 > end) continue;
+            const Node& node = nodes[e.node];
+            if (node.count > 0) {
+                for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+                    if (!detail::may_cross(capsules[order[k]], line)) continue;
+                    if ((end = visit(order[k])) == stop) return;
+                }
+                continue;
+            }
+            // Both children tested once; the nearer is taken first, its hits shortening the
+            // range the other is then looked at over.
+            std::uint32_t a = e.node + 1, b = node.second;
+            double a0 = line.range.t0, a1 = end, b0 = line.range.t0, b1 = end;
+            bool in_a = slab(nodes[a].box, slab_line, a0, a1);
+            bool in_b = slab(nodes[b].box, slab_line, b0, b1);
+            if (in_a && in_b && a0 > b0) {
+                std::swap(a, b);
+                std::swap(a0, b0);
+                std::swap(in_a, in_b);
+            }
+            if (in_b) stack[top++] = {b, b0};
+            if (in_a) stack[top++] = {a, a0};
+        }
+    }
+};
+
+Scene::Scene(const std::vector<Shape>& shapes, SceneSolver solver) : impl_(new Impl) {
+    Impl& m = *impl_;
+    m.solver = solver;
+    m.shapes.reserve(shapes.size());
+    m.boxes.reserve(shapes.size());
+    for (std::uint32_t i = 0; i < shapes.size(); ++i) {
+        m.shapes.push_back(
+            std::visit([](const auto& s) { return PreparedShape(prepare(s)); }, shapes[i]));
+        Error e = std::visit([](const auto& p) { return p.error(); }, m.shapes.back());
+        if (!e.ok() && m.error.ok()) m.error = e, m.error_shape = i;
+        Box box = e.ok() ? std::visit([](const auto& s) { return detail::bounds_of(s); }, shapes[i])
+                         : detail::everything();
+        m.boxes.push_back(box);
+        m.capsules.push_back(
+            std::visit([](const auto& s) { return detail::capsule_of(s); }, shapes[i]));
+        (detail::bounded(box) ? m.order : m.unbounded).push_back(i);
+    }
+    if (!m.order.empty()) m.build(0, std::uint32_t(m.order.size()));
+}
+
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
+std::size_t Scene::size() const {
+    return impl_->shapes.size();
+}
+SceneSolver Scene::solver() const {
+    return impl_->solver;
+}
+Error Scene::error() const {
+    return impl_->error;
+}
+std::uint32_t Scene::error_shape() const {
+    return impl_->error_shape;
+}
+Box Scene::bounds(std::uint32_t i) const {
+    return impl_->boxes.at(i);
+}
+
+namespace {
+
+// The hits of one shape's result, as scene hits (a line along the surface: its interval's
+// first point, as a tangent hit).
+template <class Add>
+void each_hit(const Result& r, std::uint32_t shape, const Line& line, bool points, Add&& add) {
+    for (int k = 0; k < r.count; ++k)
+        add(SceneHit{r.hits[k], shape, false});
+    if (r.on_surface) {
+        Hit h{};
+        h.t = r.s0;
+        h.p = points && std::isfinite(r.s0)
+                  ? Vec3{std::fma(r.s0, line.v.x, line.L0.x), std::fma(r.s0, line.v.y, line.L0.y),
+                         std::fma(r.s0, line.v.z, line.L0.z)}
+                  : Vec3{};
+        h.bound = std::numeric_limits<double>::quiet_NaN();
+        h.kind = HitKind::tangent, h.part = r.surface_part;
+        h.certain = r.certainty == Certainty::certain;
+        add(SceneHit{h, shape, false});
+    }
+}
+
+// Hits with equal t on different shapes are tied; within a tie, shape order.
+void order_and_name_ties(std::vector<SceneHit>& hits) {
+    std::sort(hits.begin(), hits.end(), [](const SceneHit& a, const SceneHit& b) {
+        return a.hit.t < b.hit.t || (a.hit.t == b.hit.t && a.shape < b.shape);
+    });
+    for (std::size_t k = 1; k < hits.size(); ++k)
+        if (hits[k].hit.t == hits[k - 1].hit.t && hits[k].shape != hits[k - 1].shape)
+            hits[k].tied = hits[k - 1].tied = true;
+}
+
+} // namespace
+
+void Scene::intersect(const Line& line, Query query, SceneAnswer& out) const {
+    const Impl& m = *impl_;
+    out.hits.clear();
+    out.error = {}, out.error_shape = no_shape, out.shapes_solved = 0;
+    if (!m.error.ok()) {
+        out.error = m.error, out.error_shape = m.error_shape;
+        return;
+    }
+    if (Error e = detail::check_line(line); !e.ok()) {
+        out.error = e;
+        return;
+    }
+    constexpr double stop = -std::numeric_limits<double>::infinity();
+    bool failed = false;
+    auto solved = [&](std::uint32_t s, const Result& r) {
+        ++out.shapes_solved;
+        if (r.ok()) return true;
+        out.error = r.error(), out.error_shape = s, failed = true;
+        return false;
+    };
+    switch (query.need) {
+    case Need::any:
+        m.traverse(line, [&](std::uint32_t s) {
+            Result r = m.solve(s, line, query);
+            if (!solved(s, r)) return stop;
+            if (!r.any_hit()) return line.range.t1;
+            each_hit(r, s, line, false, [&](const SceneHit& h) {
+                if (out.hits.empty()) out.hits.push_back(h);
+            });
+            return stop;
+        });
+        break;
+    case Need::nearest: {
+        double best = std::numeric_limits<double>::infinity();
+        m.traverse(line, [&](std::uint32_t s) {
+            Line l = line;
+            l.range.t1 = std::min(line.range.t1, tie_end(best));
+            Result r = m.solve(s, l, query);
+            if (!solved(s, r)) return stop;
+            each_hit(r, s, line, query.points, [&](const SceneHit& h) {
+                if (h.hit.t < best) {
+                    best = h.hit.t;
+                    out.hits.clear();
+                }
+                if (h.hit.t == best) out.hits.push_back(h);
+            });
+            return std::min(line.range.t1, tie_end(best));
+        });
+        order_and_name_ties(out.hits);
+        break;
+    }
+    case Need::all:
+        m.traverse(line, [&](std::uint32_t s) {
+            Result r = m.solve(s, line, query);
+            if (!solved(s, r)) return stop;
+            each_hit(r, s, line, query.points, [&](const SceneHit& h) { out.hits.push_back(h); });
+            return line.range.t1;
+        });
+        order_and_name_ties(out.hits);
+        break;
+    }
+    if (failed) out.hits.clear();
+}
+
+} // namespace linequad
