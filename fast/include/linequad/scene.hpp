@@ -19,8 +19,9 @@
 namespace linequad {
 
 // The solver a scene answers with: stable (fast; t within a few ulps, the order of two hits
-// closer than that not certain) or correct (t and points correctly rounded; hits are ordered
-// by their rounded t, and two hits that round to the same double are named as tied).
+// closer than that not certain) or correct (t and points correctly rounded, and the hits in
+// their exact order: by their rounded t, and where two round to the same double, by an exact
+// comparison of their roots, which is needed only there).
 enum class SceneSolver : std::uint8_t { stable, correct };
 
 inline constexpr std::uint32_t no_shape = std::numeric_limits<std::uint32_t>::max();
@@ -28,13 +29,16 @@ inline constexpr std::uint32_t no_shape = std::numeric_limits<std::uint32_t>::ma
 struct SceneHit {
     Hit hit;
     std::uint32_t shape; // the shape's index in the scene
-    // Another hit of this answer, on another shape, has the same t: the order between them is
-    // not decided at double precision (both are listed, in shape order).
+    std::uint8_t index;  // its place among its shape's hits on the line (0: the shape's nearest)
+    // Another hit of this answer, on another shape, is at the same t (listed in shape order). A
+    // correct scene decides the order of hits that round to the same double exactly, so there
+    // tied means the same real t; a stable scene only compares its doubles.
     bool tied;
 };
 
 // A line's answer. need = any: at most one hit, the first proven (not the nearest); nearest: the
-// nearest hit and every hit tied with it; all: every hit, in order of t. A line along a surface
+// nearest hit and every hit tied with it; all: every hit, in order of t (exact order for a
+// correct scene). A line along a surface
 // (the solver's on_surface) adds the interval's first point in the range as a hit of kind
 // tangent. error: the line's or the scene's (error_shape names the shape, or no_shape for the
 // line); no hit is then given.
@@ -43,6 +47,9 @@ struct SceneAnswer {
     Error error;
     std::uint32_t error_shape = no_shape;
     std::uint32_t shapes_solved = 0; // how many shapes were solved (the others were culled)
+    // Correct scenes: exact comparisons of two shapes' roots, made where hits rounded to the
+    // same double (0 for nearly every line).
+    std::uint32_t exact_comparisons = 0;
     bool ok() const { return error.ok(); }
 };
 

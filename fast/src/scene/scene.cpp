@@ -5,6 +5,7 @@
 
 #include "linequad/solvers.hpp"
 #include "scene/bounds.hpp"
+#include "scene/exact_order.hpp"
 #include "shapes/traits.hpp"
 
 #include <algorithm>
@@ -32,18 +33,21 @@ Box merged(const Box& a, const Box& b) {
             {std::max(a.hi.x, b.hi.x), std::max(a.hi.y, b.hi.y), std::max(a.hi.z, b.hi.z)}};
 }
 
-// The line as the slab test takes it: 1 / v_i per axis, where that is finite.
+// The line as the slab test takes it: 1 / v_i per axis, where that is a normal double.
 struct SlabLine {
     Vec3 L0, inv;
     bool exact_axis[3]; // v_i = 0: the line stays in the slab's plane or never meets it
-    bool divide[3];     // 1 / v_i overflowed: divide by v_i instead
+    bool divide[3];     // 1 / v_i overflowed or is subnormal: divide by v_i instead
     Vec3 v;
     explicit SlabLine(const Line& l) : L0(l.L0), v(l.v) {
         for (int i = 0; i < 3; ++i) {
             double vi = detail::at(v, i);
             (&inv.x)[i] = 1 / vi;
             exact_axis[i] = vi == 0;
-            divide[i] = !std::isfinite(detail::at(inv, i));
+            // Overflowed or subnormal: its relative error would not hold.
+            double inv_i = detail::at(inv, i);
+            divide[i] =
+                !(std::fabs(inv_i) >= std::numeric_limits<double>::min() && std::isfinite(inv_i));
         }
     }
 };
@@ -279,12 +283,15 @@ Box Scene::bounds(std::uint32_t i) const {
 
 namespace {
 
+// A line along a surface has no root to compare exactly.
+constexpr std::uint8_t on_surface_index = 255;
+
 // The hits of one shape's result, as scene hits (a line along the surface: its interval's
 // first point, as a tangent hit).
 template <class Add>
 void each_hit(const Result& r, std::uint32_t shape, const Line& line, bool points, Add&& add) {
     for (int k = 0; k < r.count; ++k)
-        add(SceneHit{r.hits[k], shape, false});
+        add(SceneHit{r.hits[k], shape, std::uint8_t(k), false});
     if (r.on_surface) {
         Hit h{};
         h.t = r.s0;
@@ -295,7 +302,7 @@ void each_hit(const Result& r, std::uint32_t shape, const Line& line, bool point
         h.bound = std::numeric_limits<double>::quiet_NaN();
         h.kind = HitKind::tangent, h.part = r.surface_part;
         h.certain = r.certainty == Certainty::certain;
-        add(SceneHit{h, shape, false});
+        add(SceneHit{h, shape, on_surface_index, false});
     }
 }
 
@@ -309,12 +316,84 @@ void order_and_name_ties(std::vector<SceneHit>& hits) {
             hits[k].tied = hits[k - 1].tied = true;
 }
 
+// The exact order of the hits that rounded to the same double (correct scenes): each run of
+// equal t on two or more shapes sorted by comparing their exact roots, tied only where those are
+// equal; with nearest, only the exactly nearest are kept. A run holding a line along a surface
+// stays as it is (tied): its interval's end is not a root.
+void refine_ties(const std::vector<PreparedShape>& shapes, const Line& line, bool nearest,
+                 std::vector<SceneHit>& hits, std::uint32_t& comparisons) {
+    using Roots = exact_form::Classification<BigFloat>;
+    for (std::size_t i = 0; i < hits.size();) {
+        std::size_t j = i + 1;
+        while (j < hits.size() && hits[j].hit.t == hits[i].hit.t)
+            ++j;
+        bool tie = false, comparable = true;
+        for (std::size_t k = i; k < j; ++k) {
+            tie = tie || hits[k].tied;
+            comparable = comparable && hits[k].index != on_surface_index;
+        }
+        if (!tie || !comparable) {
+            i = j;
+            continue;
+        }
+        std::vector<std::pair<std::uint32_t, Roots>> roots; // per shape of the run
+        auto root_of = [&](const SceneHit& h)
+            -> std::pair<const exact_form::SurdRoot<BigFloat>*, const BigFloat*> {
+            auto it = std::find_if(roots.begin(), roots.end(),
+                                   [&](const auto& r) { return r.first == h.shape; });
+            if (it == roots.end()) {
+                roots.emplace_back(
+                    h.shape, std::visit([&](const auto& p) { return detail::exact_roots(p, line); },
+                                        shapes[h.shape]));
+                it = roots.end() - 1;
+            }
+            const Roots& c = it->second;
+            if (c.outcome != exact_form::Outcome::hits || h.index >= c.count) return {};
+            return {&c.roots[h.index], &c.D};
+        };
+        bool found = true;
+        for (std::size_t k = i; k < j; ++k)
+            found = found && root_of(hits[k]).first != nullptr;
+        if (!found) { // never expected: the exact rung found the hit
+            i = j;
+            continue;
+        }
+        auto compare = [&](const SceneHit& a, const SceneHit& b) {
+            ++comparisons;
+            auto [ra, Da] = root_of(a);
+            auto [rb, Db] = root_of(b);
+            return detail::compare_roots(*ra, *Da, *rb, *Db);
+        };
+        // Runs hold a few hits: insertion sort, exact order first, then shape order.
+        for (std::size_t k = i + 1; k < j; ++k)
+            for (std::size_t m = k; m > i; --m) {
+                int c = compare(hits[m], hits[m - 1]);
+                if (c > 0 || (c == 0 && hits[m].shape > hits[m - 1].shape)) break;
+                std::swap(hits[m], hits[m - 1]);
+            }
+        std::vector<int> equal_to_next(j - i, 0);
+        for (std::size_t k = i; k + 1 < j; ++k)
+            equal_to_next[k - i] = compare(hits[k], hits[k + 1]) == 0;
+        for (std::size_t k = i; k < j; ++k)
+            hits[k].tied =
+                (k + 1 < j && equal_to_next[k - i]) || (k > i && equal_to_next[k - i - 1]);
+        if (nearest) {
+            std::size_t end = i + 1;
+            while (end < j && equal_to_next[end - 1 - i])
+                ++end;
+            hits.erase(hits.begin() + std::ptrdiff_t(end), hits.end());
+            return;
+        }
+        i = j;
+    }
+}
+
 } // namespace
 
 void Scene::intersect(const Line& line, Query query, SceneAnswer& out) const {
     const Impl& m = *impl_;
     out.hits.clear();
-    out.error = {}, out.error_shape = no_shape, out.shapes_solved = 0;
+    out.error = {}, out.error_shape = no_shape, out.shapes_solved = 0, out.exact_comparisons = 0;
     if (!m.error.ok()) {
         out.error = m.error, out.error_shape = m.error_shape;
         return;
@@ -360,6 +439,8 @@ void Scene::intersect(const Line& line, Query query, SceneAnswer& out) const {
             return std::min(line.range.t1, tie_end(best));
         });
         order_and_name_ties(out.hits);
+        if (m.solver == SceneSolver::correct && !failed)
+            refine_ties(m.shapes, line, true, out.hits, out.exact_comparisons);
         break;
     }
     case Need::all:
@@ -370,6 +451,8 @@ void Scene::intersect(const Line& line, Query query, SceneAnswer& out) const {
             return line.range.t1;
         });
         order_and_name_ties(out.hits);
+        if (m.solver == SceneSolver::correct && !failed)
+            refine_ties(m.shapes, line, false, out.hits, out.exact_comparisons);
         break;
     }
     if (failed) out.hits.clear();
