@@ -17,12 +17,17 @@
 //  - every solver returns for the prepared shape what it returns for the shape, bit for bit
 //    (bounds, certainty and rung included);
 //  - the correct solver's hit test has a hit exactly when the oracle has one, within its bound of
-//    one of the oracle's roots.
+//    one of the oracle's roots;
+//  - a scene holding the shape answers as the shape's solver does (stable and correct; all,
+//    nearest and any): its boxes, hierarchy and capsules lose no hit on any input, and its verdict
+//    on bad input is the solver's (a refusal of what double cannot hold may instead be the
+//    oracle's "no hit" when the line never comes near the shape).
 #include "linequad/invariants.hpp"
 
 #include "linequad/batch.hpp"
 #include "linequad/exact.hpp"
 #include "linequad/registry.hpp"
+#include "linequad/scene.hpp"
 
 #include "numeric/format.hpp"
 #include "shapes/traits.hpp"
@@ -243,6 +248,50 @@ bool answered_in_floats(const Result& r) {
     return ok;
 }
 
+namespace {
+
+// The scene's answer as a Result, to show it beside the case.
+Result as_result(const SceneAnswer& a) {
+    Result r;
+    r.error_code = a.error.code, r.error_field = a.error.field;
+    for (const SceneHit& h : a.hits)
+        if (r.count < max_hits) r.hits[r.count++] = h.hit;
+    return r;
+}
+
+// A solver's refusal of what double cannot hold (out_of_range) comes only from the shapes a line
+// comes near: a culled shape's answer is "no hit", which must then be the oracle's.
+void check_scene(Checker& k, const Result& oracle) {
+    const Case& c = k.c;
+    for (SceneSolver solver : {SceneSolver::stable, SceneSolver::correct}) {
+        std::string name = solver == SceneSolver::correct ? "scene (correct)" : "scene (stable)";
+        Scene scene({c.shape}, solver);
+        for (Query q :
+             {Query{Need::all, true}, Query{Need::nearest, true}, Query{Need::any, false}}) {
+            Result want = solver == SceneSolver::correct ? correct::intersect(c.shape, c.line, q)
+                                                         : stable::intersect(c.shape, c.line, q);
+            SceneAnswer a;
+            scene.intersect(c.line, q, a);
+            bool culled = want.error_code == ErrorCode::out_of_range && a.ok() && a.hits.empty() &&
+                          oracle.ok() && !oracle.any_hit();
+            bool same = a.error.code == want.error_code || culled;
+            if (same && want.ok()) {
+                std::size_t n = std::size_t(want.count) + (want.on_surface ? 1 : 0);
+                same = a.hits.size() == n;
+                for (int i = 0; same && !want.on_surface && i < want.count; ++i) {
+                    const Hit &g = a.hits[std::size_t(i)].hit, &w = want.hits[i];
+                    same = same_bits(g.t, w.t) && same_bits(g.p.x, w.p.x) &&
+                           same_bits(g.p.y, w.p.y) && same_bits(g.p.z, w.p.z) && g.kind == w.kind &&
+                           g.part == w.part;
+                }
+            }
+            k.require(same, "a scene of the shape answers as its solver", name, as_result(a));
+        }
+    }
+}
+
+} // namespace
+
 std::string broken_invariant(const Case& c) {
     Checker k{c, {}};
     Result oracle = exact::intersect(c.shape, c.line);
@@ -302,6 +351,7 @@ std::string broken_invariant(const Case& c) {
     k.require(any_ok, "correct's hit test is within its bound of the oracle", "correct (any)", any);
     if (k.broken.empty()) k.broken = broken_in_binary32(c);
     check_batch<double>(k);
+    check_scene(k, oracle);
     return k.broken;
 }
 

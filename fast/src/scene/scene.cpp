@@ -394,12 +394,13 @@ void Scene::intersect(const Line& line, Query query, SceneAnswer& out) const {
     const Impl& m = *impl_;
     out.hits.clear();
     out.error = {}, out.error_shape = no_shape, out.shapes_solved = 0, out.exact_comparisons = 0;
-    if (!m.error.ok()) {
-        out.error = m.error, out.error_shape = m.error_shape;
-        return;
-    }
+    // The line first, then the shapes: the order every solver checks them in.
     if (Error e = detail::check_line(line); !e.ok()) {
         out.error = e;
+        return;
+    }
+    if (!m.error.ok()) {
+        out.error = m.error, out.error_shape = m.error_shape;
         return;
     }
     constexpr double stop = -std::numeric_limits<double>::infinity();
