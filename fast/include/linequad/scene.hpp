@@ -41,7 +41,9 @@ struct SceneHit {
 // correct scene). A line along a surface
 // (the solver's on_surface) adds the interval's first point in the range as a hit of kind
 // tangent. error: the line's or the scene's (error_shape names the shape, or no_shape for the
-// line); no hit is then given.
+// line); no hit is then given. Only shapes the line comes near, within the part of the range
+// still in question, are solved: a solver's refusal of what double cannot hold (out_of_range)
+// on a shape beyond the nearest hit, or never near the line, does not make the answer an error.
 struct SceneAnswer {
     std::vector<SceneHit> hits;
     Error error;

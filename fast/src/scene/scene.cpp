@@ -27,6 +27,10 @@ struct Node {
 };
 
 constexpr std::uint32_t leaf_size = 4;
+// Levels split by the surface area heuristic; below them, medians (see Impl::build).
+constexpr int sah_depth = 64;
+// The traversal's stack: one entry per level at most, plus one.
+constexpr int max_depth = sah_depth + 32;
 
 Box merged(const Box& a, const Box& b) {
     return {{std::min(a.lo.x, b.lo.x), std::min(a.lo.y, b.lo.y), std::min(a.lo.z, b.lo.z)},
@@ -105,7 +109,7 @@ struct Scene::Impl {
     // Nodes over order[first, last), split by the surface area heuristic over 16 bins of the
     // boxes' centres along each axis (the split that least expects a line through the node to
     // meet boxes on both sides); at the median of the widest axis when every centre coincides.
-    std::uint32_t build(std::uint32_t first, std::uint32_t last) {
+    std::uint32_t build(std::uint32_t first, std::uint32_t last, int depth = 0) {
         std::uint32_t index = std::uint32_t(nodes.size());
         nodes.emplace_back();
         Box box = boxes[order[first]];
@@ -121,11 +125,18 @@ struct Scene::Impl {
             nodes[index].first = first, nodes[index].count = last - first;
             return index;
         }
-        std::uint32_t middle = split(first, last, centres);
-        build(first, middle);
-        std::uint32_t second = build(middle, last);
+        // Past sah_depth, median splits: the depth stays below sah_depth + 31, which bounds
+        // the traversal's stack, however lopsided the heuristic's splits were.
+        std::uint32_t middle =
+            depth < sah_depth ? split(first, last, centres) : median_split(first, last, centres);
+        build(first, middle, depth + 1);
+        std::uint32_t second = build(middle, last, depth + 1);
         nodes[index].second = second;
         return index;
+    }
+
+    double centre(std::uint32_t s, int axis) const {
+        return 0.5 * (detail::at(boxes[s].lo, axis) + detail::at(boxes[s].hi, axis));
     }
 
     static double area(const Box& b) {
@@ -135,9 +146,6 @@ struct Scene::Impl {
 
     std::uint32_t split(std::uint32_t first, std::uint32_t last, const Box& centres) {
         constexpr int bins = 16;
-        auto centre = [&](std::uint32_t s, int axis) {
-            return 0.5 * (detail::at(boxes[s].lo, axis) + detail::at(boxes[s].hi, axis));
-        };
         double best_cost = std::numeric_limits<double>::infinity();
         int best_axis = -1;
         double best_at = 0;
@@ -175,6 +183,11 @@ struct Scene::Impl {
                 begin, end, [&](std::uint32_t s) { return centre(s, best_axis) < best_at; });
             if (middle != begin && middle != end) return std::uint32_t(middle - order.begin());
         }
+        return median_split(first, last, centres);
+    }
+
+    std::uint32_t median_split(std::uint32_t first, std::uint32_t last, const Box& centres) {
+        auto begin = order.begin() + first, end = order.begin() + last;
         Vec3 spread = centres.hi - centres.lo;
         int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : spread.y >= spread.z ? 1 : 2;
         std::uint32_t middle = first + (last - first) / 2;
@@ -208,7 +221,7 @@ struct Scene::Impl {
             std::uint32_t node;
             double t0; // where the line may enter the node's box
         };
-        Entry stack[64];
+        Entry stack[max_depth + 1];
         int top = 0;
         double t0 = line.range.t0, t1 = end;
         if (!slab(nodes[0].box, slab_line, t0, t1)) return;
