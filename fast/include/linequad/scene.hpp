@@ -3,8 +3,9 @@
 //     linequad::SceneAnswer a;                         // reused: no allocation once it is warm
 //     scene.intersect(ray, {Need::nearest, true}, a);  // a.hits[0]: the nearest hit, its shape
 // Each shape is solved by the scene's solver (stable or correct) over the line's range; shapes
-// whose bounding box the line misses are never solved. The boxes are rounded outward and the
-// line's slab test is widened by its own rounding error, so culling never loses a hit.
+// whose bounding box or capsule the line misses are never solved. The boxes are rounded outward,
+// and the slab and capsule tests are widened by their own rounding errors, so culling never
+// loses a hit.
 #pragma once
 
 #include "linequad/prepared.hpp"
@@ -38,10 +39,9 @@ struct SceneHit {
 
 // A line's answer. need = any: at most one hit, the first proven (not the nearest); nearest: the
 // nearest hit and every hit tied with it; all: every hit, in order of t (exact order for a
-// correct scene). A line along a surface
-// (the solver's on_surface) adds the interval's first point in the range as a hit of kind
-// tangent. error: the line's or the scene's (error_shape names the shape, or no_shape for the
-// line); no hit is then given. Only shapes the line comes near, within the part of the range
+// correct scene). A line along a surface (the solver's on_surface) adds the interval's first
+// point in the range as a hit of kind tangent. error: the line's or the scene's (error_shape
+// names the shape, or no_shape for the line); no hit is then given. Only shapes the line comes near, within the part of the range
 // still in question, are solved: a solver's refusal of what double cannot hold (out_of_range)
 // on a shape beyond the nearest hit, or never near the line, does not make the answer an error.
 struct SceneAnswer {
