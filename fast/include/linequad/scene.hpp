@@ -41,9 +41,10 @@ struct SceneHit {
 // nearest hit and every hit tied with it; all: every hit, in order of t (exact order for a
 // correct scene). A line along a surface (the solver's on_surface) adds the interval's first
 // point in the range as a hit of kind tangent. error: the line's or the scene's (error_shape
-// names the shape, or no_shape for the line); no hit is then given. Only shapes the line comes near, within the part of the range
-// still in question, are solved: a solver's refusal of what double cannot hold (out_of_range)
-// on a shape beyond the nearest hit, or never near the line, does not make the answer an error.
+// names the shape, or no_shape for the line); no hit is then given. Only shapes the line comes
+// near, within the part of the range still in question, are solved: a solver's refusal of what
+// double cannot hold (out_of_range) on a shape beyond the nearest hit, or never near the line, does
+// not make the answer an error.
 struct SceneAnswer {
     std::vector<SceneHit> hits;
     Error error;
@@ -75,6 +76,7 @@ class Scene {
     Error error() const;               // the first bad shape's error, or none
     std::uint32_t error_shape() const; // that shape, or no_shape
     Box bounds(std::uint32_t i) const; // shape i's box, rounded outward
+    int depth() const;                 // the hierarchy's depth (the root alone: 0)
 
     // The line against every shape, as the query asks (see SceneAnswer). out is overwritten.
     void intersect(const Line& line, Query query, SceneAnswer& out) const;

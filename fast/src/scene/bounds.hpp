@@ -17,24 +17,21 @@
 namespace linequad::detail {
 
 struct BoxBuilder {
-    Box box;
+    double lo[3], hi[3];
     BoxBuilder() {
-        double inf = std::numeric_limits<double>::infinity();
-        box = {{inf, inf, inf}, {-inf, -inf, -inf}};
+        for (int i = 0; i < 3; ++i)
+            lo[i] = std::numeric_limits<double>::infinity(), hi[i] = -lo[i];
     }
     // Coordinate i may reach value, computed with roundings of numbers below magnitude.
     void reach(int i, double value, double magnitude) {
         double slack = magnitude * 0x1p-48;
-        double lo = std::nextafter(value - slack, -std::numeric_limits<double>::infinity());
-        double hi = std::nextafter(value + slack, std::numeric_limits<double>::infinity());
-        (&box.lo.x)[i] = std::min((&box.lo.x)[i], lo);
-        (&box.hi.x)[i] = std::max((&box.hi.x)[i], hi);
+        lo[i] = std::min(lo[i],
+                         std::nextafter(value - slack, -std::numeric_limits<double>::infinity()));
+        hi[i] =
+            std::max(hi[i], std::nextafter(value + slack, std::numeric_limits<double>::infinity()));
     }
+    Box box() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
 };
-
-inline double at(const Vec3& v, int i) {
-    return (&v.x)[i];
-}
 
 inline Box everything() {
     double inf = std::numeric_limits<double>::infinity();
@@ -46,13 +43,13 @@ inline Box circular_box(Vec3 P0, double r0, Vec3 P1, double r1) {
     BoxBuilder b;
     double r = std::max(r0, r1);
     for (int i = 0; i < 3; ++i) {
-        double m = std::max(std::fabs(at(P0, i)), std::fabs(at(P1, i))) + r;
-        for (double p : {at(P0, i), at(P1, i)}) {
+        double m = std::max(std::fabs(P0[i]), std::fabs(P1[i])) + r;
+        for (double p : {P0[i], P1[i]}) {
             b.reach(i, p - r, m);
             b.reach(i, p + r, m);
         }
     }
-    return b.box;
+    return b.box();
 }
 
 // P + z c + (x a + y b), x^2 + y^2 <= z^2 (cone) or <= 1 (cylinder: pass unit = true), for z in
@@ -60,16 +57,16 @@ inline Box circular_box(Vec3 P0, double r0, Vec3 P1, double r1) {
 inline Box frame_box(Vec3 P, Vec3 a, Vec3 b, Vec3 c, int z0, int z1, bool unit) {
     BoxBuilder box;
     for (int i = 0; i < 3; ++i) {
-        double s = std::fabs(at(a, i)) + std::fabs(at(b, i));
-        double m = std::fabs(at(P, i)) + std::fabs(at(c, i)) + s;
+        double s = std::fabs(a[i]) + std::fabs(b[i]);
+        double m = std::fabs(P[i]) + std::fabs(c[i]) + s;
         for (int z = z0; z <= z1; ++z) {
-            double centre = at(P, i) + z * at(c, i);
+            double centre = P[i] + z * c[i];
             double spread = unit ? s : std::abs(z) * s;
             box.reach(i, centre - spread, m);
             box.reach(i, centre + spread, m);
         }
     }
-    return box.box;
+    return box.box();
 }
 
 inline Box bounds_of(const Cylinder& s) {

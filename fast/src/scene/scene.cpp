@@ -7,6 +7,7 @@
 #include "scene/bounds.hpp"
 #include "scene/exact_order.hpp"
 #include "shapes/traits.hpp"
+#include "solve/finish.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -43,13 +44,11 @@ struct SlabLine {
     bool exact_axis[3]; // v_i = 0: the line stays in the slab's plane or never meets it
     bool divide[3];     // 1 / v_i overflowed or is subnormal: divide by v_i instead
     Vec3 v;
-    explicit SlabLine(const Line& l) : L0(l.L0), v(l.v) {
+    explicit SlabLine(const Line& l) : L0(l.L0), inv{1 / l.v.x, 1 / l.v.y, 1 / l.v.z}, v(l.v) {
         for (int i = 0; i < 3; ++i) {
-            double vi = detail::at(v, i);
-            (&inv.x)[i] = 1 / vi;
-            exact_axis[i] = vi == 0;
+            exact_axis[i] = v[i] == 0;
             // Overflowed or subnormal: its relative error would not hold.
-            double inv_i = detail::at(inv, i);
+            double inv_i = inv[i];
             divide[i] =
                 !(std::fabs(inv_i) >= std::numeric_limits<double>::min() && std::isfinite(inv_i));
         }
@@ -64,18 +63,18 @@ struct SlabLine {
 bool slab(const Box& box, const SlabLine& line, double& t0, double& t1) {
     constexpr double tiny = 0x1p-1074;
     for (int i = 0; i < 3; ++i) {
-        double L = detail::at(line.L0, i);
-        double lo = detail::at(box.lo, i), hi = detail::at(box.hi, i);
+        double L = line.L0[i];
+        double lo = box.lo[i], hi = box.hi[i];
         if (line.exact_axis[i]) {
             if (L < lo || L > hi) return false;
             continue;
         }
         double ta, tb;
         if (line.divide[i]) {
-            double vi = detail::at(line.v, i);
+            double vi = line.v[i];
             ta = (lo - L) / vi, tb = (hi - L) / vi;
         } else {
-            double inv = detail::at(line.inv, i);
+            double inv = line.inv[i];
             ta = (lo - L) * inv, tb = (hi - L) * inv;
         }
         if (ta > tb) std::swap(ta, tb);
@@ -103,6 +102,7 @@ struct Scene::Impl {
     std::vector<std::uint32_t> order;      // the bounded shapes, in the hierarchy's leaf order
     std::vector<std::uint32_t> unbounded;  // shapes that are not finite: solved for every line
     std::vector<Node> nodes;
+    int depth = 0; // the deepest node's level (the root's is 0)
     Error error;
     std::uint32_t error_shape = no_shape;
 
@@ -111,6 +111,7 @@ struct Scene::Impl {
     // meet boxes on both sides); at the median of the widest axis when every centre coincides.
     std::uint32_t build(std::uint32_t first, std::uint32_t last, int depth = 0) {
         std::uint32_t index = std::uint32_t(nodes.size());
+        this->depth = std::max(this->depth, depth);
         nodes.emplace_back();
         Box box = boxes[order[first]];
         Box centres{detail::everything().hi, detail::everything().lo};
@@ -136,7 +137,7 @@ struct Scene::Impl {
     }
 
     double centre(std::uint32_t s, int axis) const {
-        return 0.5 * (detail::at(boxes[s].lo, axis) + detail::at(boxes[s].hi, axis));
+        return 0.5 * (boxes[s].lo[axis] + boxes[s].hi[axis]);
     }
 
     static double area(const Box& b) {
@@ -150,7 +151,7 @@ struct Scene::Impl {
         int best_axis = -1;
         double best_at = 0;
         for (int axis = 0; axis < 3; ++axis) {
-            double lo = detail::at(centres.lo, axis), hi = detail::at(centres.hi, axis);
+            double lo = centres.lo[axis], hi = centres.hi[axis];
             if (!(hi > lo) || !std::isfinite(hi - lo)) continue;
             double scale = bins / (hi - lo);
             Box bin_box[bins];
@@ -290,6 +291,9 @@ Error Scene::error() const {
 std::uint32_t Scene::error_shape() const {
     return impl_->error_shape;
 }
+int Scene::depth() const {
+    return impl_->depth;
+}
 Box Scene::bounds(std::uint32_t i) const {
     return impl_->boxes.at(i);
 }
@@ -308,10 +312,7 @@ void each_hit(const Result& r, std::uint32_t shape, const Line& line, bool point
     if (r.on_surface) {
         Hit h{};
         h.t = r.s0;
-        h.p = points && std::isfinite(r.s0)
-                  ? Vec3{std::fma(r.s0, line.v.x, line.L0.x), std::fma(r.s0, line.v.y, line.L0.y),
-                         std::fma(r.s0, line.v.z, line.L0.z)}
-                  : Vec3{};
+        h.p = points && std::isfinite(r.s0) ? detail::point_at(line, r.s0) : Vec3{};
         h.bound = std::numeric_limits<double>::quiet_NaN();
         h.kind = HitKind::tangent, h.part = r.surface_part;
         h.certain = r.certainty == Certainty::certain;
@@ -319,10 +320,12 @@ void each_hit(const Result& r, std::uint32_t shape, const Line& line, bool point
     }
 }
 
-// Hits with equal t on different shapes are tied; within a tie, shape order.
+// Hits with equal t on different shapes are tied; within a tie, shape order (and a shape's own
+// order: two of its hits can round to one t, an infinite one too).
 void order_and_name_ties(std::vector<SceneHit>& hits) {
     std::sort(hits.begin(), hits.end(), [](const SceneHit& a, const SceneHit& b) {
-        return a.hit.t < b.hit.t || (a.hit.t == b.hit.t && a.shape < b.shape);
+        return a.hit.t < b.hit.t ||
+               (a.hit.t == b.hit.t && std::pair(a.shape, a.index) < std::pair(b.shape, b.index));
     });
     for (std::size_t k = 1; k < hits.size(); ++k)
         if (hits[k].hit.t == hits[k - 1].hit.t && hits[k].shape != hits[k - 1].shape)
@@ -381,7 +384,9 @@ void refine_ties(const std::vector<PreparedShape>& shapes, const Line& line, boo
         for (std::size_t k = i + 1; k < j; ++k)
             for (std::size_t m = k; m > i; --m) {
                 int c = compare(hits[m], hits[m - 1]);
-                if (c > 0 || (c == 0 && hits[m].shape > hits[m - 1].shape)) break;
+                if (c > 0 || (c == 0 && std::pair(hits[m].shape, hits[m].index) >
+                                            std::pair(hits[m - 1].shape, hits[m - 1].index)))
+                    break;
                 std::swap(hits[m], hits[m - 1]);
             }
         std::vector<int> equal_to_next(j - i, 0);
