@@ -7,4 +7,5 @@ bash scripts/build.sh
 ./build/compare/linequad --version
 ./build/compare/linequad solve --solver all examples/cases.jsonl
 ./build/compare/linequad audit --out reports/latest
+./build/compare/linequad spawn --cases 5000 --out reports/latest/spawn.md
 bash scripts/peers.sh

@@ -7,6 +7,7 @@
 #include "linequad/audit_solver.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/registry.hpp"
+#include "linequad/spawn_audit.hpp"
 
 #include "history.hpp"
 #include "jsonl.hpp"
@@ -507,6 +508,20 @@ int run_version() {
     return 0;
 }
 
+int run_spawn(const audit::SpawnAuditOptions& o, const std::string& out_file,
+              const std::string& command) {
+    std::string md = audit::spawn_report_markdown(audit::run_spawn_audit(o), o, command);
+    if (out_file.empty()) {
+        jsonl::Output out;
+        out.text(md);
+        out.finish();
+    } else {
+        jsonl::write_file(out_file, md);
+        std::fprintf(stderr, "spawn: %s\n", out_file.c_str());
+    }
+    return 0;
+}
+
 int run_solvers() {
     jsonl::Output out;
     auto line = [&](std::string name, const std::string& summary) {
@@ -694,6 +709,21 @@ int main_checked(int argc, char** argv) {
     hist->add_option("--plot", history_args.plot, "draw the trend (one solver) as an SVG file")
         ->type_name("FILE.svg");
 
+    audit::SpawnAuditOptions spawn_args;
+    std::string spawn_out;
+    CLI::App* sp = app.add_subcommand(
+        "spawn", "Audit rays spawned from hits: how often each way of starting them (stable with "
+                 "the usual epsilon, correct from the hit, spawn_ray's proven offset) finds the "
+                 "surface it left again, graded against the oracle. Writes markdown.");
+    sp->add_option("--cases", spawn_args.cases, "cases per family and shape (default 500)")
+        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 32));
+    sp->add_option("--seed", spawn_args.seed, "the families' seed (default 1)");
+    sp->add_option("--epsilon", spawn_args.epsilon,
+                   "the distance stable's rays skip (default 1e-4)")
+        ->check(CLI::PositiveNumber);
+    sp->add_option("--out", spawn_out, "write the report here (default: standard output)")
+        ->type_name("FILE.md");
+
     CLI::App* list = app.add_subcommand("solvers", "List the solver names.");
     CLI::App* v = app.add_subcommand("version", "Version, compiler and floating-point flags.");
 
@@ -721,6 +751,7 @@ int main_checked(int argc, char** argv) {
     if (c->parsed()) return run_cases(cases_args);
     if (m->parsed()) return run_merge(inputs, merge_out, command, merge_history, merge_commit);
     if (hist->parsed()) return run_history(history_args);
+    if (sp->parsed()) return run_spawn(spawn_args, spawn_out, command);
     if (dcmd->parsed()) return run_diff(diff);
     if (html->parsed()) {
         audit::write_report_html(html_dir);

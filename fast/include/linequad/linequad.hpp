@@ -13,4 +13,5 @@
 #include "linequad/scene.hpp"
 #include "linequad/shapes.hpp"
 #include "linequad/solvers.hpp"
+#include "linequad/spawn.hpp"
 #include "linequad/vec3.hpp"

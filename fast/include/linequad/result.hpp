@@ -62,6 +62,7 @@ enum class ErrorCode : std::uint8_t {
     out_of_range,    // inputs whose products overflow or underflow double
     bad_option,      // caps on a shape that is not finite; nappes other than 1 or 2
     not_binary32,    // a float solver given an input that is not a float
+    along_surface,   // spawn_ray: a direction that does not leave the surface at the hit
     // Another library's own refusal, which fits none of the above; field names it. linequad's
     // solvers never return it: the audit grades it as a refusal the oracle does not make.
     foreign,

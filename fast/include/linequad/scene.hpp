@@ -11,6 +11,7 @@
 #include "linequad/prepared.hpp"
 #include "linequad/result.hpp"
 #include "linequad/shapes.hpp"
+#include "linequad/spawn.hpp"
 
 #include <cstdint>
 #include <limits>
@@ -80,6 +81,11 @@ class Scene {
 
     // The line against every shape, as the query asks (see SceneAnswer). out is overwritten.
     void intersect(const Line& line, Query query, SceneAnswer& out) const;
+
+    // A ray leaving a hit of this scene (linequad/spawn.hpp), off the surface of the hit's shape.
+    // Other shapes are not considered: one that touches the hit point is another surface, which
+    // the spawned ray may meet at t = 0. A shape index outside the scene: bad_option, "shape".
+    SpawnedRay spawn_ray(const SceneHit& from, Vec3 direction) const;
 
   private:
     struct Impl;

@@ -297,6 +297,15 @@ int Scene::depth() const {
 Box Scene::bounds(std::uint32_t i) const {
     return impl_->boxes.at(i);
 }
+SpawnedRay Scene::spawn_ray(const SceneHit& from, Vec3 direction) const {
+    if (from.shape >= impl_->shapes.size()) {
+        SpawnedRay out;
+        out.error = {ErrorCode::bad_option, "shape"};
+        return out;
+    }
+    return std::visit([&](const auto& p) { return linequad::spawn_ray(p, from.hit, direction); },
+                      impl_->shapes[from.shape]);
+}
 
 namespace {
 

@@ -57,6 +57,8 @@ const char* code_name(ErrorCode c) {
         return "bad_option";
     case ErrorCode::not_binary32:
         return "not_binary32";
+    case ErrorCode::along_surface:
+        return "along_surface";
     case ErrorCode::foreign:
         return "foreign";
     }
@@ -89,6 +91,8 @@ std::string message(const Error& e) {
                            : f + ": not an option this shape takes (nappes is 1 or 2)";
     case ErrorCode::not_binary32:
         return f + " is not a binary32 value (a float solver takes float inputs)";
+    case ErrorCode::along_surface:
+        return f + " does not leave the surface at the hit (tangent to it within rounding)";
     case ErrorCode::foreign:
         return f + " (the solver's own refusal, not one of linequad's)";
     }

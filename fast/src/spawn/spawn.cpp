@@ -1,0 +1,268 @@
+// spawn_ray: an origin off the surface, proven to leave it (the proof: linequad/spawn.hpp).
+//
+// The origin is searched for as pbrt-v4 does, then proven: from the hit point p along the
+// normal, first by the point's own rounding error (an ulp of each coordinate, weighted by the
+// normal's components), doubling until the exact test accepts. Each candidate is rounded away
+// from p in every coordinate the normal moves, so that it is never p again. At a cone's apex the
+// normal vanishes; the origin moves along the direction itself instead, where the double root
+// at the apex falls behind it.
+#include "linequad/spawn.hpp"
+
+#include "numeric/big_float.hpp"
+#include "numeric/bounded_dd.hpp"
+#include "shapes/all.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+namespace linequad {
+
+namespace {
+
+using detail::ShapeTraits;
+using exact_form::undecided;
+
+// The exact form along o + t d: for the lateral surface Q(0) = C0 and Q'(0) / 2 = B; for a disc,
+// the signed distance of o from its plane, Z0 - e, and dZ, both oriented so that + is outside
+// the solid (above the top, below the base). And for a closed shape, whether o is strictly
+// inside one of its solids: inside the lateral surface (C0 < 0) and strictly between its
+// bounded ends (a one-nappe cone's apex end included), off a two-solid cone's apex plane.
+// The spacing of doubles at x (below the largest double, where there is none above).
+double ulp(double x) {
+    double a = std::fabs(x), up = std::nextafter(a, std::numeric_limits<double>::infinity());
+    return std::isfinite(up) ? up - a : a - std::nextafter(a, 0.0);
+}
+
+template <class NT>
+struct Signs {
+    int at_origin = 0, ahead = 0;
+    int inside = 0; // 1, 0, or undecided
+};
+template <class NT>
+int strictly_inside(const exact_form::LineQuadratic<NT>& q) {
+    int signs[4] = {sign(q.C0), q.lo_bounded ? sign(NT(q.lo - q.Z0)) : -1,
+                    q.hi_bounded ? sign(NT(q.Z0 - q.hi)) : -1,
+                    q.two_solids ? -std::abs(sign(q.Z0)) : -1};
+    int result = 1;
+    for (int s : signs) {
+        if (s == undecided)
+            result = undecided;
+        else if (s >= 0)
+            return 0;
+    }
+    return result;
+}
+template <class NT, class S>
+Signs<NT> signs_along(const S& shape, int orientation, Part part, Vec3 o, Vec3 d) {
+    auto q =
+        ShapeTraits<S>::template exact_quadratic<NT>(shape, Line{o, d, Range::ray}, orientation);
+    bool closed = q.lo_capped || q.hi_capped;
+    int inside = closed ? strictly_inside(q) : 0;
+    if (part == Part::lateral) return {sign(q.C0), sign(q.B), inside};
+    int flip = part == Part::base ? -1 : 1;
+    int z = sign(NT(q.Z0 - (part == Part::base ? q.lo : q.hi))), dz = sign(q.dZ);
+    return {z == undecided ? undecided : flip * z, dz == undecided ? undecided : flip * dz, inside};
+}
+
+// The side the ray from o leaves the surface to, proven: +-1 when both signs are that, 0 when
+// they are not one nonzero sign. Into a closed shape, o must moreover be strictly inside it:
+// the line then leaves the (convex) solid once ahead, and never re-enters it through the
+// crossing it left, or through the other part at a rim it left by.
+template <class S>
+int proven_side(const S& shape, int orientation, Part part, Vec3 o, Vec3 d, bool closed) {
+    Signs<BoundedDD> f = signs_along<BoundedDD>(shape, orientation, part, o, d);
+    int a = f.at_origin, b = f.ahead, in = f.inside;
+    if (a == undecided || b == undecided || (closed && a < 0 && in == undecided)) {
+        Signs<BigFloat> e = signs_along<BigFloat>(shape, orientation, part, o, d);
+        a = e.at_origin, b = e.ahead, in = e.inside;
+    }
+    if (a == 0 || a != b) return 0;
+    return a < 0 && closed && in != 1 ? 0 : a;
+}
+
+// The direction's rate of change of the surface at point x (B, or dZ for a disc, oriented as
+// above), exact. It is affine in x.
+template <class S>
+BigFloat rate(const S& shape, int orientation, Part part, Vec3 x, Vec3 d) {
+    auto q = ShapeTraits<S>::template exact_quadratic<BigFloat>(shape, Line{x, d, Range::ray},
+                                                                orientation);
+    if (part == Part::lateral) return q.B;
+    return part == Part::base ? BigFloat(0.0) - q.dZ : q.dZ;
+}
+
+BigFloat magnitude(const BigFloat& x) {
+    return sign(x) < 0 ? BigFloat(0.0) - x : x;
+}
+
+// The side d points to from the crossing at p, exact, and the same over the box of an ulp
+// around p in every coordinate (where the exact hit of a correctly rounded point lies, with
+// room to spare): the rate's sign at p, when its magnitude exceeds the most the affine rate can
+// change over the box, sum_k |d rate / d x_k| ulp(p_k). Else 0: within rounding of tangent, or
+// of a point where the side changes (a cone's apex, a hit where an ulp is as wide as the
+// shape), no side is proven.
+template <class S>
+int direction_side(const S& shape, int orientation, Part part, Vec3 p, Vec3 d) {
+    BigFloat at_p = rate(shape, orientation, part, p, d);
+    if (sign(at_p) == 0) return 0;
+    BigFloat at_origin = rate(shape, orientation, part, Vec3{0, 0, 0}, d), reach(0.0);
+    for (int k = 0; k < 3; ++k) {
+        Vec3 e{k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
+        BigFloat slope = rate(shape, orientation, part, e, d) - at_origin;
+        reach = reach + magnitude(slope) * BigFloat(ulp(p[k]));
+    }
+    return sign(BigFloat(magnitude(at_p) - reach)) > 0 ? sign(at_p) : 0;
+}
+
+// The gradient of the surface at p, up to a positive factor, in double, outward (for the base
+// disc, down the axis): its rate of change along each axis, from the same exact form, with shape
+// and point scaled by one power of two to unit size first (the form's products of four would
+// overflow or underflow for shapes far from it). Rounding only makes it approximate; the search
+// uses it only to pick candidates.
+template <class S>
+Vec3 gradient(const S& shape, int orientation, Part part, Vec3 p) {
+    double size = std::fmax(detail::shape_magnitude(shape), max_abs(p));
+    double f = size > 0 ? std::ldexp(1.0, -std::ilogb(size)) : 1.0;
+    S unit = detail::scaled(shape, f);
+    Vec3 q = f * p;
+    double g[3];
+    for (int k = 0; k < 3; ++k) {
+        Vec3 e{k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
+        auto form = ShapeTraits<S>::template exact_quadratic<double>(unit, Line{q, e, Range::ray},
+                                                                     orientation);
+        g[k] = part == Part::lateral ? form.B : part == Part::top ? form.dZ : -form.dZ;
+    }
+    return {g[0], g[1], g[2]};
+}
+
+// g / |g|, scaled first so that |g|^2 neither underflows nor overflows; zero for g = 0.
+Vec3 unit(Vec3 g) {
+    double m = max_abs(g);
+    if (m == 0) return g;
+    g = (1 / m) * g;
+    return (1 / norm(g)) * g;
+}
+
+// p + delta n, each coordinate that n moves rounded one step further (away from p).
+Vec3 moved(Vec3 p, double delta, Vec3 n) {
+    double o[3];
+    for (int k = 0; k < 3; ++k) {
+        o[k] = p[k] + delta * n[k];
+        if (n[k] != 0)
+            o[k] = std::nextafter(o[k], n[k] > 0 ? std::numeric_limits<double>::infinity()
+                                                 : -std::numeric_limits<double>::infinity());
+    }
+    return {o[0], o[1], o[2]};
+}
+
+bool finite(Vec3 x) {
+    return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z);
+}
+
+Error field_error(Vec3 x, const char* field) {
+    if (std::isnan(x.x) || std::isnan(x.y) || std::isnan(x.z))
+        return {ErrorCode::not_a_number, field};
+    if (!finite(x)) return {ErrorCode::infinite, field};
+    return {};
+}
+
+// Doublings of the offset before giving up: from an ulp of the point to 2^60 of them, far more
+// than any hit's rounding error, and a bounded number of exact tests.
+constexpr int max_doublings = 60;
+
+template <class S>
+SpawnedRay spawn(const detail::AsPrepared<S>& src, const Hit& hit, Vec3 d) {
+    SpawnedRay out;
+    auto refuse = [&](Error e) {
+        out.error = e;
+        return out;
+    };
+    detail::Validity valid = src.validity();
+    if (!valid.error.ok()) return refuse(valid.error);
+    if (Error e = field_error(hit.p, "p"); !e.ok()) return refuse(e);
+    if (Error e = field_error(d, "direction"); !e.ok()) return refuse(e);
+    if (d.x == 0 && d.y == 0 && d.z == 0) return refuse({ErrorCode::zero_direction, "direction"});
+    const S& shape = src.shape;
+    int orientation = valid.orientation;
+    Part part = hit.part;
+    auto form =
+        ShapeTraits<S>::template exact_quadratic<double>(shape, Line{hit.p, d}, orientation);
+    bool closed = form.lo_capped || form.hi_capped;
+    if (part != Part::lateral && !(part == Part::base ? form.lo_capped : form.hi_capped))
+        return refuse({ErrorCode::bad_option, "part"}); // no such disc on this shape
+    Vec3 p = hit.p;
+    int sigma = direction_side(shape, orientation, part, p, d);
+    Vec3 g = gradient(shape, orientation, part, p);
+    if (!finite(g)) return refuse({ErrorCode::out_of_range, "p"});
+    // A line through a cone's apex touches it there (a tangent hit, where the normal vanishes);
+    // a crossing whose rounded point is the apex is within rounding of two crossings instead,
+    // and no side is proven for it.
+    bool singular = hit.kind == HitKind::tangent && g.x == 0 && g.y == 0 && g.z == 0;
+    if (sigma == 0 && !singular) return refuse({ErrorCode::along_surface, "direction"});
+
+    // Candidates along n, from the point's own rounding error on; true when one is proven.
+    bool overflow = false;
+    auto search = [&](Vec3 n) {
+        double delta = 0;
+        for (int k = 0; k < 3; ++k)
+            delta += std::fabs(n[k]) * ulp(p[k]);
+        for (int i = 0; i <= max_doublings; ++i, delta *= 2) {
+            Vec3 o = moved(p, delta, n);
+            if (!finite(o)) return !(overflow = true);
+            int side = proven_side(shape, orientation, part, o, d, closed);
+            if (side != 0 && (singular || side == sigma)) {
+                out.line = Line{o, d, Range::ray};
+                out.side = side;
+                out.offset = std::fmax(std::fabs(o.x - p.x),
+                                       std::fmax(std::fabs(o.y - p.y), std::fabs(o.z - p.z)));
+                return true;
+            }
+        }
+        return false;
+    };
+    // Along the normal towards side sigma. Then along d itself, where the crossing left falls
+    // behind as the origin passes it: at a cone's apex (no normal; either side is then proven),
+    // and where the surface is only a few ulps across (a small shape far from the origin),
+    // which the normal's candidates can step over.
+    if (!singular && search(double(sigma) * unit(g))) return out;
+    if (search(unit(d))) return out;
+    if (overflow) return refuse({ErrorCode::out_of_range, "p"});
+    return refuse({ErrorCode::along_surface, "direction"});
+}
+
+template <class S>
+Vec3 outward_normal(const detail::AsPrepared<S>& src, const Hit& hit) {
+    detail::Validity valid = src.validity();
+    if (!valid.error.ok() || !finite(hit.p)) return {};
+    Vec3 g = gradient(src.shape, valid.orientation, hit.part, hit.p);
+    if (!finite(g)) return {};
+    return unit(g);
+}
+
+} // namespace
+
+template <class S>
+Vec3 normal(const Prepared<S>& shape, const Hit& hit) {
+    return outward_normal(detail::AsPrepared<S>(shape), hit);
+}
+
+Vec3 normal(const Shape& shape, const Hit& hit) {
+    return std::visit([&](const auto& s) { return normal(prepare(s), hit); }, shape);
+}
+
+template <class S>
+SpawnedRay spawn_ray(const Prepared<S>& shape, const Hit& hit, Vec3 direction) {
+    return spawn(detail::AsPrepared<S>(shape), hit, direction);
+}
+
+SpawnedRay spawn_ray(const Shape& shape, const Hit& hit, Vec3 direction) {
+    return std::visit([&](const auto& s) { return spawn_ray(prepare(s), hit, direction); }, shape);
+}
+
+#define LINEQUAD_SPAWN(S)                                                                          \
+    template SpawnedRay spawn_ray(const Prepared<S>&, const Hit&, Vec3);                           \
+    template Vec3 normal(const Prepared<S>&, const Hit&);
+LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_SPAWN)
+#undef LINEQUAD_SPAWN
+
+} // namespace linequad
