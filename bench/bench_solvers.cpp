@@ -69,6 +69,31 @@ void solve_prepared(benchmark::State& state, int shape, Query q, Solve solve) {
         benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// spawn_ray from each case's nearest correct hit, on along the line (the cases without a hit
+// left out): what a renderer pays per bounce for a proven origin.
+void spawn(benchmark::State& state, int shape) {
+    std::vector<std::pair<PreparedShape, Hit>> from;
+    std::vector<Vec3> directions;
+    for (const auto& c : bench::generic_cases(shape, 1024)) {
+        Result r = correct::intersect(c.shape, c.line, {Need::nearest, true});
+        if (r.count == 0) continue;
+        from.emplace_back(
+            std::visit([](const auto& x) { return PreparedShape(prepare(x)); }, c.shape),
+            r.hits[0]);
+        directions.push_back(c.line.v);
+    }
+    std::size_t i = 0, refused = 0;
+    for (auto _ : state) {
+        std::size_t k = i++ % from.size();
+        SpawnedRay s =
+            std::visit([&](const auto& p) { return spawn_ray(p, from[k].second, directions[k]); },
+                       from[k].first);
+        refused += !s.ok();
+        benchmark::DoNotOptimize(s);
+    }
+    state.counters["refused/spawn"] = double(refused) / double(state.iterations());
+}
+
 template <class R>
 void stable_scalar_loop(benchmark::State& state, int shape) {
     bench::OneShape<R> o = bench::one_shape<R>(shape);
@@ -156,6 +181,9 @@ int register_all() {
              [](const auto& p, const Line& l, Query q) { return certified::intersect(p, l, q); });
     prepared("correct",
              [](const auto& p, const Line& l, Query q) { return correct::intersect(p, l, q); });
+    for (int shape = 0; shape < int(shape_count); ++shape)
+        benchmark::RegisterBenchmark((name_of(shape) + "/spawn_ray/prepared").c_str(), spawn,
+                                     shape);
     return 0;
 }
 const int registered = register_all();

@@ -23,22 +23,36 @@ namespace {
 using detail::ShapeTraits;
 using exact_form::undecided;
 
-// The exact form along o + t d: for the lateral surface Q(0) = C0 and Q'(0) / 2 = B; for a disc,
-// the signed distance of o from its plane, Z0 - e, and dZ, both oriented so that + is outside
-// the solid (above the top, below the base). And for a closed shape, whether o is strictly
-// inside one of its solids: inside the lateral surface (C0 < 0) and strictly between its
-// bounded ends (a one-nappe cone's apex end included), off a two-solid cone's apex plane.
 // The spacing of doubles at x (below the largest double, where there is none above).
 double ulp(double x) {
     double a = std::fabs(x), up = std::nextafter(a, std::numeric_limits<double>::infinity());
     return std::isfinite(up) ? up - a : a - std::nextafter(a, 0.0);
 }
 
+// The surface a hit's part lies on, along x + t d in the exact form: its value at x and its rate
+// along d, oriented so that + is outside the solid. The lateral surface: Q(0) = C0 and
+// Q'(0) / 2 = B; a disc: the distance of x from its plane, Z0 - e, and dZ (negated for the base,
+// whose outside is below it). The rate is affine in x.
 template <class NT>
-struct Signs {
-    int at_origin = 0, ahead = 0;
-    int inside = 0; // 1, 0, or undecided
+struct Oriented {
+    NT value, rate;
 };
+template <class NT>
+Oriented<NT> oriented(const exact_form::LineQuadratic<NT>& q, Part part) {
+    if (part == Part::lateral) return {q.C0, q.B};
+    if (part == Part::top) return {NT(q.Z0 - q.hi), q.dZ};
+    return {NT(q.lo - q.Z0), NT(NT(0.0) - q.dZ)};
+}
+template <class NT, class S>
+Oriented<NT> oriented_along(const S& shape, int orientation, Part part, Vec3 x, Vec3 d) {
+    return oriented(
+        ShapeTraits<S>::template exact_quadratic<NT>(shape, Line{x, d, Range::ray}, orientation),
+        part);
+}
+
+// For a closed shape, whether o is strictly inside one of its solids: inside the lateral
+// surface (C0 < 0), strictly between its bounded ends (a one-nappe cone's apex end included),
+// off a two-solid cone's apex plane. 1, 0, or undecided.
 template <class NT>
 int strictly_inside(const exact_form::LineQuadratic<NT>& q) {
     int signs[4] = {sign(q.C0), q.lo_bounded ? sign(NT(q.lo - q.Z0)) : -1,
@@ -53,16 +67,17 @@ int strictly_inside(const exact_form::LineQuadratic<NT>& q) {
     }
     return result;
 }
+
+struct Signs {
+    int at_origin = 0, ahead = 0; // each +-1, 0 or undecided
+    int inside = 0;               // strictly_inside, for a closed shape
+};
 template <class NT, class S>
-Signs<NT> signs_along(const S& shape, int orientation, Part part, Vec3 o, Vec3 d) {
+Signs signs_along(const S& shape, int orientation, Part part, Vec3 o, Vec3 d, bool closed) {
     auto q =
         ShapeTraits<S>::template exact_quadratic<NT>(shape, Line{o, d, Range::ray}, orientation);
-    bool closed = q.lo_capped || q.hi_capped;
-    int inside = closed ? strictly_inside(q) : 0;
-    if (part == Part::lateral) return {sign(q.C0), sign(q.B), inside};
-    int flip = part == Part::base ? -1 : 1;
-    int z = sign(NT(q.Z0 - (part == Part::base ? q.lo : q.hi))), dz = sign(q.dZ);
-    return {z == undecided ? undecided : flip * z, dz == undecided ? undecided : flip * dz, inside};
+    Oriented<NT> f = oriented(q, part);
+    return {sign(f.value), sign(f.rate), closed ? strictly_inside(q) : 0};
 }
 
 // The side the ray from o leaves the surface to, proven: +-1 when both signs are that, 0 when
@@ -71,47 +86,43 @@ Signs<NT> signs_along(const S& shape, int orientation, Part part, Vec3 o, Vec3 d
 // crossing it left, or through the other part at a rim it left by.
 template <class S>
 int proven_side(const S& shape, int orientation, Part part, Vec3 o, Vec3 d, bool closed) {
-    Signs<BoundedDD> f = signs_along<BoundedDD>(shape, orientation, part, o, d);
-    int a = f.at_origin, b = f.ahead, in = f.inside;
-    if (a == undecided || b == undecided || (closed && a < 0 && in == undecided)) {
-        Signs<BigFloat> e = signs_along<BigFloat>(shape, orientation, part, o, d);
-        a = e.at_origin, b = e.ahead, in = e.inside;
-    }
-    if (a == 0 || a != b) return 0;
-    return a < 0 && closed && in != 1 ? 0 : a;
+    Signs f = signs_along<BoundedDD>(shape, orientation, part, o, d, closed);
+    if (f.at_origin == undecided || f.ahead == undecided ||
+        (closed && f.at_origin < 0 && f.inside == undecided))
+        f = signs_along<BigFloat>(shape, orientation, part, o, d, closed);
+    int a = f.at_origin;
+    if (a == 0 || a != f.ahead) return 0;
+    return a < 0 && closed && f.inside != 1 ? 0 : a;
 }
 
-// The direction's rate of change of the surface at point x (B, or dZ for a disc, oriented as
-// above), exact. It is affine in x.
-template <class S>
-BigFloat rate(const S& shape, int orientation, Part part, Vec3 x, Vec3 d) {
-    auto q = ShapeTraits<S>::template exact_quadratic<BigFloat>(shape, Line{x, d, Range::ray},
-                                                                orientation);
-    if (part == Part::lateral) return q.B;
-    return part == Part::base ? BigFloat(0.0) - q.dZ : q.dZ;
-}
-
-BigFloat magnitude(const BigFloat& x) {
-    return sign(x) < 0 ? BigFloat(0.0) - x : x;
-}
-
-// The side d points to from the crossing at p, exact, and the same over the box of an ulp
-// around p in every coordinate (where the exact hit of a correctly rounded point lies, with
-// room to spare): the rate's sign at p, when its magnitude exceeds the most the affine rate can
-// change over the box, sum_k |d rate / d x_k| ulp(p_k). Else 0: within rounding of tangent, or
-// of a point where the side changes (a cone's apex, a hit where an ulp is as wide as the
-// shape), no side is proven.
-template <class S>
-int direction_side(const S& shape, int orientation, Part part, Vec3 p, Vec3 d) {
-    BigFloat at_p = rate(shape, orientation, part, p, d);
-    if (sign(at_p) == 0) return 0;
-    BigFloat at_origin = rate(shape, orientation, part, Vec3{0, 0, 0}, d), reach(0.0);
+// The side d points to from the crossing at p, and the same over the box of an ulp around p in
+// every coordinate (where the exact hit of a correctly rounded point lies, with room to spare):
+// the rate's sign at p, when its magnitude exceeds the most the affine rate can change over the
+// box, sum_k |rate(e_k) - rate(0)| ulp(p_k). Else 0: within rounding of tangent, or of a point
+// where the side changes (a cone's apex, a hit where an ulp is as wide as the shape). In NT:
+// undecided when a filtered NT cannot tell.
+template <class NT, class S>
+int direction_side_in(const S& shape, int orientation, Part part, Vec3 p, Vec3 d) {
+    NT at_p = oriented_along<NT>(shape, orientation, part, p, d).rate;
+    NT at_origin = oriented_along<NT>(shape, orientation, part, Vec3{0, 0, 0}, d).rate;
+    int side = sign(at_p);
+    if (side == undecided || side == 0) return side;
+    NT reach(0.0);
     for (int k = 0; k < 3; ++k) {
         Vec3 e{k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
-        BigFloat slope = rate(shape, orientation, part, e, d) - at_origin;
-        reach = reach + magnitude(slope) * BigFloat(ulp(p[k]));
+        NT slope = oriented_along<NT>(shape, orientation, part, e, d).rate - at_origin;
+        int s = sign(slope);
+        if (s == undecided) return undecided;
+        reach = reach + (s < 0 ? NT(NT(0.0) - slope) : slope) * NT(ulp(p[k]));
     }
-    return sign(BigFloat(magnitude(at_p) - reach)) > 0 ? sign(at_p) : 0;
+    int margin = sign(NT(NT(double(side)) * at_p - reach));
+    if (margin == undecided) return undecided;
+    return margin > 0 ? side : 0;
+}
+template <class S>
+int direction_side(const S& shape, int orientation, Part part, Vec3 p, Vec3 d) {
+    int side = direction_side_in<BoundedDD>(shape, orientation, part, p, d);
+    return side != undecided ? side : direction_side_in<BigFloat>(shape, orientation, part, p, d);
 }
 
 // The gradient of the surface at p, up to a positive factor, in double, outward (for the base
@@ -128,9 +139,7 @@ Vec3 gradient(const S& shape, int orientation, Part part, Vec3 p) {
     double g[3];
     for (int k = 0; k < 3; ++k) {
         Vec3 e{k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
-        auto form = ShapeTraits<S>::template exact_quadratic<double>(unit, Line{q, e, Range::ray},
-                                                                     orientation);
-        g[k] = part == Part::lateral ? form.B : part == Part::top ? form.dZ : -form.dZ;
+        g[k] = oriented_along<double>(unit, orientation, part, q, e).rate;
     }
     return {g[0], g[1], g[2]};
 }
@@ -185,12 +194,12 @@ SpawnedRay spawn(const detail::AsPrepared<S>& src, const Hit& hit, Vec3 d) {
     const S& shape = src.shape;
     int orientation = valid.orientation;
     Part part = hit.part;
-    auto form =
-        ShapeTraits<S>::template exact_quadratic<double>(shape, Line{hit.p, d}, orientation);
-    bool closed = form.lo_capped || form.hi_capped;
-    if (part != Part::lateral && !(part == Part::base ? form.lo_capped : form.hi_capped))
-        return refuse({ErrorCode::bad_option, "part"}); // no such disc on this shape
     Vec3 p = hit.p;
+    // Which discs the shape has, as its exact form sets them (the form's values are not used).
+    auto ends = ShapeTraits<S>::template exact_quadratic<double>(shape, Line{p, d}, orientation);
+    bool closed = ends.lo_capped || ends.hi_capped;
+    if (part != Part::lateral && !(part == Part::base ? ends.lo_capped : ends.hi_capped))
+        return refuse({ErrorCode::bad_option, "part"}); // no such disc on this shape
     int sigma = direction_side(shape, orientation, part, p, d);
     Vec3 g = gradient(shape, orientation, part, p);
     if (!finite(g)) return refuse({ErrorCode::out_of_range, "p"});
@@ -203,6 +212,7 @@ SpawnedRay spawn(const detail::AsPrepared<S>& src, const Hit& hit, Vec3 d) {
     // Candidates along n, from the point's own rounding error on; true when one is proven.
     bool overflow = false;
     auto search = [&](Vec3 n) {
+        if (n.x == 0 && n.y == 0 && n.z == 0) return false; // a gradient that underflowed
         double delta = 0;
         for (int k = 0; k < 3; ++k)
             delta += std::fabs(n[k]) * ulp(p[k]);
