@@ -59,17 +59,20 @@ void scene_rays(benchmark::State& state, SceneSolver solver, Need need) {
     const World& w = world(int(state.range(0)));
     Scene scene(w.shapes, solver);
     SceneAnswer a;
-    std::size_t i = 0, hits = 0, solved = 0;
+    std::size_t i = 0, hits = 0, solved = 0, refined = 0;
     for (auto _ : state) {
         scene.intersect(w.rays[i++ & 4095], {need, false}, a);
         hits += a.hits.size();
         solved += a.shapes_solved;
+        refined += a.exact_comparisons > 0;
         benchmark::DoNotOptimize(a.hits.data());
     }
     double n = double(state.iterations());
     state.counters["rays/s"] = benchmark::Counter(n, benchmark::Counter::kIsRate);
     state.counters["hits/ray"] = double(hits) / n;
     state.counters["solved/ray"] = double(solved) / n;
+    // The rays whose order needed an exact comparison of two shapes' roots (correct scenes).
+    state.counters["refined/ray"] = double(refined) / n;
 }
 
 #ifdef LINEQUAD_BENCH_EMBREE

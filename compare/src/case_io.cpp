@@ -3,6 +3,7 @@
 #include "jsonl.hpp"
 #include "shape_types.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -229,19 +230,42 @@ bool parse_object(std::string_view line, Json* obj, std::string* why) {
     return true;
 }
 
-} // namespace
-
-bool parse_case(std::string_view line, Case* c, std::string* why) {
-    *c = Case{};
-    Json obj;
-    if (!parse_object(line, &obj, why)) return false;
-    Reader r{obj, why};
-    if (const Json* id = r.find("id")) c->id = jsonl::dump(*id);
+// The "shape" field: the index of the shape it names.
+bool read_kind(Reader& r, std::size_t* kind) {
     const Json* shape = r.need("shape");
     if (!shape) return false;
-    std::size_t kind =
-        shape->is_string() ? shape_index(shape->get_ref<const std::string&>()) : shape_count;
-    if (kind == shape_count) return r.fail("shape", "expected " + shape_names());
+    *kind = shape->is_string() ? shape_index(shape->get_ref<const std::string&>()) : shape_count;
+    if (*kind == shape_count) return r.fail("shape", "expected " + shape_names());
+    return true;
+}
+
+bool read_k(Reader& r, int* out) {
+    const Json* k = r.find("k");
+    if (!k) return true;
+    double x;
+    if (!to_double(*k, &x) || x != std::floor(x) || std::fabs(x) > 1e6)
+        return r.fail("k", "expected an integer from -1000000 to 1000000");
+    *out = int(x);
+    return true;
+}
+
+bool read_family(Reader& r, std::string* out) {
+    const Json* f = r.find("family");
+    if (!f) return true;
+    if (!f->is_string()) return r.fail("family", "expected a string");
+    *out = f->get<std::string>();
+    return true;
+}
+
+bool parse_case_object(const Json& obj, Case* c, std::string* why) {
+    Reader r{obj, why};
+    if (const Json* id = r.find("id")) c->id = jsonl::dump(*id);
+    if (r.find("scene") || r.find("shape_id"))
+        return r.fail(r.find("scene") ? "scene" : "shape_id",
+                      "a scene's record, where a single case is read (linequad solve and "
+                      "linequad scenes read scenes)");
+    std::size_t kind;
+    if (!read_kind(r, &kind)) return false;
     for (const auto& m : obj.items()) {
         bool known = with_shape_type(
             kind, [&](auto tag) { return known_field<typename decltype(tag)::type>(m.key()); });
@@ -252,16 +276,7 @@ bool parse_case(std::string_view line, Case* c, std::string* why) {
 
     if (!r.vec("L0", &c->line.L0) || !r.vec("v", &c->line.v)) return false;
     if (!read_range(r, &c->line.range)) return false;
-    if (const Json* f = r.find("family")) {
-        if (!f->is_string()) return r.fail("family", "expected a string");
-        c->family = f->get<std::string>();
-    }
-    if (const Json* k = r.find("k")) {
-        double x;
-        if (!to_double(*k, &x) || x != std::floor(x) || std::fabs(x) > 1e6)
-            return r.fail("k", "expected an integer from -1000000 to 1000000");
-        c->k = int(x);
-    }
+    if (!read_family(r, &c->family) || !read_k(r, &c->k)) return false;
     if (const Json* p = r.find("precision")) {
         if (p->is_string() && p->get_ref<const std::string&>() == "binary32")
             c->precision = Precision::binary32;
@@ -274,9 +289,78 @@ bool parse_case(std::string_view line, Case* c, std::string* why) {
     return c->precision == Precision::binary64 || all_binary32(r, *c);
 }
 
-std::string format_case(const Case& c) {
-    std::string out = "{\"id\":" + c.id + ",\"shape\":\"" + shape_name(c.shape) + "\"";
-    std::string options = std::visit(
+// Every field of obj is one of `fields`, or (shape records) of the shape's kind.
+bool only_fields(Reader& r, const Json& obj, std::initializer_list<const char*> fields,
+                 const char* what) {
+    for (const auto& m : obj.items())
+        if (std::none_of(fields.begin(), fields.end(), [&](const char* f) { return m.key() == f; }))
+            return r.fail(m.key(), std::string("not a field of ") + what);
+    return true;
+}
+
+bool parse_scene_shape(Reader& r, const Json& obj, SceneShape* s) {
+    std::size_t kind;
+    if (!read_kind(r, &kind)) return false;
+    for (const auto& m : obj.items()) {
+        const std::string& key = m.key();
+        bool known =
+            key == "shape_id" || key == "shape" || key == "finite" || key == "caps" ||
+            key == "note" || with_shape_type(kind, [&](auto tag) {
+                using S = typename decltype(tag)::type;
+                bool field = key == "nappes" && has_nappes<S>;
+                detail::for_each_field<S>([&](const auto& f) { field = field || key == f.name; });
+                return field;
+            });
+        if (!known)
+            return r.fail(key, std::string("not a field of a scene's ") + shape_name_at(kind));
+    }
+    return with_shape_type(
+        kind, [&](auto tag) { return read_shape<typename decltype(tag)::type>(r, &s->shape); });
+}
+
+} // namespace
+
+bool parse_case(std::string_view line, Case* c, std::string* why) {
+    *c = Case{};
+    Json obj;
+    if (!parse_object(line, &obj, why)) return false;
+    return parse_case_object(obj, c, why);
+}
+
+bool parse_record(std::string_view line, Record* rec, std::string* why) {
+    *rec = Record{};
+    Json obj;
+    if (!parse_object(line, &obj, why)) return false;
+    Reader r{obj, why};
+    if (const Json* id = r.find("scene")) {
+        rec->kind = RecordKind::scene;
+        rec->scene.id = jsonl::dump(*id);
+        return only_fields(r, obj, {"scene", "family", "k", "note"}, "a scene") &&
+               read_family(r, &rec->scene.family) && read_k(r, &rec->scene.k);
+    }
+    if (const Json* id = r.find("shape_id")) {
+        rec->kind = RecordKind::scene_shape;
+        rec->shape.id = jsonl::dump(*id);
+        return parse_scene_shape(r, obj, &rec->shape);
+    }
+    if (r.find("shape")) {
+        rec->kind = RecordKind::single_case;
+        return parse_case_object(obj, &rec->single, why);
+    }
+    rec->kind = RecordKind::scene_line;
+    if (const Json* id = r.find("id")) rec->line.id = jsonl::dump(*id);
+    return only_fields(r, obj, {"id", "L0", "v", "range", "t0", "t1", "note"},
+                       "a scene's line (a single case names its \"shape\")") &&
+           r.vec("L0", &rec->line.line.L0) && r.vec("v", &rec->line.line.v) &&
+           read_range(r, &rec->line.line.range);
+}
+
+namespace {
+
+// ,"shape":..., the shape's fields; returns its options (finite, caps, nappes) to put after.
+std::string put_shape(std::string& out, const Shape& shape) {
+    out += ",\"shape\":\"" + std::string(shape_name(shape)) + "\"";
+    return std::visit(
         [&](const auto& s) {
             using S = std::decay_t<decltype(s)>;
             detail::for_each_field<S>([&](const auto& f) { put_field(out, f.name, s.*f.member); });
@@ -286,16 +370,28 @@ std::string format_case(const Case& c) {
                 if (s.nappes != 1) o += ",\"nappes\":" + std::to_string(s.nappes);
             return o;
         },
-        c.shape);
-    put_field(out, "L0", c.line.L0);
-    put_field(out, "v", c.line.v);
+        shape);
+}
+
+// ,"L0", "v" and the range.
+void put_line(std::string& out, const Line& l) {
+    put_field(out, "L0", l.L0);
+    put_field(out, "v", l.v);
     Range range;
-    if (shorthand(c.line.range, &range)) {
+    if (shorthand(l.range, &range)) {
         out += ",\"range\":\"" + std::string(range_name(range)) + "\"";
     } else {
-        if (c.line.range.has_t0()) put_field(out, "t0", c.line.range.t0);
-        if (c.line.range.has_t1()) put_field(out, "t1", c.line.range.t1);
+        if (l.range.has_t0()) put_field(out, "t0", l.range.t0);
+        if (l.range.has_t1()) put_field(out, "t1", l.range.t1);
     }
+}
+
+} // namespace
+
+std::string format_case(const Case& c) {
+    std::string out = "{\"id\":" + c.id;
+    std::string options = put_shape(out, c.shape);
+    put_line(out, c.line);
     out += options;
     if (!c.family.empty()) out += ",\"family\":" + json_string(c.family);
     if (!c.family.empty() || c.k != 0) out += ",\"k\":" + std::to_string(c.k);
@@ -339,6 +435,53 @@ std::string format_result(const std::string& id, std::string_view solver, const 
     if (r.certainty != Certainty::unknown)
         out += r.certainty == Certainty::certain ? ",\"certain\":true" : ",\"certain\":false";
     out += "}";
+    return out;
+}
+
+std::string format_scene(const SceneHeader& s) {
+    std::string out = "{\"scene\":" + s.id;
+    if (!s.family.empty()) out += ",\"family\":" + json_string(s.family);
+    if (!s.family.empty() || s.k != 0) out += ",\"k\":" + std::to_string(s.k);
+    return out + "}";
+}
+
+std::string format_scene_shape(const SceneShape& s) {
+    std::string out = "{\"shape_id\":" + s.id;
+    std::string options = put_shape(out, s.shape);
+    return out + options + "}";
+}
+
+std::string format_scene_line(const SceneLine& l) {
+    std::string out = "{\"id\":" + l.id;
+    put_line(out, l.line);
+    return out + "}";
+}
+
+std::string format_scene_answer(const std::string& id, std::string_view solver,
+                                const SceneHeader& scene, const std::vector<std::string>& shape_ids,
+                                const SceneAnswer& a, bool points) {
+    auto shape_id = [&](std::uint32_t i) {
+        return i < shape_ids.size() ? shape_ids[i] : std::string("null");
+    };
+    std::string out =
+        "{\"id\":" + id + ",\"solver\":" + json_string(solver) + ",\"scene\":" + scene.id;
+    if (!a.ok())
+        return out + ",\"error\":" + json_string(message(a.error)) +
+               ",\"code\":" + json_string(code_name(a.error.code)) +
+               ",\"shape\":" + shape_id(a.error_shape) + "}";
+    out += ",\"hits\":[";
+    for (std::size_t i = 0; i < a.hits.size(); ++i) {
+        const SceneHit& h = a.hits[i];
+        if (i) out += ",";
+        out += "{\"t\":\"" + hex(h.hit.t) + "\",\"kind\":\"";
+        out += h.hit.kind == HitKind::tangent ? "tangent\"" : "cross\"";
+        out += ",\"part\":\"" + std::string(part_name(h.hit.part)) + "\"";
+        if (points) put_field(out, "p", h.hit.p);
+        out += ",\"shape\":" + shape_id(h.shape);
+        out += h.tied ? ",\"tied\":true}" : ",\"tied\":false}";
+    }
+    out += "],\"shapes_solved\":" + std::to_string(a.shapes_solved);
+    out += ",\"exact_comparisons\":" + std::to_string(a.exact_comparisons) + "}";
     return out;
 }
 

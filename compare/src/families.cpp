@@ -4,6 +4,7 @@
 // decides what the resulting doubles really are.
 #include "linequad/families.hpp"
 
+#include "rng.hpp"
 #include "shape_types.hpp"
 
 #include <cmath>
@@ -21,43 +22,6 @@ const char* const names[family_count] = {
     "degenerate_frame", "scale",        "extent_edge",   "rim",  "cap_plane",
     "cap_axis",         "inside_start", "two_nappes"};
 const char* const frame_names[3] = {"any", "circular", "axis"};
-
-std::uint64_t splitmix(std::uint64_t x) {
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
-
-// SplitMix64 (Steele, Lea and Flood) as a generator: a counter passed through splitmix. A case's
-// stream starts from one hash of (family, shape, range, seed, index), so that every case is a
-// pure function of them and costs no seeding (a Mersenne Twister's 312-word state, filled per
-// case, had been half of case generation).
-struct SplitMix64 {
-    using result_type = std::uint64_t;
-    std::uint64_t state;
-    static constexpr result_type min() { return 0; }
-    static constexpr result_type max() { return ~result_type(0); }
-    result_type operator()() {
-        result_type x = splitmix(state);
-        state += 0x9e3779b97f4a7c15ull;
-        return x;
-    }
-};
-
-struct Rng {
-    SplitMix64 g;
-    double real(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(g); }
-    int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(g); }
-    bool coin() { return g() & 1; }
-    Vec3 vec(double s) { return {real(-s, s), real(-s, s), real(-s, s)}; }
-    Vec3 ivec(int s) {
-        return {double(integer(-s, s)), double(integer(-s, s)), double(integer(-s, s))};
-    }
-    double dyadic(int bits) {
-        return std::ldexp(double(integer(0, (1 << bits) - 1)), -bits);
-    } // [0, 1)
-};
 
 // A frame: origin, a, b, c, and the shape's profile in it: points O + x a + y b + z c, the
 // extent z0 <= z <= z0 + 1, and the surface's radius at z, |rho0 + (rho1 - rho0)(z - z0)| (the
@@ -103,17 +67,9 @@ Frame integer_round_frame(Rng& r, bool axis_aligned) {
     double len = r.integer(1, 12) * (r.coin() ? 1 : -1), radius = r.integer(1, 6);
     Vec3 O = r.ivec(6);
     if (axis_aligned || r.coin()) return axis_frame(O, r.integer(0, 2), len, radius);
-    double q[4];
-    do {
-        for (double& x : q)
-            x = r.integer(-2, 2);
-    } while (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] == 0);
-    auto [w, x, y, z] = q;
-    Vec3 col0{w * w + x * x - y * y - z * z, 2 * (x * y + w * z), 2 * (x * z - w * y)};
-    Vec3 col1{2 * (x * y - w * z), w * w - x * x + y * y - z * z, 2 * (y * z + w * x)};
-    Vec3 col2{2 * (x * z + w * y), 2 * (y * z - w * x), w * w - x * x - y * y + z * z};
+    IntegerRotation q = integer_rotation(r);
     len = std::copysign(r.integer(1, 3), len), radius = r.integer(1, 3);
-    return {O, radius * col0, radius * col1, len * col2, 0, 1, 1, true};
+    return {O, radius * q.col[0], radius * q.col[1], len * q.col[2], 0, 1, 1, true};
 }
 
 // A round frame on the axis c with a, b of length `radius` (rounded).

@@ -290,6 +290,22 @@ void check_scene(Checker& k, const Result& oracle) {
                 }
             }
             k.require(same, "a scene of the shape answers as its solver", name, as_result(a));
+            if (solver == SceneSolver::correct && q.need != Need::any) {
+                // The oracle's scene, its own exact order: the correct scene's, bit for bit.
+                SceneAnswer o;
+                exact::intersect({c.shape}, c.line, q, o);
+                bool equal = o.error.code == a.error.code && o.hits.size() == a.hits.size();
+                for (std::size_t i = 0; equal && i < o.hits.size(); ++i) {
+                    const SceneHit &g = a.hits[i], &w = o.hits[i];
+                    equal = g.shape == w.shape && g.tied == w.tied && same_bits(g.hit.t, w.hit.t) &&
+                            same_bits(g.hit.p.x, w.hit.p.x) && same_bits(g.hit.p.y, w.hit.p.y) &&
+                            same_bits(g.hit.p.z, w.hit.p.z) && g.hit.kind == w.hit.kind &&
+                            g.hit.part == w.hit.part;
+                }
+                bool refused = a.error.code == ErrorCode::out_of_range && o.ok();
+                k.require(equal || refused, "a correct scene equals the oracle's scene", name,
+                          as_result(a));
+            }
         }
     }
 }

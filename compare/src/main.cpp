@@ -6,7 +6,9 @@
 #include "linequad/audit.hpp"
 #include "linequad/audit_solver.hpp"
 #include "linequad/case_io.hpp"
+#include "linequad/exact.hpp"
 #include "linequad/registry.hpp"
+#include "linequad/scene_audit.hpp"
 #include "linequad/spawn_audit.hpp"
 
 #include "history.hpp"
@@ -171,10 +173,50 @@ struct NamedSolver {
     }
 };
 
+// The scene a file has open: its shapes, and the scenes built from them when its first line
+// arrives, one per solver that answers scenes.
+struct OpenScene {
+    SceneHeader header;
+    std::vector<std::string> ids;
+    std::vector<Shape> shapes;
+    std::string broken; // why its lines get no answer; empty if they do
+    bool has_lines = false;
+    std::optional<Scene> stable, correct;
+};
+
+// Scene lines are answered by Scene (stable, correct) and the oracle's scene (exact).
+bool answers_scenes(std::string_view solver) {
+    return solver == "stable" || solver == "correct" || solver == "exact";
+}
+
+std::string scene_answer_line(const std::string& solver, OpenScene& open, const SceneLine& l,
+                              Query q) {
+    if (!open.broken.empty())
+        return format_failure(l.id, solver, "malformed_scene",
+                              "scene " + open.header.id + ": " + open.broken);
+    if (!answers_scenes(solver))
+        return format_failure(l.id, solver, "scene_unsupported",
+                              "solver '" + solver +
+                                  "' answers one shape; scenes are answered by stable, correct "
+                                  "and exact");
+    SceneAnswer a;
+    if (solver == "exact") {
+        exact::intersect(open.shapes, l.line, q, a);
+    } else {
+        bool stable = solver == "stable";
+        std::optional<Scene>& scene = stable ? open.stable : open.correct;
+        if (!scene) scene.emplace(open.shapes, stable ? SceneSolver::stable : SceneSolver::correct);
+        scene->intersect(l.line, q, a);
+    }
+    return format_scene_answer(l.id, solver, open.header, open.ids, a,
+                               q.points && q.need != Need::any);
+}
+
 int run_solve(const SolveArgs& a) {
     std::vector<audit::ExternalSolver> ext = external_solvers(a.plugins);
     std::vector<NamedSolver> solvers;
-    if (a.solvers == "all") {
+    bool every_solver = a.solvers == "all";
+    if (every_solver) {
         for (const Solver& s : all_solvers())
             solvers.push_back({&s, nullptr});
         for (const audit::ExternalSolver& e : ext)
@@ -195,31 +237,76 @@ int run_solve(const SolveArgs& a) {
     jsonl::Output out;
     std::string line, why;
     long errors = 0;
-    Case c;
+    Record rec;
+    std::optional<OpenScene> open; // the scene the file has open, if any
     for (;;) {
         auto status = in.next(&line);
         if (status == jsonl::LineReader::Status::end) break;
         if (status == jsonl::LineReader::Status::error) throw std::runtime_error(in.error());
         bool parsed = false;
+        std::string at = "line " + std::to_string(in.number()) + ": ";
         if (status == jsonl::LineReader::Status::too_long) {
-            c = Case{};
+            rec = Record{};
             why = jsonl::too_long_message(in.number(), max_bytes);
         } else {
             if (jsonl::blank(line)) continue;
             try {
-                parsed = parse_case(line, &c, &why);
-                if (!parsed) why = "line " + std::to_string(in.number()) + ": " + why;
+                parsed = parse_record(line, &rec, &why);
+                if (!parsed) why = at + why;
             } catch (const std::bad_alloc&) {
-                c = Case{};
-                why = "line " + std::to_string(in.number()) + ": out of memory while reading it";
+                rec = Record{};
+                why = at + "out of memory while reading it";
             }
         }
-        for (const NamedSolver& s : solvers)
-            out.line(parsed ? s.answer_line(c, query)
-                            : format_failure(c.id, s.name(), "malformed_case", why));
+        if (parsed && rec.kind == RecordKind::scene_line && !open) {
+            parsed = false;
+            why = at + "field \"shape\": missing (a line needs a shape, or a scene before it)";
+        }
+        if (parsed && rec.kind == RecordKind::scene_shape && !open) {
+            parsed = false;
+            why = at + "field \"shape_id\": no scene is open (a {\"scene\": id} line first)";
+        }
+        if (parsed && rec.kind == RecordKind::scene_shape) {
+            OpenScene& o = *open;
+            if (o.has_lines) {
+                parsed = false;
+                why = at + "shape " + rec.shape.id + " comes after the scene's lines";
+            } else if (std::find(o.ids.begin(), o.ids.end(), rec.shape.id) != o.ids.end()) {
+                parsed = false;
+                why = at + "field \"shape_id\": " + rec.shape.id + " is already in the scene";
+            }
+        }
         if (!parsed) {
+            // A scene that may have lost a shape must not answer: a missing shape is a missing
+            // hit. A broken scene header opens a broken scene, so its shapes join no other.
+            if (rec.kind == RecordKind::scene) open.emplace(), open->header = rec.scene;
+            if (open && rec.kind != RecordKind::single_case && rec.kind != RecordKind::scene_line &&
+                open->broken.empty())
+                open->broken = why;
             ++errors;
             std::fprintf(stderr, "linequad: %s\n", why.c_str());
+            for (const NamedSolver& s : solvers)
+                out.line(format_failure(rec.id(), s.name(), "malformed_case", why));
+            continue;
+        }
+        switch (rec.kind) {
+        case RecordKind::scene:
+            open.emplace();
+            open->header = rec.scene;
+            break;
+        case RecordKind::scene_shape:
+            open->ids.push_back(rec.shape.id);
+            open->shapes.push_back(rec.shape.shape);
+            break;
+        case RecordKind::scene_line:
+            open->has_lines = true;
+            for (const NamedSolver& s : solvers)
+                if (!every_solver || answers_scenes(s.name()))
+                    out.line(scene_answer_line(s.name(), *open, rec.line, query));
+            break;
+        default:
+            for (const NamedSolver& s : solvers)
+                out.line(s.answer_line(rec.single, query));
         }
     }
     out.finish();
@@ -508,18 +595,29 @@ int run_version() {
     return 0;
 }
 
-int run_spawn(const audit::SpawnAuditOptions& o, const std::string& out_file,
-              const std::string& command) {
-    std::string md = audit::spawn_report_markdown(audit::run_spawn_audit(o), o, command);
+// A report to out_file, or standard output when none is given.
+int write_markdown(const std::string& md, const std::string& out_file, const char* what) {
     if (out_file.empty()) {
         jsonl::Output out;
         out.text(md);
         out.finish();
     } else {
         jsonl::write_file(out_file, md);
-        std::fprintf(stderr, "spawn: %s\n", out_file.c_str());
+        std::fprintf(stderr, "%s: %s\n", what, out_file.c_str());
     }
     return 0;
+}
+
+int run_spawn(const audit::SpawnAuditOptions& o, const std::string& out_file,
+              const std::string& command) {
+    return write_markdown(audit::spawn_report_markdown(audit::run_spawn_audit(o), o, command),
+                          out_file, "spawn");
+}
+
+int run_scenes(const audit::SceneAuditOptions& o, const std::string& out_file,
+               const std::string& command) {
+    return write_markdown(audit::scene_report_markdown(audit::run_scene_audit(o), o, command),
+                          out_file, "scenes");
 }
 
 int run_solvers() {
@@ -724,6 +822,44 @@ int main_checked(int argc, char** argv) {
     sp->add_option("--out", spawn_out, "write the report here (default: standard output)")
         ->type_name("FILE.md");
 
+    struct {
+        std::string scenes = "40", lines = "25", seed = "1", families, cases_file, write_cases, out,
+                    max_line_bytes = "16777216";
+    } scene_args;
+    CLI::App* sc = app.add_subcommand(
+        "scenes", "Audit scenes (touching, nested, coaxial and stacked shapes, grids of thin rods "
+                  "far out, rays spawned from hits): stable and correct scenes against the "
+                  "oracle's exact order of hits. Writes markdown.");
+    sc->add_option("--scenes", scene_args.scenes, "scenes per family")
+        ->type_name("N")
+        ->check(WholeNumber(1, 1000000))
+        ->capture_default_str();
+    sc->add_option("--lines", scene_args.lines, "lines per scene")
+        ->type_name("N")
+        ->check(WholeNumber(1, 100000))
+        ->capture_default_str();
+    sc->add_option("--seed", scene_args.seed, "the families' seed")
+        ->type_name("S")
+        ->check(WholeNumber(0, ~std::uint64_t(0)))
+        ->capture_default_str();
+    sc->add_option("--families", scene_args.families,
+                   "families, comma separated (default: all): touching, nested, coaxial, "
+                   "shared_rim, far_grid, spawned, from_hit")
+        ->type_name("F[,F...]");
+    sc->add_option("--cases-file", scene_args.cases_file,
+                   "grade the scenes of this file (the case format) instead")
+        ->type_name("FILE")
+        ->check(CLI::ExistingFile);
+    sc->add_option("--write-cases", scene_args.write_cases,
+                   "write the scenes graded, in the case format (linequad solve reads them)")
+        ->type_name("FILE");
+    sc->add_option("--max-line-bytes", scene_args.max_line_bytes, "the longest line read")
+        ->type_name("N")
+        ->check(WholeNumber(64, std::uint64_t(1) << 30))
+        ->capture_default_str();
+    sc->add_option("--out", scene_args.out, "write the report here (default: standard output)")
+        ->type_name("FILE.md");
+
     CLI::App* list = app.add_subcommand("solvers", "List the solver names.");
     CLI::App* v = app.add_subcommand("version", "Version, compiler and floating-point flags.");
 
@@ -752,6 +888,25 @@ int main_checked(int argc, char** argv) {
     if (m->parsed()) return run_merge(inputs, merge_out, command, merge_history, merge_commit);
     if (hist->parsed()) return run_history(history_args);
     if (sp->parsed()) return run_spawn(spawn_args, spawn_out, command);
+    if (sc->parsed()) {
+        audit::SceneAuditOptions o;
+        o.scenes = to_whole(scene_args.scenes);
+        o.lines = int(to_whole(scene_args.lines));
+        o.seed = to_whole(scene_args.seed);
+        std::vector<std::string> families;
+        if (!scene_args.families.empty()) families = split_list(scene_args.families);
+        for (const std::string& name : families) {
+            audit::SceneFamily f;
+            if (!audit::parse_scene_family(name, &f))
+                return fail(
+                    "--families: no scene family named '" + name +
+                    "' (touching, nested, coaxial, shared_rim, far_grid, spawned, from_hit)");
+            o.families.push_back(f);
+        }
+        o.cases_file = scene_args.cases_file, o.write_cases = scene_args.write_cases;
+        o.max_line_bytes = std::size_t(to_whole(scene_args.max_line_bytes));
+        return run_scenes(o, scene_args.out, command);
+    }
     if (dcmd->parsed()) return run_diff(diff);
     if (html->parsed()) {
         audit::write_report_html(html_dir);

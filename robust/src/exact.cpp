@@ -5,11 +5,13 @@
 
 #include "rounding.hpp"
 #include "shapes/all.hpp"
+#include "solve/finish.hpp"
 
 #include <CGAL/Gmpq.h>
 #include <CGAL/Mpzf.h>
 #include <CGAL/number_utils.h>
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 
@@ -91,8 +93,10 @@ Result round_on_surface(const exact_form::Classification<NT>& c, Precision targe
     return r;
 }
 
+// roots, when given, receives the exact classification the answer was rounded from.
 template <class NT, class ShapeT>
-Result solve(const ShapeT& shape, const Line& l, Query query, Precision target) {
+Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
+             exact_form::Classification<NT>* roots = nullptr) {
     if (Error e = validate(shape, l); !e.ok()) return Result::failure(e);
     if (target == Precision::binary32)
         if (Error e = detail::binary32_error(shape, l); !e.ok()) return Result::failure(e);
@@ -102,6 +106,7 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target) 
     exact_form::Classification<NT> c =
         exact_form::classify(Traits::template exact_quadratic<NT>(shape, l, orientation),
                              exact_form::parameter_range<NT>(l.range), query.need);
+    if (roots) *roots = c;
     if (c.outcome == exact_form::Outcome::on_surface) return round_on_surface(c, target);
     if (c.outcome != exact_form::Outcome::hits) return Result{}; // exact: never undecided
     bool points = query.points && query.need != Need::any;       // a hit test computes no point
@@ -136,7 +141,121 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target) 
     return r;
 }
 
+// A scene hit's exact t: (N + S sqrt(D)) / Den, or minus infinity (a line along a surface from
+// the start of an unbounded range).
+struct ExactT {
+    bool minus_infinity = false;
+    CGAL::Mpzf N, Den, D;
+    int S = 0;
+};
+
+// sgn(a + b sqrt(p)), p >= 0.
+int sign_surd(const CGAL::Mpzf& a, const CGAL::Mpzf& b, const CGAL::Mpzf& p) {
+    int sa = sgn(a), sb = CGAL::is_zero(p) ? 0 : sgn(b);
+    if (sb == 0) return sa;
+    if (sa == 0 || sa == sb) return sb;
+    int bigger = sgn(CGAL::Mpzf(a * a - b * b * p)); // |a| against |b| sqrt(p)
+    return bigger == 0 ? 0 : bigger > 0 ? sa : sb;
+}
+
+// sgn(x - y): with sigma = sgn(Den_x Den_y),
+//     sgn(x - y) = sigma sgn(P + Q),  P = A + B sqrt(D_x),  Q = C sqrt(D_y),
+//     A = N_x Den_y - N_y Den_x,  B = S_x Den_y,  C = -S_y Den_x;
+// where P and Q differ in sign, the larger in magnitude wins:
+//     sgn(P^2 - Q^2) = sgn((A^2 + B^2 D_x - C^2 D_y) + 2 A B sqrt(D_x)).
+int compare(const ExactT& x, const ExactT& y) {
+    if (x.minus_infinity || y.minus_infinity) return int(y.minus_infinity) - int(x.minus_infinity);
+    using NT = CGAL::Mpzf;
+    int sigma = sgn(x.Den) * sgn(y.Den);
+    NT A = x.N * y.Den - y.N * x.Den;
+    NT B = NT(x.S) * y.Den, C = NT(-y.S) * x.Den;
+    int sp = sign_surd(A, B, x.D);
+    int sq = CGAL::is_zero(y.D) ? 0 : sgn(C);
+    if (sq == 0) return sigma * sp;
+    if (sp == 0 || sp == sq) return sigma * sq;
+    int larger = sign_surd(NT(A * A + B * B * x.D - C * C * y.D), NT(NT(2) * A * B), x.D);
+    return sigma * (larger == 0 ? 0 : larger > 0 ? sp : sq);
+}
+
+struct ExactHit {
+    SceneHit hit;
+    ExactT t;
+};
+
+constexpr std::uint8_t on_surface_index = 255; // as Scene numbers a line along a surface
+
+// Every hit of one shape on the line (a line along its surface: the interval's first point, as
+// a tangent hit), with its exact t.
+template <class ShapeT>
+void shape_hits(const ShapeT& shape, std::uint32_t index, const Line& l, bool points,
+                std::vector<ExactHit>& out) {
+    exact_form::Classification<CGAL::Mpzf> c;
+    Result r = solve<CGAL::Mpzf>(shape, l, {Need::all, points}, Precision::binary64, &c);
+    for (int k = 0; k < r.count; ++k) {
+        const exact_form::SurdRoot<CGAL::Mpzf>& root = c.roots[k];
+        out.push_back({{r.hits[k], index, std::uint8_t(k), false}, {}});
+        ExactT& t = out.back().t;
+        t.N = root.N, t.Den = root.Den, t.S = root.S, t.D = c.D;
+    }
+    if (r.on_surface) {
+        Hit h{};
+        h.t = r.s0;
+        h.kind = HitKind::tangent, h.part = r.surface_part;
+        h.bound = std::numeric_limits<double>::quiet_NaN();
+        // Scene's definition of the point (the interval's end is not a root to round from).
+        h.p = points && std::isfinite(r.s0) ? detail::point_at(l, r.s0) : Vec3{};
+        out.push_back({{h, index, on_surface_index, false}, {}});
+        ExactT& t = out.back().t;
+        if (!c.s0.bounded) {
+            t.minus_infinity = true;
+        } else {
+            t.N = c.s0.num, t.Den = c.s0.den, t.S = c.s0.S;
+            t.D = c.s0.S != 0 ? c.D : CGAL::Mpzf(0);
+        }
+    }
+}
+
 } // namespace
+
+void intersect(const std::vector<Shape>& shapes, const Line& line, Query query, SceneAnswer& out) {
+    out.hits.clear();
+    out.error = {}, out.error_shape = no_shape, out.exact_comparisons = 0;
+    out.shapes_solved = std::uint32_t(shapes.size());
+    if (Error e = detail::check_line(line); !e.ok()) return void(out.error = e);
+    for (std::uint32_t i = 0; i < shapes.size(); ++i)
+        if (Error e = validate(shapes[i], line); !e.ok())
+            return void((out.error = e, out.error_shape = i));
+    bool points = query.points && query.need != Need::any;
+    std::vector<ExactHit> hits;
+    for (std::uint32_t i = 0; i < shapes.size(); ++i)
+        std::visit([&](const auto& s) { shape_hits(s, i, line, points, hits); }, shapes[i]);
+    std::sort(hits.begin(), hits.end(), [](const ExactHit& a, const ExactHit& b) {
+        int c = compare(a.t, b.t);
+        return c < 0 || (c == 0 &&
+                         std::pair(a.hit.shape, a.hit.index) < std::pair(b.hit.shape, b.hit.index));
+    });
+    // Runs of exactly equal t: tied where they hold two shapes or more.
+    std::size_t first_run_end = hits.size();
+    for (std::size_t i = 0; i < hits.size();) {
+        std::size_t j = i + 1;
+        bool shapes_differ = false;
+        while (j < hits.size() && compare(hits[j].t, hits[i].t) == 0) {
+            shapes_differ = shapes_differ || hits[j].hit.shape != hits[i].hit.shape;
+            ++j;
+        }
+        for (std::size_t k = i; k < j; ++k)
+            hits[k].hit.tied = shapes_differ;
+        if (i == 0) first_run_end = j;
+        i = j;
+    }
+    std::size_t keep = query.need == Need::all       ? hits.size()
+                       : query.need == Need::nearest ? first_run_end
+                                                     : std::min<std::size_t>(hits.size(), 1);
+    for (std::size_t k = 0; k < keep; ++k) {
+        out.hits.push_back(hits[k].hit);
+        if (query.need == Need::any) out.hits.back().tied = false;
+    }
+}
 
 template <class S, if_solvable<S>>
 Result intersect(const S& shape, const Line& l, Query q, Precision p) {

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <variant>
 
 namespace linequad {
@@ -341,10 +342,39 @@ void order_and_name_ties(std::vector<SceneHit>& hits) {
             hits[k].tied = hits[k - 1].tied = true;
 }
 
+// A hit's exact t, as the exact rung finds it: a root, or the first point of a line's interval
+// along the surface ((num + S sqrt(D)) / den, S nonzero only for a disc's chord; or minus
+// infinity, from an unbounded range).
+struct ExactT {
+    exact_form::SurdRoot<BigFloat> root;
+    BigFloat D;
+    bool minus_infinity = false;
+};
+
+int compare_exact(const ExactT& a, const ExactT& b) {
+    if (a.minus_infinity || b.minus_infinity) return int(b.minus_infinity) - int(a.minus_infinity);
+    return detail::compare_roots(a.root, a.D, b.root, b.D);
+}
+
+// The exact t of hit h from its shape's exact classification c, if c has it (it always should:
+// the correct solver's exact rung found the hit).
+std::optional<ExactT> exact_t(const exact_form::Classification<BigFloat>& c, const SceneHit& h) {
+    ExactT t;
+    if (h.index == on_surface_index) {
+        if (c.outcome != exact_form::Outcome::on_surface) return std::nullopt;
+        t.minus_infinity = !c.s0.bounded;
+        t.root.N = c.s0.num, t.root.Den = c.s0.den, t.root.S = c.s0.S;
+        t.D = c.s0.S != 0 ? c.D : BigFloat(0.0);
+        return t;
+    }
+    if (c.outcome != exact_form::Outcome::hits || h.index >= c.count) return std::nullopt;
+    t.root = c.roots[h.index], t.D = c.D;
+    return t;
+}
+
 // The exact order of the hits that rounded to the same double (correct scenes): each run of
-// equal t on two or more shapes sorted by comparing their exact roots, tied only where those are
-// equal; with nearest, only the exactly nearest are kept. A run holding a line along a surface
-// stays as it is (tied): its interval's end is not a root.
+// equal t on two or more shapes sorted by comparing their exact t, and tied only where those
+// are equal on two shapes or more; with nearest, only the exactly nearest are kept.
 void refine_ties(const std::vector<PreparedShape>& shapes, const Line& line, bool nearest,
                  std::vector<SceneHit>& hits, std::uint32_t& comparisons) {
     using Roots = exact_form::Classification<BigFloat>;
@@ -352,63 +382,64 @@ void refine_ties(const std::vector<PreparedShape>& shapes, const Line& line, boo
         std::size_t j = i + 1;
         while (j < hits.size() && hits[j].hit.t == hits[i].hit.t)
             ++j;
-        bool tie = false, comparable = true;
-        for (std::size_t k = i; k < j; ++k) {
+        bool tie = false;
+        for (std::size_t k = i; k < j; ++k)
             tie = tie || hits[k].tied;
-            comparable = comparable && hits[k].index != on_surface_index;
-        }
-        if (!tie || !comparable) {
+        if (!tie) {
             i = j;
             continue;
         }
         std::vector<std::pair<std::uint32_t, Roots>> roots; // per shape of the run
-        auto root_of = [&](const SceneHit& h)
-            -> std::pair<const exact_form::SurdRoot<BigFloat>*, const BigFloat*> {
+        std::vector<std::pair<SceneHit, ExactT>> run;
+        for (std::size_t k = i; k < j; ++k) {
             auto it = std::find_if(roots.begin(), roots.end(),
-                                   [&](const auto& r) { return r.first == h.shape; });
+                                   [&](const auto& r) { return r.first == hits[k].shape; });
             if (it == roots.end()) {
                 roots.emplace_back(
-                    h.shape, std::visit([&](const auto& p) { return detail::exact_roots(p, line); },
-                                        shapes[h.shape]));
+                    hits[k].shape,
+                    std::visit([&](const auto& p) { return detail::exact_roots(p, line); },
+                               shapes[hits[k].shape]));
                 it = roots.end() - 1;
             }
-            const Roots& c = it->second;
-            if (c.outcome != exact_form::Outcome::hits || h.index >= c.count) return {};
-            return {&c.roots[h.index], &c.D};
-        };
-        bool found = true;
-        for (std::size_t k = i; k < j; ++k)
-            found = found && root_of(hits[k]).first != nullptr;
-        if (!found) { // never expected: the exact rung found the hit
+            std::optional<ExactT> t = exact_t(it->second, hits[k]);
+            if (!t) break; // never expected
+            run.emplace_back(hits[k], std::move(*t));
+        }
+        if (run.size() != j - i) {
             i = j;
             continue;
         }
-        auto compare = [&](const SceneHit& a, const SceneHit& b) {
+        auto compare = [&](std::size_t a, std::size_t b) {
             ++comparisons;
-            auto [ra, Da] = root_of(a);
-            auto [rb, Db] = root_of(b);
-            return detail::compare_roots(*ra, *Da, *rb, *Db);
+            return compare_exact(run[a].second, run[b].second);
         };
         // Runs hold a few hits: insertion sort, exact order first, then shape order.
-        for (std::size_t k = i + 1; k < j; ++k)
-            for (std::size_t m = k; m > i; --m) {
-                int c = compare(hits[m], hits[m - 1]);
-                if (c > 0 || (c == 0 && std::pair(hits[m].shape, hits[m].index) >
-                                            std::pair(hits[m - 1].shape, hits[m - 1].index)))
+        for (std::size_t k = 1; k < run.size(); ++k)
+            for (std::size_t m = k; m > 0; --m) {
+                int c = compare(m, m - 1);
+                const SceneHit &a = run[m].first, &b = run[m - 1].first;
+                if (c > 0 || (c == 0 && std::pair(a.shape, a.index) > std::pair(b.shape, b.index)))
                     break;
-                std::swap(hits[m], hits[m - 1]);
+                std::swap(run[m], run[m - 1]);
             }
-        std::vector<int> equal_to_next(j - i, 0);
-        for (std::size_t k = i; k + 1 < j; ++k)
-            equal_to_next[k - i] = compare(hits[k], hits[k + 1]) == 0;
-        for (std::size_t k = i; k < j; ++k)
-            hits[k].tied =
-                (k + 1 < j && equal_to_next[k - i]) || (k > i && equal_to_next[k - i - 1]);
+        // Runs of exactly equal t: tied where they hold two shapes or more.
+        std::size_t first_end = run.size();
+        for (std::size_t a = 0; a < run.size();) {
+            std::size_t b = a + 1;
+            bool shapes_differ = false;
+            while (b < run.size() && compare(b, a) == 0) {
+                shapes_differ = shapes_differ || run[b].first.shape != run[a].first.shape;
+                ++b;
+            }
+            for (std::size_t k = a; k < b; ++k)
+                run[k].first.tied = shapes_differ;
+            if (a == 0) first_end = b;
+            a = b;
+        }
+        for (std::size_t k = 0; k < run.size(); ++k)
+            hits[i + k] = run[k].first;
         if (nearest) {
-            std::size_t end = i + 1;
-            while (end < j && equal_to_next[end - 1 - i])
-                ++end;
-            hits.erase(hits.begin() + std::ptrdiff_t(end), hits.end());
+            hits.erase(hits.begin() + std::ptrdiff_t(i + first_end), hits.end());
             return;
         }
         i = j;

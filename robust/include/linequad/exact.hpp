@@ -9,6 +9,7 @@
 // round to the same value. A binary32 answer needs float inputs (else not_binary32).
 #pragma once
 
+#include "linequad/scene.hpp"
 #include "linequad/solvers.hpp"
 
 #include <cstdint>
@@ -25,6 +26,14 @@ Result intersect(const Shape& shape, const Line& line, Query query = {},
 // independent number type, used to cross-check the oracle.
 Result intersect_gmpq(const Shape& shape, const Line& line, Query query = {},
                       Precision answer = Precision::binary64);
+
+// The oracle for a scene: the line against every shape (none culled), each solved exactly, the
+// hits in the order of their exact t (equal t: shape order) and tied where their exact t are
+// equal on two shapes or more; the answer Scene::intersect (linequad/scene.hpp) defines, which a
+// correct scene must give bit for bit. It orders by comparing the exact roots (their surds) in
+// CGAL::Mpzf, not by the rounded t, and refuses nothing that double cannot hold. shapes_solved
+// counts every shape; exact_comparisons stays 0.
+void intersect(const std::vector<Shape>& shapes, const Line& line, Query query, SceneAnswer& out);
 
 // The oracle as a named solver ("exact") for the CLI and the audit, answering in p.
 const Solver& solver(Precision p = Precision::binary64);
