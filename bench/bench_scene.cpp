@@ -1,7 +1,8 @@
 // Rays per second through scenes of closed frusta (thin rods, as strands and particle tracks are
-// modelled), for the scene's stable and correct solvers, nearest and any, and for Embree's own
-// float cone curves with end discs on the same frusta (when Embree is built in). Run
-// interleaved:
+// modelled), for the scene's stable and correct solvers, nearest and any, through its own
+// hierarchy and through Embree's BVH (scene_embree_bvh: linequad's solvers behind Embree's user
+// geometry), and for Embree's own float cone curves with end discs on the same frusta (when
+// Embree is built in). Run interleaved:
 //   build/bench/linequad_scene_bench --benchmark_repetitions=5
 //       --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
 #include "linequad/linequad.hpp"
@@ -55,9 +56,10 @@ const World& world(int n) {
     return *w;
 }
 
-void scene_rays(benchmark::State& state, SceneSolver solver, Need need) {
+void scene_rays(benchmark::State& state, SceneSolver solver, Need need, SceneTraversal traversal) {
     const World& w = world(int(state.range(0)));
-    Scene scene(w.shapes, solver);
+    Scene scene(w.shapes, solver, traversal);
+    if (scene.traversal() != traversal) return state.SkipWithError("traversal not available");
     SceneAnswer a;
     std::size_t i = 0, hits = 0, solved = 0, refined = 0;
     for (auto _ : state) {
@@ -132,15 +134,20 @@ void embree_rays(benchmark::State& state, Need need) {
 
 void register_all() {
     for (int n : {1000, 100000}) {
-        for (auto [solver, sname] :
-             {std::pair{SceneSolver::stable, "stable"}, std::pair{SceneSolver::correct, "correct"}})
-            for (auto [need, nname] :
-                 {std::pair{Need::nearest, "nearest"}, std::pair{Need::any, "any"}})
-                benchmark::RegisterBenchmark((std::string("scene/") + sname + "/" + nname).c_str(),
-                                             [solver = solver, need = need](benchmark::State& s) {
-                                                 scene_rays(s, solver, need);
-                                             })
-                    ->Arg(n);
+        for (auto [traversal, tname] : {std::pair{SceneTraversal::hierarchy, "scene/"},
+                                        std::pair{SceneTraversal::embree, "scene_embree_bvh/"}}) {
+            if (!scene_traversal_available(traversal)) continue;
+            for (auto [solver, sname] : {std::pair{SceneSolver::stable, "stable"},
+                                         std::pair{SceneSolver::correct, "correct"}})
+                for (auto [need, nname] :
+                     {std::pair{Need::nearest, "nearest"}, std::pair{Need::any, "any"}})
+                    benchmark::RegisterBenchmark(
+                        (std::string(tname) + sname + "/" + nname).c_str(),
+                        [solver = solver, need = need, traversal = traversal](benchmark::State& s) {
+                            scene_rays(s, solver, need, traversal);
+                        })
+                        ->Arg(n);
+        }
 #ifdef LINEQUAD_BENCH_EMBREE
         for (auto [need, nname] :
              {std::pair{Need::nearest, "nearest"}, std::pair{Need::any, "any"}})

@@ -106,10 +106,12 @@ SceneAnswer brute_force(const std::vector<Shape>& shapes, SceneSolver solver, co
     return all;
 }
 
-void check_against_brute_force(SceneSolver solver) {
+void check_against_brute_force(SceneSolver solver,
+                               SceneTraversal traversal = SceneTraversal::hierarchy) {
     // Shapes of median size 7 (a few unbounded) over a cube of side 400.
     World w = world(240, 400, 7);
-    Scene scene(w.shapes, solver);
+    Scene scene(w.shapes, solver, traversal);
+    REQUIRE(scene.traversal() == traversal);
     INFO("shape " << scene.error_shape() << ": " << message(scene.error()));
     REQUIRE(scene.error().ok());
     SceneAnswer a;
@@ -178,6 +180,63 @@ TEST_CASE("scene: every answer is the brute-force one (stable)", "[scene]") {
 
 TEST_CASE("scene: every answer is the brute-force one (correct)", "[scene]") {
     check_against_brute_force(SceneSolver::correct);
+}
+
+TEST_CASE("scene: Embree's traversal gives every answer the hierarchy gives", "[scene]") {
+    if (!scene_traversal_available(SceneTraversal::embree)) {
+        WARN("built without Embree: its traversal is not tested");
+        return;
+    }
+    check_against_brute_force(SceneSolver::stable, SceneTraversal::embree);
+    check_against_brute_force(SceneSolver::correct, SceneTraversal::embree);
+}
+
+TEST_CASE("scene: Embree's float frame holds shapes of any size anywhere", "[scene]") {
+    // Embree drops boxes beyond 2^60 of the origin and cannot tell float ulps apart: the boxes
+    // are moved and scaled into [-2, 2] around their centre. A cylinder 2^82 out (the fuzzer's
+    // case: dropped before the scaling) and one 2^-300 small, each alone and both together.
+    Cylinder far{{0x1.db69ce4f5b0fcp+81, 0x1.443b4baa3a2fp+80, 0x1.09355d7431ac4p+80},
+                 {0x1.5e2d2a0be3676p+82, 0x1.1930f7b7c8932p+80, 0x1.09f170b7466d9p+82},
+                 0x1.4ed21614047dep+81,
+                 true,
+                 false};
+    Line far_ray{{0x1.979bd8ae69019p+83, 0x1.3f8c9d744ed9ep+81, 0x1.17623b0c94947p+80},
+                 {-0x1.768d29a5f4c6ep+82, 0x1.6bc3591ca97c8p+79, 0x1.975624c642148p+79},
+                 Range::ray};
+    Cylinder tiny{{0, 0, -0x1p-300}, {0, 0, 0x1p-300}, 0x1p-301, true, true};
+    Line tiny_ray{{-1, 0x1p-303, 0}, {1, 0, 0}, Range::ray};
+    for (auto shapes :
+         {std::vector<Shape>{far}, std::vector<Shape>{tiny}, std::vector<Shape>{far, tiny}}) {
+        Scene scene(shapes, SceneSolver::correct, SceneTraversal::embree);
+        for (const Line& l : {far_ray, tiny_ray}) {
+            SceneAnswer got, want;
+            scene.intersect(l, {Need::all, true}, got);
+            exact::intersect(shapes, l, {Need::all, true}, want);
+            REQUIRE(got.hits.size() == want.hits.size());
+            for (std::size_t k = 0; k < got.hits.size(); ++k)
+                CHECK(same_hit(got.hits[k], want.hits[k]));
+        }
+    }
+    // The stable scene as its own hierarchy answers (it refuses the tiny cylinder: out_of_range).
+    Scene both({far, tiny}, SceneSolver::stable, SceneTraversal::embree),
+        own({far, tiny}, SceneSolver::stable, SceneTraversal::hierarchy);
+    for (const Line& l : {far_ray, tiny_ray}) {
+        SceneAnswer a, b;
+        both.intersect(l, {Need::all, true}, a);
+        own.intersect(l, {Need::all, true}, b);
+        CHECK(a.error.code == b.error.code);
+        REQUIRE(a.hits.size() == b.hits.size());
+        for (std::size_t k = 0; k < a.hits.size(); ++k)
+            CHECK(same_hit(a.hits[k], b.hits[k]));
+    }
+}
+
+TEST_CASE("scene: a traversal that is not built in leaves the hierarchy in use", "[scene]") {
+    Scene scene({Cylinder{{0, 0, 0}, {0, 0, 1}, 1, true, false}}, SceneSolver::correct,
+                SceneTraversal::embree);
+    CHECK(scene.traversal() == (scene_traversal_available(SceneTraversal::embree)
+                                    ? SceneTraversal::embree
+                                    : SceneTraversal::hierarchy));
 }
 
 TEST_CASE("scene: the exact oracle gives every correct scene answer bit for bit", "[scene]") {
@@ -443,8 +502,17 @@ TEST_CASE("scene: shapes of every size make a deep hierarchy and lose no hit", "
         double r = std::ldexp(1.0, k - 200);
         shapes.push_back(Cylinder{{r, 0, -r}, {r, 0, r}, 0.9 * r, true, true});
     }
-    for (SceneSolver solver : {SceneSolver::stable, SceneSolver::correct}) {
-        Scene scene(shapes, solver);
+    // Through Embree too (where it is built in): boxes from 2^-200 to 2^199, scaled into its
+    // float frame, the smallest far below float's resolution there.
+    for (auto [solver, traversal] : {std::pair{SceneSolver::stable, SceneTraversal::hierarchy},
+                                     std::pair{SceneSolver::correct, SceneTraversal::hierarchy},
+                                     std::pair{SceneSolver::stable, SceneTraversal::automatic},
+                                     std::pair{SceneSolver::correct, SceneTraversal::automatic}}) {
+        Scene scene(shapes, solver, traversal);
+        CHECK(scene.traversal() == (traversal == SceneTraversal::automatic &&
+                                            scene_traversal_available(SceneTraversal::embree)
+                                        ? SceneTraversal::embree
+                                        : SceneTraversal::hierarchy));
         CHECK(scene.depth() > 64); // past the area heuristic's levels
         SceneAnswer a;
         for (Line l : {Line{{-0x1p210, 0, 0}, {1, 0, 0}, Range::ray},

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace linequad::audit {
@@ -71,7 +72,7 @@ std::uint64_t position_ulps(const Line& l, double t, const SceneHit& exact) {
 }
 
 void grade_line(const std::vector<Shape>& shapes, const Scene& stable, const Scene& correct,
-                const Line& l, SceneTally& t) {
+                const Scene* embree, const Line& l, SceneTally& t) {
     SceneAnswer want_all, want_nearest, got;
     exact::intersect(shapes, l, {Need::all, true}, want_all);
     exact::intersect(shapes, l, {Need::nearest, true}, want_nearest);
@@ -92,6 +93,17 @@ void grade_line(const std::vector<Shape>& shapes, const Scene& stable, const Sce
         ++t.correct_differs_nearest;
     t.refined_nearest += got.exact_comparisons > 0;
     t.solved += got.shapes_solved;
+    if (embree) { // the same correct scene through Embree's BVH: the same answers
+        bool differs = false;
+        for (Need need : {Need::all, Need::nearest}) {
+            SceneAnswer e;
+            embree->intersect(l, {need, true}, e);
+            if (!(want_all.ok() && e.error.code == ErrorCode::out_of_range))
+                differs = differs || !same_answer(e, need == Need::all ? want_all : want_nearest);
+        }
+        t.embree_lines += 1;
+        t.embree_differs += differs;
+    }
 
     if (!want_all.ok()) return; // bad input: the correct scene's verdict is graded above
     stable.intersect(l, {Need::nearest, true}, got);
@@ -133,11 +145,15 @@ void grade_line(const std::vector<Shape>& shapes, const Scene& stable, const Sce
 
 void grade_scene(const SceneCase& sc, SceneTally& t) {
     std::vector<Shape> shapes = sc.shape_list();
-    Scene stable(shapes, SceneSolver::stable), correct(shapes, SceneSolver::correct);
+    Scene stable(shapes, SceneSolver::stable, SceneTraversal::hierarchy),
+        correct(shapes, SceneSolver::correct, SceneTraversal::hierarchy);
+    std::optional<Scene> embree;
+    if (scene_traversal_available(SceneTraversal::embree))
+        embree.emplace(shapes, SceneSolver::correct, SceneTraversal::embree);
     ++t.scenes;
     t.shapes += shapes.size();
     for (const SceneLine& l : sc.lines)
-        grade_line(shapes, stable, correct, l.line, t);
+        grade_line(shapes, stable, correct, embree ? &*embree : nullptr, l.line, t);
 }
 
 void append_scene(std::string& out, const SceneCase& sc) {
@@ -294,11 +310,19 @@ std::string scene_report_markdown(const std::vector<SceneRow>& rows, const Scene
               quantile(t.stable_error, 0.99, t.stable_max_ulps) + " / " + count(t.stable_max_ulps) +
               " |\n";
     }
-    std::uint64_t refused = 0, stable_refused = 0;
-    for (const SceneRow& r : rows)
+    std::uint64_t refused = 0, stable_refused = 0, embree_lines = 0, embree_differs = 0;
+    for (const SceneRow& r : rows) {
         refused += r.tally.correct_refused, stable_refused += r.tally.stable_refused;
+        embree_lines += r.tally.embree_lines, embree_differs += r.tally.embree_differs;
+    }
     md += "\nRefused (out_of_range where the oracle answers): correct " + count(refused) +
           " lines, stable " + count(stable_refused) + ".\n";
+    if (embree_lines)
+        md += "\nThe correct scene traversing Embree's BVH instead of its own: " +
+              count(embree_differs) + " of " + count(embree_lines) +
+              " lines answered otherwise than the oracle (need all and nearest).\n";
+    else
+        md += "\nBuilt without Embree: its traversal was not graded.\n";
     return md;
 }
 

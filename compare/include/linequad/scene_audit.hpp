@@ -61,6 +61,9 @@ struct SceneTally {
     std::uint64_t correct_differs_all = 0, correct_differs_nearest = 0, correct_refused = 0;
     std::uint64_t refined_all = 0, refined_nearest = 0; // lines with an exact comparison
     std::uint64_t comparisons_all = 0;
+    // the correct scene traversing Embree's BVH (when built with it): lines graded, and those
+    // whose answer (all or nearest) is not the oracle's
+    std::uint64_t embree_lines = 0, embree_differs = 0;
     // stable scene, need nearest: its hit stands for (is nearest in t to) an exact hit of its
     // shape that is not among the nearest, no hit where there is one, a hit where there is none;
     // need all: another number of hits, or the same number on shapes in another order (beyond

@@ -26,6 +26,18 @@ namespace linequad {
 // comparison of their roots, which is needed only there).
 enum class SceneSolver : std::uint8_t { stable, correct };
 
+// What finds the shapes a line comes near: linequad's own hierarchy of double boxes, or Embree's
+// (its BVH over the same boxes as user geometry, traversed with a float ray; the boxes are
+// widened to cover that ray's rounding, so it loses no shape either; 2.5 to 4.4 times faster on
+// scenes of rods, bench/bench_scene.cpp). Embree is there when linequad was built with it
+// (scene_traversal_available); automatic takes it then, and the hierarchy otherwise. A scene asked
+// for Embree without it, or whose boxes float cannot hold around their centre, uses its own; so
+// does a line whose slab parameters overflow (a direction of subnormal size). The answers are the
+// same either way (but for which hit `any` finds first, and a refusal from a shape beyond the
+// nearest hit, which one order may solve and the other not).
+enum class SceneTraversal : std::uint8_t { automatic, hierarchy, embree };
+bool scene_traversal_available(SceneTraversal t);
+
 inline constexpr std::uint32_t no_shape = std::numeric_limits<std::uint32_t>::max();
 
 struct SceneHit {
@@ -67,13 +79,15 @@ class Scene {
     // Prepares every shape and builds the hierarchy of boxes. A shape that cannot be solved
     // (validate()'s errors) is kept as the scene's error: every query then returns it, naming
     // the shape.
-    explicit Scene(const std::vector<Shape>& shapes, SceneSolver solver = SceneSolver::correct);
+    explicit Scene(const std::vector<Shape>& shapes, SceneSolver solver = SceneSolver::correct,
+                   SceneTraversal traversal = SceneTraversal::automatic);
     ~Scene();
     Scene(Scene&&) noexcept;
     Scene& operator=(Scene&&) noexcept;
 
     std::size_t size() const;
     SceneSolver solver() const;
+    SceneTraversal traversal() const;  // the one in use: hierarchy or embree
     Error error() const;               // the first bad shape's error, or none
     std::uint32_t error_shape() const; // that shape, or no_shape
     Box bounds(std::uint32_t i) const; // shape i's box, rounded outward
