@@ -60,6 +60,28 @@ TEST_CASE("exact: Mpzf and Gmpq kernels agree bit for bit", "[exact]") {
     CHECK(hits > 300); // the random cases do hit
 }
 
+TEST_CASE("exact: the interval filter's misses are the exact path's", "[exact]") {
+    // The oracle (Mpzf) lets its interval filter answer a miss; Gmpq never filters. Lines pass
+    // 2^-k of the radius outside and inside a closed cylinder's side and beyond its discs' rims
+    // (k = 1 .. 60: from what intervals decide to what they cannot), and graze them exactly.
+    for (int k = 0; k <= 60; ++k) {
+        double d = k == 0 ? 0 : std::ldexp(1.0, -k);
+        for (double side : {-1.0, 1.0}) {
+            for (bool caps : {false, true}) {
+                Cylinder c{{0, 0, 0}, {0, 0, 2}, 1, true, caps};
+                Line beside{{-3, 1 + side * d, 1}, {1, 0, 0}, Range::line};
+                Line past_rim{{-3, 0, 2 + side * d}, {1, 0, 0}, Range::ray};
+                Line oblique{{-3, 1 + side * d, 3}, {3, 0, -1}, Range::segment};
+                for (const Line& l : {beside, past_rim, oblique}) {
+                    INFO("k " << k << " side " << side << " caps " << caps);
+                    Result a = exact::intersect(c, l), b = exact::intersect_gmpq(c, l);
+                    CHECK(same(a, b));
+                }
+            }
+        }
+    }
+}
+
 TEST_CASE("exact: a circular cylinder is an elliptic cylinder with axes of length r", "[exact]") {
     Random r;
     // Axis 2 (3, 4, 0); a, b orthogonal to it with length 5, exactly.

@@ -28,6 +28,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace {
@@ -178,6 +179,7 @@ struct NamedSolver {
 struct OpenScene {
     SceneHeader header;
     std::vector<std::string> ids;
+    std::unordered_set<std::string> known; // the ids, to refuse a repeated one in O(1)
     std::vector<Shape> shapes;
     std::string broken; // why its lines get no answer; empty if they do
     bool has_lines = false;
@@ -271,7 +273,7 @@ int run_solve(const SolveArgs& a) {
             if (o.has_lines) {
                 parsed = false;
                 why = at + "shape " + rec.shape.id + " comes after the scene's lines";
-            } else if (std::find(o.ids.begin(), o.ids.end(), rec.shape.id) != o.ids.end()) {
+            } else if (!o.known.insert(rec.shape.id).second) {
                 parsed = false;
                 why = at + "field \"shape_id\": " + rec.shape.id + " is already in the scene";
             }

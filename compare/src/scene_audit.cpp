@@ -12,6 +12,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <unordered_set>
 
 namespace linequad::audit {
 
@@ -192,6 +193,7 @@ std::string quantile(const Histogram& h, double q, std::uint64_t max) {
 std::vector<SceneCase> read_scenes(const std::string& path, std::size_t max_line_bytes) {
     jsonl::LineReader in(path, max_line_bytes);
     std::vector<SceneCase> scenes;
+    std::unordered_set<std::string> ids; // the open scene's shape ids
     std::string line, why;
     Record rec;
     for (;;) {
@@ -206,6 +208,7 @@ std::vector<SceneCase> read_scenes(const std::string& path, std::size_t max_line
         switch (rec.kind) {
         case RecordKind::scene:
             scenes.push_back({rec.scene, {}, {}});
+            ids.clear();
             break;
         case RecordKind::scene_shape: {
             if (scenes.empty())
@@ -215,10 +218,9 @@ std::vector<SceneCase> read_scenes(const std::string& path, std::size_t max_line
             if (!sc.lines.empty())
                 throw std::runtime_error(at + "shape " + rec.shape.id +
                                          " comes after the scene's lines");
-            for (const SceneShape& s : sc.shapes)
-                if (s.id == rec.shape.id)
-                    throw std::runtime_error(at + "field \"shape_id\": " + rec.shape.id +
-                                             " is already in the scene");
+            if (!ids.insert(rec.shape.id).second)
+                throw std::runtime_error(at + "field \"shape_id\": " + rec.shape.id +
+                                         " is already in the scene");
             sc.shapes.push_back(rec.shape);
             break;
         }

@@ -8,12 +8,14 @@
 #include "solve/finish.hpp"
 
 #include <CGAL/Gmpq.h>
+#include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 namespace linequad::exact {
 
@@ -93,6 +95,70 @@ Result round_on_surface(const exact_form::Classification<NT>& c, Precision targe
     return r;
 }
 
+// The oracle's own filter: the same division-free form and classification in CGAL's interval
+// arithmetic (directed rounding, every operation enclosing the exact value), whose sign is
+// `undecided` where an interval holds zero. It may only say that a line misses: then no exact
+// evaluation is needed at all, and the answer (no hit) is the one the exact classification
+// would give, since every sign it decided is the exact sign. Anything else (hits, a line on the
+// surface, a sign it cannot decide) goes to the exact path, which gives the answer. It shares
+// with fast/ only the form, as the exact path does, not a solver.
+namespace filter {
+
+struct Interval {
+    CGAL::Interval_nt<false> x;
+    Interval() = default;
+    Interval(double d) : x(d) {}
+    Interval(int i) : x(double(i)) {}
+    Interval(CGAL::Interval_nt<false> v) : x(v) {}
+};
+inline Interval operator+(const Interval& a, const Interval& b) {
+    return a.x + b.x;
+}
+inline Interval operator-(const Interval& a, const Interval& b) {
+    return a.x - b.x;
+}
+inline Interval operator-(const Interval& a) {
+    return -a.x;
+}
+inline Interval operator*(const Interval& a, const Interval& b) {
+    return a.x * b.x;
+}
+// An interval holding zero (or NaN, from inf - inf) cannot say.
+inline int sign(const Interval& a) {
+    if (a.x.inf() > 0) return 1;
+    if (a.x.sup() < 0) return -1;
+    if (a.x.inf() == 0 && a.x.sup() == 0) return 0;
+    return exact_form::undecided;
+}
+
+// Inputs from 2^-40 to 2^40 (or 0): the form's polynomials (degree at most 12) then stay far
+// from overflow, so no interval meets an infinity. Others go straight to the exact path.
+inline bool moderate(double x) {
+    double a = std::fabs(x);
+    return a == 0 || (a >= 0x1p-40 && a <= 0x1p40);
+}
+inline bool moderate(Vec3 p) {
+    return moderate(p.x) && moderate(p.y) && moderate(p.z);
+}
+
+template <class ShapeT>
+bool misses(const ShapeT& shape, const Line& l, Need need) {
+    bool ok = moderate(l.L0) && moderate(l.v) && (!l.range.has_t0() || moderate(l.range.t0)) &&
+              (!l.range.has_t1() || moderate(l.range.t1));
+    detail::for_each_field<ShapeT>([&](const auto& f) { ok = ok && moderate(shape.*f.member); });
+    if (!ok) return false;
+    CGAL::Protect_FPU_rounding<true> upward; // Interval_nt<false> needs it, and restores it
+    using Traits = detail::ShapeTraits<ShapeT>;
+    int orientation = Traits::template exact_orientation<Interval>(shape);
+    if (orientation == exact_form::undecided) return false;
+    exact_form::Classification<Interval> c =
+        exact_form::classify(Traits::template exact_quadratic<Interval>(shape, l, orientation),
+                             exact_form::parameter_range<Interval>(l.range), need);
+    return c.outcome == exact_form::Outcome::none;
+}
+
+} // namespace filter
+
 // roots, when given, receives the exact classification the answer was rounded from.
 template <class NT, class ShapeT>
 Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
@@ -100,6 +166,13 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
     if (Error e = validate(shape, l); !e.ok()) return Result::failure(e);
     if (target == Precision::binary32)
         if (Error e = detail::binary32_error(shape, l); !e.ok()) return Result::failure(e);
+    // The filter, on the oracle's own number type only (Gmpq stays unfiltered: the cross-check).
+    if constexpr (std::is_same_v<NT, CGAL::Mpzf>) {
+        if (filter::misses(shape, l, query.need)) {
+            if (roots) *roots = exact_form::Classification<NT>{};
+            return Result{};
+        }
+    }
     // The frame's orientation folds into the extent; the oracle decides it in NT itself.
     using Traits = detail::ShapeTraits<ShapeT>;
     int orientation = Traits::template exact_orientation<NT>(shape);
