@@ -60,26 +60,37 @@ TEST_CASE("exact: Mpzf and Gmpq kernels agree bit for bit", "[exact]") {
     CHECK(hits > 300); // the random cases do hit
 }
 
-TEST_CASE("exact: the interval filter's misses are the exact path's", "[exact]") {
-    // The oracle (Mpzf) lets its interval filter answer a miss; Gmpq never filters. Lines pass
-    // 2^-k of the radius outside and inside a closed cylinder's side and beyond its discs' rims
-    // (k = 1 .. 60: from what intervals decide to what they cannot), and graze them exactly.
+TEST_CASE("exact: the interval filter decides as the exact path does", "[exact]") {
+    // The oracle (Mpzf) takes its interval filter's misses as they are and rebuilds the roots
+    // of the hits it decides from each root's form; Gmpq never filters. Every form: lines 2^-k
+    // of the radius beside a closed cylinder's side and past its rims (k = 0: grazing; up to 60:
+    // past what intervals decide), across its discs, in a disc's plane grazing the rim, and a
+    // cone's lines parallel to a generator (A = 0) and through the apex of two nappes.
+    auto agree = [](const Shape& s, const Line& l) {
+        Result a = exact::intersect(s, l), b = exact::intersect_gmpq(s, l);
+        CHECK(same(a, b));
+        return a.count;
+    };
+    int hits = 0;
     for (int k = 0; k <= 60; ++k) {
         double d = k == 0 ? 0 : std::ldexp(1.0, -k);
         for (double side : {-1.0, 1.0}) {
             for (bool caps : {false, true}) {
+                INFO("k " << k << " side " << side << " caps " << caps);
                 Cylinder c{{0, 0, 0}, {0, 0, 2}, 1, true, caps};
-                Line beside{{-3, 1 + side * d, 1}, {1, 0, 0}, Range::line};
-                Line past_rim{{-3, 0, 2 + side * d}, {1, 0, 0}, Range::ray};
-                Line oblique{{-3, 1 + side * d, 3}, {3, 0, -1}, Range::segment};
-                for (const Line& l : {beside, past_rim, oblique}) {
-                    INFO("k " << k << " side " << side << " caps " << caps);
-                    Result a = exact::intersect(c, l), b = exact::intersect_gmpq(c, l);
-                    CHECK(same(a, b));
-                }
+                hits += agree(c, {{-3, 1 + side * d, 1}, {1, 0, 0}, Range::line});
+                hits += agree(c, {{-3, 0, 2 + side * d}, {1, 0, 0}, Range::ray});
+                hits += agree(c, {{-3, 1 + side * d, 3}, {3, 0, -1}, Range::segment});
+                hits += agree(c, {{0.5, side * d, 5}, {0, 0, -1}, Range::line});   // the discs
+                hits += agree(c, {{-3, 1 + side * d, 2}, {1, 0, 0}, Range::line}); // disc plane
+                EllipticCone cone{{0, 0, 0}, {0, 0, 2}, {1, 0, 0}, {0, 1, 0}, true, caps, 2};
+                // Parallel to the generator through (1, 0, 0) and (0, 0, 2), moved 2^-k.
+                hits += agree(cone, {{0.5 + side * d, 0, 0}, {-1, 0, 2}, Range::line});
+                hits += agree(cone, {{side * d, 0, 2}, {1, 0.5, 1}, Range::line}); // the apex
             }
         }
     }
+    CHECK(hits > 500);
 }
 
 TEST_CASE("exact: a circular cylinder is an elliptic cylinder with axes of length r", "[exact]") {

@@ -97,11 +97,11 @@ Result round_on_surface(const exact_form::Classification<NT>& c, Precision targe
 
 // The oracle's own filter: the same division-free form and classification in CGAL's interval
 // arithmetic (directed rounding, every operation enclosing the exact value), whose sign is
-// `undecided` where an interval holds zero. It may only say that a line misses: then no exact
-// evaluation is needed at all, and the answer (no hit) is the one the exact classification
-// would give, since every sign it decided is the exact sign. Anything else (hits, a line on the
-// surface, a sign it cannot decide) goes to the exact path, which gives the answer. It shares
-// with fast/ only the form, as the exact path does, not a solver.
+// `undecided` where an interval holds zero. Every sign it decides is the exact sign, so its
+// classification is the exact one: a miss needs no exact evaluation at all, and decided hits
+// need only the exact values to round (the quadratic, and each root rebuilt from it), not the
+// exact classification. A line on the surface and a sign it cannot decide go the exact way. It
+// shares with fast/ only the form, as the exact path does, not a solver.
 namespace filter {
 
 struct Interval {
@@ -141,20 +141,61 @@ inline bool moderate(Vec3 p) {
     return moderate(p.x) && moderate(p.y) && moderate(p.z);
 }
 
+// What the filter decided: nothing, a miss, or the hits (each root's kind, part and form, and
+// the orientation, all exact: every sign it decided is the exact sign).
+struct Verdict {
+    enum class What { undecided, miss, hits } what = What::undecided;
+    int orientation = 0;
+    exact_form::LineQuadratic<Interval> q;
+    exact_form::Classification<Interval> c;
+};
+
 template <class ShapeT>
-bool misses(const ShapeT& shape, const Line& l, Need need) {
+Verdict decide(const ShapeT& shape, const Line& l, Need need) {
+    Verdict v;
     bool ok = moderate(l.L0) && moderate(l.v) && (!l.range.has_t0() || moderate(l.range.t0)) &&
               (!l.range.has_t1() || moderate(l.range.t1));
     detail::for_each_field<ShapeT>([&](const auto& f) { ok = ok && moderate(shape.*f.member); });
-    if (!ok) return false;
+    if (!ok) return v;
     CGAL::Protect_FPU_rounding<true> upward; // Interval_nt<false> needs it, and restores it
     using Traits = detail::ShapeTraits<ShapeT>;
-    int orientation = Traits::template exact_orientation<Interval>(shape);
-    if (orientation == exact_form::undecided) return false;
-    exact_form::Classification<Interval> c =
-        exact_form::classify(Traits::template exact_quadratic<Interval>(shape, l, orientation),
-                             exact_form::parameter_range<Interval>(l.range), need);
-    return c.outcome == exact_form::Outcome::none;
+    v.orientation = Traits::template exact_orientation<Interval>(shape);
+    if (v.orientation == exact_form::undecided) return v;
+    v.q = Traits::template exact_quadratic<Interval>(shape, l, v.orientation);
+    v.c = exact_form::classify(v.q, exact_form::parameter_range<Interval>(l.range), need);
+    if (v.c.outcome == exact_form::Outcome::none) v.what = Verdict::What::miss;
+    if (v.c.outcome == exact_form::Outcome::hits) v.what = Verdict::What::hits;
+    return v;
+}
+
+// The exact classification of decided hits, without deciding anything again: each root rebuilt
+// from the exact quadratic by the form classify() gave it (exact_form.hpp), which the root's
+// part and S and the decided signs of A and dZ name:
+//   a disc crossed (dZ != 0):        N = end - Z0, Den = dZ, S = 0
+//   a rim grazed in a disc's plane:  N = -B, Den = A, S = 0
+//   lateral, A = 0:                  N = -C0, Den = 2B, S = 0 (D = 0)
+//   lateral, A != 0:                 N = -B, Den = A, S as decided (D = B^2 - A C0, or 0 if < 0)
+template <class NT>
+exact_form::Classification<NT> rebuilt(const Verdict& v, const exact_form::LineQuadratic<NT>& q) {
+    exact_form::Classification<NT> c;
+    c.outcome = exact_form::Outcome::hits;
+    c.count = v.c.count;
+    bool flat_A = sign(v.q.A) == 0, flat_dZ = sign(v.q.dZ) == 0;
+    c.D = flat_A ? NT(0) : NT(q.B * q.B - q.A * q.C0);
+    if (CGAL::sign(c.D) < 0) c.D = NT(0);
+    for (int k = 0; k < c.count; ++k) {
+        const exact_form::SurdRoot<Interval>& from = v.c.roots[k];
+        exact_form::SurdRoot<NT>& r = c.roots[k];
+        r.kind = from.kind, r.part = from.part, r.S = from.S;
+        if (from.part != Part::lateral && !flat_dZ) {
+            r.N = (from.part == Part::base ? q.lo : q.hi) - q.Z0, r.Den = q.dZ;
+        } else if (from.part == Part::lateral && flat_A) {
+            r.N = -q.C0, r.Den = NT(2) * q.B;
+        } else {
+            r.N = -q.B, r.Den = q.A;
+        }
+    }
+    return c;
 }
 
 } // namespace filter
@@ -167,18 +208,23 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
     if (target == Precision::binary32)
         if (Error e = detail::binary32_error(shape, l); !e.ok()) return Result::failure(e);
     // The filter, on the oracle's own number type only (Gmpq stays unfiltered: the cross-check).
+    filter::Verdict verdict;
     if constexpr (std::is_same_v<NT, CGAL::Mpzf>) {
-        if (filter::misses(shape, l, query.need)) {
+        verdict = filter::decide(shape, l, query.need);
+        if (verdict.what == filter::Verdict::What::miss) {
             if (roots) *roots = exact_form::Classification<NT>{};
             return Result{};
         }
     }
-    // The frame's orientation folds into the extent; the oracle decides it in NT itself.
+    bool decided = verdict.what == filter::Verdict::What::hits;
+    // The frame's orientation folds into the extent; the oracle decides it in NT itself (or the
+    // filter did).
     using Traits = detail::ShapeTraits<ShapeT>;
-    int orientation = Traits::template exact_orientation<NT>(shape);
+    int orientation = decided ? verdict.orientation : Traits::template exact_orientation<NT>(shape);
+    exact_form::LineQuadratic<NT> q = Traits::template exact_quadratic<NT>(shape, l, orientation);
     exact_form::Classification<NT> c =
-        exact_form::classify(Traits::template exact_quadratic<NT>(shape, l, orientation),
-                             exact_form::parameter_range<NT>(l.range), query.need);
+        decided ? filter::rebuilt(verdict, q)
+                : exact_form::classify(q, exact_form::parameter_range<NT>(l.range), query.need);
     if (roots) *roots = c;
     if (c.outcome == exact_form::Outcome::on_surface) return round_on_surface(c, target);
     if (c.outcome != exact_form::Outcome::hits) return Result{}; // exact: never undecided
