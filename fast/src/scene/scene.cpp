@@ -110,8 +110,8 @@ double tie_end(double best) {
 // there as the float ray o + s d:
 //   O = fl(fl(L0 + ta v) - c) (an fma, then one subtraction) is within 2^-52 (|c| + R) of the
 //   exact point, R the largest |corner of G - c|, and o = float(2^m O) within 2^-24 R more;
-//   d = float(2^k v), 2^k |v|_inf in [1, 2), is within 2^-24 of each component of 2^k v, which
-//   the ray follows for (t - ta) 2^k... up to the width W of G: 2^-24 W more.
+//   d = float(2^k v), 2^k |v|_inf in [1, 2), is within 2^-24 |2^k v|_inf of 2^k v in each
+//   component, and within G the line moves (t - ta) |v|_inf <= W along it: 2^-24 W more.
 // So every point of the line in G is within 2^-24 (R + W) + 2^-51 (|c| + R) of the float ray's
 // point at s = (t - ta) 2^(m - k) (plus float's and double's subnormal steps); delta doubles
 // that, and Embree's robust traversal tests each of its boxes conservatively for its own ray. A
