@@ -107,11 +107,11 @@ void grade_line(const std::vector<Shape>& shapes, const Scene& stable, const Sce
     }
 
     if (!want_all.ok()) return; // bad input: the correct scene's verdict is graded above
+    stable.intersect(l, {Need::all, true}, got);
+    if (!got.ok()) return void(++t.stable_refused); // refused for need all: the line is refused
+    SceneAnswer all = std::move(got);
     stable.intersect(l, {Need::nearest, true}, got);
-    if (!got.ok()) {
-        ++t.stable_refused;
-        return;
-    }
+    if (!got.ok()) return void(++t.stable_refused);
     if (got.hits.empty() != want_nearest.hits.empty()) {
         ++(got.hits.empty() ? t.stable_missed : t.stable_phantom);
     } else if (!got.hits.empty()) {
@@ -136,11 +136,9 @@ void grade_line(const std::vector<Shape>& shapes, const Scene& stable, const Sce
             t.stable_max_ulps = std::max(t.stable_max_ulps, u);
         }
     }
-    stable.intersect(l, {Need::all, true}, got);
-    if (!got.ok()) return void(++t.stable_refused);
-    if (got.hits.size() != want_all.hits.size())
+    if (all.hits.size() != want_all.hits.size())
         ++t.stable_count_differs;
-    else if (shape_order(got) != shape_order(want_all))
+    else if (shape_order(all) != shape_order(want_all))
         ++t.stable_misordered;
 }
 
