@@ -15,8 +15,8 @@ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=
   -DLINEQUAD_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build-fuzz -j"$(nproc)" --target linequad_fuzz linequad_fuzz_parser
 
-# Seeds: the shipped cases and the fuzz regressions, one per file; for the parser also result
-# lines and a small report, when the main build (scripts/build.sh) has made the program.
+# Seeds: the shipped cases and the fuzz regressions, one per file; for the parser also the
+# example scenes' records, result lines and a small report, when the main build (scripts/build.sh) has made the program.
 rm -rf build-fuzz/corpus build-fuzz/corpus-parser
 mkdir -p build-fuzz/corpus build-fuzz/corpus-parser
 i=0
@@ -25,6 +25,10 @@ while IFS= read -r line; do
   printf '%s' "$line" > "build-fuzz/corpus-parser/case-$i"
   i=$((i+1))
 done < <(cat examples/cases.jsonl tests/fuzz_regressions.jsonl)
+while IFS= read -r line; do # scenes' records, for the parser
+  printf '%s' "$line" > "build-fuzz/corpus-parser/scene-$i"
+  i=$((i+1))
+done < examples/scenes.jsonl
 if [ -x build/compare/linequad ]; then
   while IFS= read -r line; do printf '%s' "$line" > "build-fuzz/corpus-parser/result-$i"; i=$((i+1)); done \
     < <(build/compare/linequad solve --solver all examples/cases.jsonl || true)

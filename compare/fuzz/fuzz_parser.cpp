@@ -2,7 +2,8 @@
 // is read is written back faithfully:
 // - JSON: parse -> write -> parse gives the same value, and writing it again the same text;
 // - a case: parse -> format -> parse gives the same case, bit for bit (the formatted text of
-//   every double is exact, so equal text is equal bits);
+//   every double is exact, so equal text is equal bits); a scene's record (header, shape, line)
+//   likewise, and of the same kind;
 // - a result line and a report: format(parse(x)) is a fixed point of format(parse(.)).
 // A failure aborts with the input and what broke.
 #include "linequad/audit.hpp"
@@ -46,6 +47,22 @@ void case_round_trip(std::string_view text) {
         broken("a case changed through format and parse", text, formatted);
 }
 
+// A scene's records: the kind survives, and the text is a fixed point after one round.
+void record_round_trip(std::string_view text) {
+    Record a, b;
+    std::string why;
+    if (!parse_record(text, &a, &why) || a.kind == RecordKind::single_case) return;
+    std::string formatted = a.kind == RecordKind::scene         ? format_scene(a.scene)
+                            : a.kind == RecordKind::scene_shape ? format_scene_shape(a.shape)
+                                                                : format_scene_line(a.line);
+    if (!parse_record(formatted, &b, &why)) broken("a formatted record does not parse", text, why);
+    std::string again = b.kind == RecordKind::scene         ? format_scene(b.scene)
+                        : b.kind == RecordKind::scene_shape ? format_scene_shape(b.shape)
+                                                            : format_scene_line(b.line);
+    if (b.kind != a.kind || again != formatted || b.id() != a.id())
+        broken("a scene's record changed through format and parse", text, formatted);
+}
+
 void result_round_trip(std::string_view text) {
     ParsedResult a, b;
     std::string why;
@@ -72,6 +89,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::string_view text(reinterpret_cast<const char*>(data), size);
     json_round_trip(text);
     case_round_trip(text);
+    record_round_trip(text);
     result_round_trip(text);
     report_round_trip(text);
     return 0;
