@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <thread>
 
 using namespace linequad;
 
@@ -229,6 +230,32 @@ TEST_CASE("scene: Embree's float frame holds shapes of any size anywhere", "[sce
         for (std::size_t k = 0; k < a.hits.size(); ++k)
             CHECK(same_hit(a.hits[k], b.hits[k]));
     }
+}
+
+TEST_CASE("scene: one scene answers from many threads at once as from one", "[scene]") {
+    // A renderer shares one scene between its threads: every query is const, Embree's included.
+    World w = world(240, 400, 5);
+    Scene scene(w.shapes, SceneSolver::correct);
+    std::vector<SceneAnswer> alone(w.lines.size());
+    for (std::size_t i = 0; i < w.lines.size(); ++i)
+        scene.intersect(w.lines[i], {Need::nearest, true}, alone[i]);
+    std::vector<std::vector<SceneAnswer>> by(4, std::vector<SceneAnswer>(w.lines.size()));
+    std::vector<std::thread> threads;
+    for (std::size_t k = 0; k < by.size(); ++k)
+        threads.emplace_back([&, k] {
+            for (std::size_t n = 0; n < w.lines.size(); ++n) {
+                std::size_t i = k % 2 ? w.lines.size() - 1 - n : n; // forwards and backwards
+                scene.intersect(w.lines[i], {Need::nearest, true}, by[k][i]);
+            }
+        });
+    for (std::thread& t : threads)
+        t.join();
+    for (std::size_t k = 0; k < by.size(); ++k)
+        for (std::size_t i = 0; i < w.lines.size(); ++i) {
+            REQUIRE(by[k][i].hits.size() == alone[i].hits.size());
+            for (std::size_t h = 0; h < alone[i].hits.size(); ++h)
+                CHECK(same_hit(by[k][i].hits[h], alone[i].hits[h]));
+        }
 }
 
 TEST_CASE("scene: a traversal that is not built in leaves the hierarchy in use", "[scene]") {

@@ -155,7 +155,7 @@ TEST_CASE("scene audit: scenes written and read back grade alike", "[scene_audit
     fs::remove_all(dir);
 }
 
-TEST_CASE("cli: solve answers a scene's lines, and a broken shape breaks its scene", "[cli]") {
+TEST_CASE("cli: solve answers a scene's lines and a broken shape breaks its scene", "[cli]") {
     fs::path dir = scratch("cli_scenes");
     std::ofstream(dir / "scenes.jsonl")
         << R"({"scene":"pair"})"
