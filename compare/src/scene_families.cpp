@@ -2,7 +2,8 @@
 // the columns of an integer rotation (orthogonal, each of length N) at an integer origin, maybe
 // moved 2^k away; radii are dyadic multiples of N and every named point (a contact, a rim, a
 // disc's centre) a dyadic combination of the axes, so the contacts the family is about are
-// exact. Lines go through those points along integer directions, so they are exact too.
+// exact (nested's gaps of 2^-k excepted: past 2^-40 they round, and the oracle says what they
+// became). Lines go through those points along small dyadic directions, exactly too.
 #include "linequad/scene_audit.hpp"
 
 #include "rng.hpp"
@@ -34,7 +35,8 @@ Axes axes(Rng& r, bool aligned, int offset) {
     for (int i = 0; i < 3; ++i)
         a.e[i] = q.col[i];
     a.N = q.N;
-    a.O = r.ivec(8) + std::ldexp(1.0, offset) * r.ivec(4);
+    Vec3 near = r.ivec(8), far = r.ivec(4); // drawn in order: each scene a pure function
+    a.O = near + std::ldexp(1.0, offset) * far;
     return a;
 }
 
@@ -79,8 +81,8 @@ struct Builder {
     }
     // A line across the scene's box lo..hi (in the axes' frame), any direction.
     void generic(const Axes& a, Vec3 lo, Vec3 hi) {
-        Vec3 P = a.at(lo.x + (hi.x - lo.x) * r.dyadic(6), lo.y + (hi.y - lo.y) * r.dyadic(6),
-                      lo.z + (hi.z - lo.z) * r.dyadic(6));
+        double x = r.dyadic(6), y = r.dyadic(6), z = r.dyadic(6);
+        Vec3 P = a.at(lo.x + (hi.x - lo.x) * x, lo.y + (hi.y - lo.y) * y, lo.z + (hi.z - lo.z) * z);
         line(through(r, P, direction(r, a)));
     }
 };
@@ -125,7 +127,8 @@ void touching(Builder& b, int k, int lines) {
 // frustum that is the outermost of them again.
 void nested(Builder& b, int k, int lines) {
     Rng& r = b.r;
-    Axes a = axes(r, r.coin(), r.integer(0, 8));
+    bool aligned = r.coin();
+    Axes a = axes(r, aligned, r.integer(0, 8));
     double rho = radius(r), h = r.integer(2, 8), g = std::ldexp(1.0, -k);
     for (int i = 0; i < 3; ++i)
         b.add("shell-" + std::to_string(i),
@@ -143,14 +146,16 @@ void nested(Builder& b, int k, int lines) {
             break;
         }
         case 1: { // through the caps, nearly along the axis
-            double x = rho * (r.dyadic(4) - 0.5), y = rho * (r.dyadic(4) - 0.5);
-            b.line(through(r, a.at(x, y, inside(r, h)),
-                           a.dir(r.integer(-1, 1), r.integer(-1, 1), 16 * (r.coin() ? 1 : -1))));
+            double x = rho * (r.dyadic(4) - 0.5), y = rho * (r.dyadic(4) - 0.5), z = inside(r, h);
+            double dx = r.integer(-1, 1), dy = r.integer(-1, 1), dz = r.coin() ? 16 : -16;
+            b.line(through(r, a.at(x, y, z), a.dir(dx, dy, dz)));
             break;
         }
-        case 2: // through a rim of the innermost
-            b.line(through(r, a.at(rho, 0, r.coin() ? 0 : h), direction(r, a)));
+        case 2: { // through a rim of the innermost
+            double z = r.coin() ? 0 : h;
+            b.line(through(r, a.at(rho, 0, z), direction(r, a)));
             break;
+        }
         default:
             b.generic(a, {-2 * rho, -2 * rho, -1}, {2 * rho, 2 * rho, h + 1});
         }
@@ -177,8 +182,9 @@ void coaxial(Builder& b, int k, int lines) {
             break;
         }
         case 1: { // along the axis, or parallel to it
-            double x = r.coin() ? 0 : rho * (r.dyadic(3) - 0.5);
-            b.line(through(r, a.at(x, 0, inside(r, h)), a.dir(0, 0, r.coin() ? 1 : -1)));
+            double x = r.coin() ? 0 : rho * (r.dyadic(3) - 0.5), z = inside(r, h);
+            double dz = r.coin() ? 1 : -1;
+            b.line(through(r, a.at(x, 0, z), a.dir(0, 0, dz)));
             break;
         }
         case 2: // through the cone's apex
