@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 namespace linequad::audit {
@@ -284,55 +285,56 @@ std::vector<Shape> SceneCase::shape_list() const {
     return out;
 }
 
+namespace {
+
+// Each built family's difficulty k for scene `index`, and its builder.
+struct Built {
+    int (*k)(std::uint64_t index);
+    void (*build)(Builder&, int k, int lines);
+};
+const Built built[] = {
+    {[](std::uint64_t i) { return 3 * int(i % 14); }, touching}, // offsets to 2^39: still exact
+    {[](std::uint64_t i) { return 1 + int(i % 52); }, nested},
+    {[](std::uint64_t i) { return int(i % 2); }, coaxial},
+    {[](std::uint64_t i) { return int(i % 2); }, shared_rim},
+    {[](std::uint64_t i) { return 10 + int(i % 31); }, far_grid},
+};
+constexpr int built_count = int(std::size(built));
+
+// Rays from the correct scene's nearest hit of a line of a built family's scene, on along the
+// line: from spawn_ray's origin, or (from_hit) from the hit point itself. k: that family.
+void leaving_hits(Builder& b, SceneFamily f, std::uint64_t seed, std::uint64_t index, int lines) {
+    SceneFamily from = SceneFamily(index % built_count);
+    SceneCase base = make_scene(from, seed ^ 0x5ca1ab1eull, index / built_count, 2 * lines);
+    b.sc.shapes = base.shapes;
+    b.sc.header.k = int(from);
+    Scene scene(base.shape_list(), SceneSolver::correct);
+    SceneAnswer hit;
+    for (const SceneLine& l : base.lines) {
+        if (int(b.sc.lines.size()) >= lines) break;
+        scene.intersect(l.line, {Need::nearest, true}, hit);
+        if (!hit.ok() || hit.hits.empty() || !std::isfinite(hit.hits[0].hit.t)) continue;
+        if (f == SceneFamily::from_hit) {
+            b.line({hit.hits[0].hit.p, l.line.v, Range::ray});
+        } else if (SpawnedRay s = scene.spawn_ray(hit.hits[0], l.line.v); s.ok()) {
+            b.line(s.line);
+        }
+    }
+}
+
+} // namespace
+
 SceneCase make_scene(SceneFamily f, std::uint64_t seed, std::uint64_t index, int lines) {
     std::uint64_t key = splitmix(seed) ^ splitmix(std::uint64_t(f) * 1000003 + 17);
     Rng r{SplitMix64{splitmix(key ^ splitmix(index))}};
     Builder b{{}, r};
     b.sc.header.family = names[int(f)];
     b.sc.header.id = "\"" + std::string(names[int(f)]) + "/" + std::to_string(index) + "\"";
-    switch (f) {
-    case SceneFamily::touching:
-        b.sc.header.k = 3 * int(index % 14); // offsets up to 2^39: the contacts stay exact
-        touching(b, b.sc.header.k, lines);
-        break;
-    case SceneFamily::nested:
-        b.sc.header.k = 1 + int(index % 52);
-        nested(b, b.sc.header.k, lines);
-        break;
-    case SceneFamily::coaxial:
-        b.sc.header.k = int(index % 2);
-        coaxial(b, b.sc.header.k, lines);
-        break;
-    case SceneFamily::shared_rim:
-        b.sc.header.k = int(index % 2);
-        shared_rim(b, b.sc.header.k, lines);
-        break;
-    case SceneFamily::far_grid:
-        b.sc.header.k = 10 + int(index % 31);
-        far_grid(b, b.sc.header.k, lines);
-        break;
-    case SceneFamily::spawned:
-    case SceneFamily::from_hit: {
-        // Rays from the correct scene's nearest hit of a line of another family's scene, on along
-        // the line: from spawn_ray's origin, or from the hit point itself.
-        SceneFamily from = SceneFamily(index % 5);
-        SceneCase base = make_scene(from, seed ^ 0x5ca1ab1eull, index / 5, 2 * lines);
-        b.sc.shapes = base.shapes;
-        b.sc.header.k = int(from);
-        Scene scene(base.shape_list(), SceneSolver::correct);
-        SceneAnswer hit;
-        for (const SceneLine& l : base.lines) {
-            if (int(b.sc.lines.size()) >= lines) break;
-            scene.intersect(l.line, {Need::nearest, true}, hit);
-            if (!hit.ok() || hit.hits.empty() || !std::isfinite(hit.hits[0].hit.t)) continue;
-            if (f == SceneFamily::from_hit) {
-                b.line({hit.hits[0].hit.p, l.line.v, Range::ray});
-            } else if (SpawnedRay s = scene.spawn_ray(hit.hits[0], l.line.v); s.ok()) {
-                b.line(s.line);
-            }
-        }
-        break;
-    }
+    if (int(f) < built_count) {
+        b.sc.header.k = built[int(f)].k(index);
+        built[int(f)].build(b, b.sc.header.k, lines);
+    } else {
+        leaving_hits(b, f, seed, index, lines);
     }
     return b.sc;
 }
