@@ -133,7 +133,41 @@ void stable_batch(benchmark::State& state, int shape, Lanes lanes) {
     state.SetLabel(lanes_name(used));
 }
 
+// correct on the same 1024 lines against the shape prepared once: one line at a time (lanes =
+// scalar), or the batch on `lanes`.
+void correct_lines(benchmark::State& state, int shape, Lanes lanes) {
+    bench::OneShape<double> o = bench::one_shape<double>(shape);
+    LineArrays l = o.lines();
+    std::vector<Result> out(l.count);
+    std::visit(
+        [&](const auto& s) {
+            auto p = prepare(s);
+            for (auto _ : state) {
+                if (lanes == Lanes::scalar) {
+                    for (std::size_t i = 0; i < l.count; ++i)
+                        out[i] = correct::intersect(
+                            p, Line{{l.x[i], l.y[i], l.z[i]}, {l.vx[i], l.vy[i], l.vz[i]}}, {});
+                } else {
+                    correct::intersect(p, l, {}, out.data(), lanes);
+                }
+                benchmark::DoNotOptimize(out.data());
+            }
+        },
+        o.shape);
+    state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
+    state.SetLabel(lanes_name(std::min(lanes, batch_lanes())));
+}
+
 int register_all() {
+    for (int shape = 0; shape < int(shape_count); ++shape) {
+        std::string correct_name = name_of(shape) + "/correct/1024_lines/";
+        benchmark::RegisterBenchmark((correct_name + "scalar_loop").c_str(), correct_lines, shape,
+                                     Lanes::scalar);
+        for (Lanes lanes : {Lanes::avx2, Lanes::avx512})
+            if (lanes <= batch_lanes())
+                benchmark::RegisterBenchmark((correct_name + "batch_" + lanes_name(lanes)).c_str(),
+                                             correct_lines, shape, lanes);
+    }
     for (int shape = 0; shape < int(shape_count); ++shape) {
         std::string name = name_of(shape) + "/stable/1024_lines/";
         benchmark::RegisterBenchmark((name + "scalar_loop").c_str(), stable_scalar_loop<double>,

@@ -2,12 +2,13 @@
 // bench/instructions.sh runs it with N solves and with none, and divides the difference by N.
 //   linequad_instructions SOLVER SHAPE NEED POINTS HOW N
 // SOLVER: floor | seed | stable | certified | correct | seed32 | stable32 | correct32 (the float
-// solvers on the same cases rounded to float) | batch-LANES | batch32-LANES (stable's and
-// stable32's batch on LANES = scalar, avx2 or avx512: 1024 generic lines against one prepared
-// shape, N lines in all, in batches of 1024); SHAPE: cylinder | elliptic_cylinder |
-// elliptic_cone | frustum; NEED: any | nearest | all; POINTS: points | no_points; HOW: direct |
-// prepared (each case's shape prepared before the solves, which are what is counted). floor: the
-// textbook cylinder quadratic (bench/floor.hpp), the unit the ratios are quoted in.
+// solvers on the same cases rounded to float) | batch-LANES | batch32-LANES | batchcorrect-LANES
+// (stable's, stable32's and correct's batch on LANES = scalar, avx2 or avx512: 1024 generic lines
+// against one prepared shape, N lines in all, in batches of 1024); SHAPE: cylinder |
+// elliptic_cylinder | elliptic_cone | frustum; NEED: any | nearest | all; POINTS: points |
+// no_points; HOW: direct | prepared (each case's shape prepared before the solves, which are what
+// is counted). floor: the textbook cylinder quadratic (bench/floor.hpp), the unit the ratios are
+// quoted in.
 #include "floor.hpp"
 #include "generic_cases.hpp"
 
@@ -77,10 +78,10 @@ bool run_solver(const std::string& solver, int shape_index, long n, Query q, boo
     return false;
 }
 
-// stable's (or stable32's) batch on `lanes`: 1024 lines against one prepared shape, n lines in
-// all.
+// stable's (stable32's for float lines, correct's when asked) batch on `lanes`: 1024 lines against
+// one prepared shape, n lines in all.
 template <class R, class ShapeT>
-bool run_batch(int shape_index, long n, Query q, Lanes lanes) {
+bool run_batch(int shape_index, long n, Query q, Lanes lanes, bool correct_solver = false) {
     bench::OneShape<R> o = bench::one_shape<R>(shape_index);
     Prepared<ShapeT> p = prepare(std::get<ShapeT>(o.shape));
     LineArraysT<R> lines = o.lines();
@@ -89,6 +90,8 @@ bool run_batch(int shape_index, long n, Query q, Lanes lanes) {
     for (long done = 0; done < n; done += long(lines.count)) {
         if constexpr (std::is_same_v<R, float>)
             stable32::intersect(p, lines, q, out.data(), lanes);
+        else if (correct_solver)
+            correct::intersect(p, lines, q, out.data(), lanes);
         else
             stable::intersect(p, lines, q, out.data(), lanes);
         acc += out[std::size_t(done) & 1023].count;
@@ -107,6 +110,8 @@ bool run_shape(const std::string& name, const std::string& solver, long n, Query
             std::string suffix = std::string("-") + lanes_name(lanes);
             if (solver == "batch" + suffix) return run_batch<double, S>(int(I), n, q, lanes);
             if (solver == "batch32" + suffix) return run_batch<float, S>(int(I), n, q, lanes);
+            if (solver == "batchcorrect" + suffix)
+                return run_batch<double, S>(int(I), n, q, lanes, true);
         }
         return run_solver<S>(solver, int(I), n, q, prepared);
     }

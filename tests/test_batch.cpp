@@ -1,11 +1,14 @@
 // The batch solvers return the scalar solvers' results bit for bit, on every family's cases,
 // bad lines and the lanes that fall back to the scalar solver included, on every path this
-// machine runs: stable in eight (AVX-512) or four (AVX2) double lanes, stable32 in eight float
-// lanes, and the scalar loop.
+// machine runs: stable and correct in eight (AVX-512) or four (AVX2) double lanes, stable32 in
+// eight float lanes, and the scalar loop.
 #include "support.hpp"
 
+#include "correct/correct.hpp"
 #include "linequad/batch.hpp"
 #include "linequad/families.hpp"
+#include "linequad/prepared.hpp"
+#include "simd/batch_kernels.hpp"
 
 #include <limits>
 #include <type_traits>
@@ -16,23 +19,32 @@ using namespace linequad::test;
 
 namespace {
 
-template <class R>
+// The batch solvers under test: stable and correct on double lines, stable32 on float lines.
+enum class Batch { stable, correct, stable32 };
+template <Batch B>
+using RealOf = std::conditional_t<B == Batch::stable32, float, double>;
+
+template <Batch B>
 Result scalar(const Shape& s, const Line& l, Query q) {
     return std::visit(
         [&](const auto& shape) {
-            if constexpr (std::is_same_v<R, float>)
+            if constexpr (B == Batch::stable32)
                 return stable32::intersect(shape, l, q);
+            else if constexpr (B == Batch::correct)
+                return correct::intersect(shape, l, q);
             else
                 return stable::intersect(shape, l, q);
         },
         s);
 }
-template <class R>
-void batch(const Shape& s, const LineArraysT<R>& lines, Query q, Result* out, Lanes lanes) {
+template <Batch B>
+void batch(const Shape& s, const LineArraysT<RealOf<B>>& lines, Query q, Result* out, Lanes lanes) {
     std::visit(
         [&](const auto& shape) {
-            if constexpr (std::is_same_v<R, float>)
+            if constexpr (B == Batch::stable32)
                 stable32::intersect(shape, lines, q, out, lanes);
+            else if constexpr (B == Batch::correct)
+                correct::intersect(shape, lines, q, out, lanes);
             else
                 stable::intersect(shape, lines, q, out, lanes);
         },
@@ -41,8 +53,9 @@ void batch(const Shape& s, const LineArraysT<R>& lines, Query q, Result* out, La
 
 // Every family's cases in R's precision, one shape against `per_shape` lines: two full batches
 // and a scalar tail, with a zero direction and a NaN among them. Returns the lines compared.
-template <class R>
+template <Batch B>
 std::size_t compare_with_scalar(std::size_t per_shape, Lanes lanes) {
+    using R = RealOf<B>;
     constexpr Precision precision =
         std::is_same_v<R, float> ? Precision::binary32 : Precision::binary64;
     const R nan = std::numeric_limits<R>::quiet_NaN();
@@ -72,16 +85,17 @@ std::size_t compare_with_scalar(std::size_t per_shape, Lanes lanes) {
                     for (Query q :
                          {Query{}, Query{Need::nearest, false}, Query{Need::any, false}}) {
                         std::vector<Result> got(per_shape);
-                        batch(shape, lines, q, got.data(), lanes);
+                        batch<B>(shape, lines, q, got.data(), lanes);
                         for (std::size_t j = 0; j < per_shape; ++j) {
                             Line l{{soa[0][j], soa[1][j], soa[2][j]},
                                    {soa[3][j], soa[4][j], soa[5][j]},
                                    lines.range};
-                            Result want = scalar<R>(shape, l, q);
+                            Result want = scalar<B>(shape, l, q);
                             INFO(family_name(Family(f))
                                  << " shape " << shape_kind << " line " << j);
                             REQUIRE(format_result("0", "", got[j], q.points) ==
                                     format_result("0", "", want, q.points));
+                            REQUIRE(got[j].rung == want.rung); // correct's: which rung answered
                             ++compared;
                         }
                     }
@@ -108,7 +122,7 @@ TEST_CASE("batch: stable equals the scalar solver bit for bit, for every shape a
     for (Lanes lanes : paths()) {
         INFO("lanes: " << lanes_name(lanes));
         // 19 lines per shape: two batches of eight and a tail of three, or four of four and three.
-        CHECK(compare_with_scalar<double>(19, lanes) > 35000);
+        CHECK(compare_with_scalar<Batch::stable>(19, lanes) > 35000);
     }
 }
 
@@ -116,6 +130,98 @@ TEST_CASE("batch: stable32 equals the scalar solver bit for bit, for every shape
           "[batch]") {
     for (Lanes lanes : paths()) {
         INFO("lanes: " << lanes_name(lanes));
-        CHECK(compare_with_scalar<float>(19, lanes) > 35000);
+        CHECK(compare_with_scalar<Batch::stable32>(19, lanes) > 35000);
     }
 }
+
+TEST_CASE("batch: correct equals the scalar solver bit for bit and rung for rung, on every path",
+          "[batch]") {
+    for (Lanes lanes : paths()) {
+        INFO("lanes: " << lanes_name(lanes));
+        CHECK(compare_with_scalar<Batch::correct>(19, lanes) > 35000);
+    }
+}
+
+#if defined(LINEQUAD_HAVE_AVX2_KERNELS)
+namespace {
+
+// The kernel on N lanes: correct_x4 or correct_x8.
+template <int N, class S>
+unsigned proven_lanes(const Prepared<S>& p, const double* const soa[6], Interval range, Query q) {
+    detail::CorrectBlock<N> block;
+    int orientation = detail::source(p).validity().orientation;
+    if constexpr (N == 8)
+        detail::correct_x8(p, orientation, soa, 0, range, q, block);
+    else
+        detail::correct_x4(p, orientation, soa, 0, range, q, block);
+    return block.proven;
+}
+
+// Every family's cases in blocks of N lines against the block's first shape: each lane is
+// proven exactly where the scalar ladder answers from its Newton rung as given (a usual line of
+// moderate size whose rung proves every decision and rounding). Returns {lanes, proven}.
+template <int N>
+std::pair<long, long> lanes_against_scalar_rung() {
+    long lanes = 0, proven = 0;
+    for (int shape_kind = 0; shape_kind < shape_kinds; ++shape_kind)
+        for (int f = 0; f < family_count; ++f) {
+            if (!family_applies(Family(f), shape_kind)) continue;
+            for (Range range : {Range::line, Range::ray, Range::segment})
+                for (std::uint64_t first = 0; first < 200; first += N) {
+                    Case head = make_case(Family(f), shape_kind, range, 13, first);
+                    std::vector<double> soa[6];
+                    for (std::uint64_t i = first; i < first + N; ++i) {
+                        Line l = make_case(Family(f), shape_kind, range, 13, i).line;
+                        for (int a = 0; a < 3; ++a)
+                            soa[a].push_back(l.L0[a]), soa[3 + a].push_back(l.v[a]);
+                    }
+                    const double* const arrays[6] = {soa[0].data(), soa[1].data(), soa[2].data(),
+                                                     soa[3].data(), soa[4].data(), soa[5].data()};
+                    std::visit(
+                        [&](const auto& shape) {
+                            using S = std::decay_t<decltype(shape)>;
+                            if constexpr (detail::ShapeTraits<S>::has_line_form) {
+                                Prepared<S> p = prepare(shape);
+                                if (!p.ok() || detail::closed(shape)) return;
+                                for (Query q : {Query{}, Query{Need::nearest, false}}) {
+                                    unsigned bits = proven_lanes<N>(p, arrays, head.line.range, q);
+                                    for (int k = 0; k < N; ++k) {
+                                        Line l{{soa[0][k], soa[1][k], soa[2][k]},
+                                               {soa[3][k], soa[4][k], soa[5][k]},
+                                               head.line.range};
+                                        double extent = detail::scene_extent(detail::source(p), l);
+                                        bool as_given = validate(p, l).code == ErrorCode::none &&
+                                                        detail::moderate(extent, l);
+                                        Result r = correct::intersect(p, l, q);
+                                        bool want = as_given && r.rung == Rung::newton;
+                                        INFO(family_name(Family(f))
+                                             << " shape " << shape_kind << " line " << first + k);
+                                        REQUIRE(bool((bits >> k) & 1) == want);
+                                        ++lanes, proven += want;
+                                    }
+                                }
+                            }
+                        },
+                        head.shape);
+                }
+        }
+    return {lanes, proven};
+}
+
+} // namespace
+
+TEST_CASE("batch: correct's lanes prove exactly the lines the scalar Newton rung proves",
+          "[batch]") {
+    std::vector<std::pair<long, long>> runs;
+    if (batch_lanes() >= Lanes::avx2) runs.push_back(lanes_against_scalar_rung<4>());
+#if defined(LINEQUAD_HAVE_AVX512_KERNELS)
+    if (batch_lanes() >= Lanes::avx512) runs.push_back(lanes_against_scalar_rung<8>());
+#endif
+    for (auto [lanes, proven] : runs) {
+        CHECK(lanes > 20000);
+        // Most lines are proven on the first rung in every family (the README's rung table):
+        // the lanes must do the work, not hand it back.
+        CHECK(proven > lanes / 2);
+    }
+}
+#endif

@@ -221,7 +221,7 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
                 if (std::holds_alternative<Frustum>(c.shape)) continue; // no Newton form
                 if (const auto* p = std::get_if<Cylinder>(&c.shape)) {
                     Cylinder s{f * p->C, f * p->H, f * p->r, true};
-                    check_form(ShapeTraits<Cylinder>::line_form(AsGiven<Cylinder>{s}, l, 0),
+                    check_form(ShapeTraits<Cylinder>::line_form(AsGiven<Cylinder>{s}, l.L0, l.v, 0),
                                exact_form_of(s, l), false);
                 } else if (const auto* p = std::get_if<EllipticCylinder>(&c.shape)) {
                     EllipticCylinder s{f * p->C, f * p->a, f * p->b, f * p->c, true};
@@ -231,7 +231,7 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
                         exact_elliptic(qvec(s.a), qvec(s.b), qvec(s.c), qvec(l.L0) - qvec(s.C),
                                        qvec(l.v), negative, false);
                     check_form(ShapeTraits<EllipticCylinder>::line_form(
-                                   AsGiven<EllipticCylinder>{s}, l, negative ? -1 : 1),
+                                   AsGiven<EllipticCylinder>{s}, l.L0, l.v, negative ? -1 : 1),
                                x, false);
                 } else {
                     const auto& q = std::get<EllipticCone>(c.shape);
@@ -240,8 +240,8 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
                     bool negative = negative_frame(s);
                     ExactForm x = exact_elliptic(qvec(s.a), qvec(s.b), qvec(s.H) - qvec(s.C),
                                                  qvec(l.L0) - qvec(s.H), qvec(l.v), negative, true);
-                    check_form(ShapeTraits<EllipticCone>::line_form(AsGiven<EllipticCone>{s}, l,
-                                                                    negative ? -1 : 1),
+                    check_form(ShapeTraits<EllipticCone>::line_form(AsGiven<EllipticCone>{s}, l.L0,
+                                                                    l.v, negative ? -1 : 1),
                                x, true);
                 }
                 ++checked;
@@ -264,7 +264,7 @@ bool run_rung(const Shape& shape, const Line& l, Query q, Result& r, bool& answe
             if constexpr (Traits::has_line_form) {
                 detail::Validity valid = detail::validity_of(s);
                 detail::LineForm form = Traits::line_form(
-                    detail::AsGiven<std::decay_t<decltype(s)>>{s}, l, valid.orientation);
+                    detail::AsGiven<std::decay_t<decltype(s)>>{s}, l.L0, l.v, valid.orientation);
                 answered =
                     detail::newton_rung<detail::Binary64>(form, detail::Unit{1, 1, l}, l, q, r);
                 return true;

@@ -1,8 +1,8 @@
 // Many lines against one shape, the lines in structure-of-arrays form: what a renderer's
 // packet of rays or a sweep of cases needs. The shape is checked once (pass a prepared shape to
-// check it once for many batches). Every result equals the scalar solver's bit for bit, on
-// whichever lanes the CPU offers, chosen at run time: AVX-512 (eight double lanes), AVX2 (four
-// double or eight float lanes), or a scalar loop.
+// check it once for many batches; correct prepares a plain shape once per batch). Every result
+// equals the scalar solver's bit for bit, on whichever lanes the CPU offers, chosen at run time:
+// AVX-512 (eight double lanes), AVX2 (four double or eight float lanes), or a scalar loop.
 #pragma once
 
 #include "linequad/solvers.hpp"
@@ -39,6 +39,16 @@ template <class S, if_solvable<S> = 0>
 void intersect(const S& shape, const LineArrays& lines, Query query, Result* out,
                Lanes lanes = batch_lanes());
 } // namespace stable
+
+namespace correct {
+// out[i] = correct::intersect(shape, line i, query) for every i < lines.count, bit for bit, on
+// `lanes` (at most batch_lanes()). The Newton rung runs in lanes for the shapes that have it
+// (all but the frustum, without caps); the lines it cannot prove, and hit tests (Need::any,
+// whose scalar quick rung is already cheap), are solved one at a time.
+template <class S, if_solvable<S> = 0>
+void intersect(const S& shape, const LineArrays& lines, Query query, Result* out,
+               Lanes lanes = batch_lanes());
+} // namespace correct
 
 namespace stable32 {
 // out[i] = stable32::intersect(shape, line i, query) for every i < lines.count: eight float

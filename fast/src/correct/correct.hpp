@@ -113,7 +113,7 @@ struct CorrectTo {
         // The Newton rung on the scene as `unit` has it; r is left empty when the rung declines.
         auto newton = [&](const auto& scene, const Unit& unit) {
             if constexpr (Traits::has_line_form) {
-                LineForm form = Traits::line_form(scene, unit.line, orientation);
+                LineForm form = Traits::line_form(scene, unit.line.L0, unit.line.v, orientation);
                 if (newton_rung<Target>(form, unit, l, q, r)) {
                     mark_certain<Target>(r, Rung::newton);
                     return true;

@@ -20,31 +20,45 @@ namespace linequad::detail {
 // g(t) = sum_k sigma_k (U0_k + t U1_k)^2 - K, and the axial coordinate Z(t) = Z0 + t dZ that the
 // extent lo <= Z <= hi bounds (the exact form's Z0, dZ, lo, hi). Every value carries a bound:
 // the BoundedDD ones in e, the doubles in the e_ fields.
-struct LineForm {
-    BoundedDD U0[3], U1[3], K;
+// T: double, or a lane type for the line's parts (U0, U1, Z0, dZ; the batch correct solver's);
+// K, sigma and the extent are the shape's alone.
+template <class T>
+struct LineFormT {
+    BoundedDDT<T> U0[3], U1[3];
+    BoundedDD K;
     int sigma_z; // sigma = (1, 1, sigma_z)
-    double Z0, e_Z0, dZ, e_dZ;
+    T Z0, e_Z0, dZ, e_dZ;
     double lo, e_lo, hi, e_hi;
     bool lo_bounded, hi_bounded;
 };
+using LineForm = LineFormT<double>;
 
-// Vectors enter as doubles (Vec3) or as exact two-term values (Vec3TwoTerm, a difference of two
+// Vectors enter as values (Vec3T) or as exact two-term values (Vec3TwoTermT, a difference of two
 // points); the low parts only add small terms.
 template <class V>
-constexpr bool has_low_part = std::is_same_v<V, Vec3TwoTerm>;
-inline Vec3 high(const Vec3& a) {
+struct IsTwoTerm : std::false_type {};
+template <class T>
+struct IsTwoTerm<Vec3TwoTermT<T>> : std::true_type {};
+template <class V>
+constexpr bool has_low_part = IsTwoTerm<V>::value;
+template <class T>
+Vec3T<T> high(const Vec3T<T>& a) {
     return a;
 }
-inline Vec3 high(const Vec3TwoTerm& a) {
+template <class T>
+Vec3T<T> high(const Vec3TwoTermT<T>& a) {
     return a.hi;
 }
+// The number type of a vector's components.
+template <class V>
+using ComponentOf = std::decay_t<decltype(high(std::declval<V>()).x)>;
 
 // (a x b)_k = a_i b_j - a_j b_i with (i, j) = (k + 1, k + 2) mod 3.
-template <class P, class Q>
-LINEQUAD_INLINE BoundedDD cross_component(const P& a, const Q& b, int k) {
+template <class P, class Q, class T = ComponentOf<P>>
+LINEQUAD_INLINE BoundedDDT<T> cross_component(const P& a, const Q& b, int k) {
     int i = (k + 1) % 3, j = (k + 2) % 3;
-    Vec3 ah = high(a), bh = high(b);
-    CompensatedSum s;
+    Vec3T<T> ah = high(a), bh = high(b);
+    CompensatedSumT<T> s;
     s.add_product(ah[i], bh[j]);
     s.add_product(-ah[j], bh[i]);
     if constexpr (has_low_part<Q>) {
@@ -62,23 +76,24 @@ LINEQUAD_INLINE BoundedDD cross_component(const P& a, const Q& b, int k) {
     return s.result();
 }
 
-// n . w for a row n of bounded values: their bounds propagate by |w|.
-template <class Q>
-LINEQUAD_INLINE BoundedDD dot_row(const BoundedDD (&n)[3], const Q& w) {
-    Vec3 wh = high(w);
-    CompensatedSum s;
-    double propagated = 0;
+// n . w for a row n of bounded values (the shape's, in double): their bounds propagate by |w|.
+template <class Q, class T = ComponentOf<Q>>
+LINEQUAD_INLINE BoundedDDT<T> dot_row(const BoundedDD (&n)[3], const Q& w) {
+    using std::fabs;
+    Vec3T<T> wh = high(w);
+    CompensatedSumT<T> s;
+    T propagated(0.0);
 #pragma GCC unroll 3
     for (int k = 0; k < 3; ++k) {
-        s.add_product(n[k].hi, wh[k]);
-        s.add_small(n[k].lo * wh[k]);
-        double size = std::fabs(wh[k]);
+        s.add_product(T(n[k].hi), wh[k]);
+        s.add_small(T(n[k].lo) * wh[k]);
+        T size = fabs(wh[k]);
         if constexpr (has_low_part<Q>) {
-            s.add_small(n[k].hi * w.lo[k]);
-            s.add_small(n[k].lo * w.lo[k]);
-            size += std::fabs(w.lo[k]);
+            s.add_small(T(n[k].hi) * w.lo[k]);
+            s.add_small(T(n[k].lo) * w.lo[k]);
+            size = size + fabs(w.lo[k]);
         }
-        propagated += n[k].e * size;
+        propagated = propagated + T(n[k].e) * size;
     }
     return s.result(propagated);
 }
@@ -117,15 +132,16 @@ AdjugateRowsDD adjugate_rows_dd(Vec3 a, Vec3 b, const CVec& c) {
 
 // The elliptic shapes: U0 = adj(M) w and U1 = adj(M) v (the exact form's W and V), and
 // Z = U_z with det's sign folded in, so that the extent is in units of |det|.
-inline LineForm elliptic_form(const AdjugateRowsDD& rows, const Vec3TwoTerm& w, Vec3 v,
-                              bool negative_det) {
-    LineForm f;
+template <class T>
+LineFormT<T> elliptic_form(const AdjugateRowsDD& rows, const Vec3TwoTermT<T>& w, Vec3T<T> v,
+                           bool negative_det) {
+    LineFormT<T> f;
 #pragma GCC unroll 3
     for (int k = 0; k < 3; ++k) {
         f.U0[k] = dot_row(rows.n[k], w);
         f.U1[k] = dot_row(rows.n[k], v);
     }
-    double sign = negative_det ? -1 : 1;
+    T sign(negative_det ? -1.0 : 1.0);
     f.Z0 = sign * f.U0[2].hi, f.e_Z0 = bound_of_hi(f.U0[2]);
     f.dZ = sign * f.U1[2].hi, f.e_dZ = bound_of_hi(f.U1[2]);
     return f;

@@ -23,16 +23,19 @@
 
 namespace linequad {
 
-struct BoundedDD {
-    double hi = 0, lo = 0; // |lo| <= ulp(hi) / 2
-    double e = 0;          // |hi + lo - exact| <= e
+// T is double, or a lane type holding one value per lane (the batch correct solver's lanes).
+template <class T>
+struct BoundedDDT {
+    T hi = T(0), lo = T(0); // |lo| <= ulp(hi) / 2
+    T e = T(0);             // |hi + lo - exact| <= e
 
-    BoundedDD() = default;
-    explicit BoundedDD(double x) : hi(x) {}
-    BoundedDD(double h, double l, double err) : hi(h), lo(l), e(err) {}
+    BoundedDDT() = default;
+    explicit BoundedDDT(T x) : hi(x) {}
+    BoundedDDT(T h, T l, T err) : hi(h), lo(l), e(err) {}
 
     bool exact() const { return e == 0; }
 };
+using BoundedDD = BoundedDDT<double>;
 
 namespace dd_detail {
 using F = detail::Binary64;

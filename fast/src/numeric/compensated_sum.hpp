@@ -31,76 +31,95 @@
 
 namespace linequad::detail {
 
-class CompensatedSum {
+// T is double, or a lane type (one sum per lane, every lane given the same sequence of terms).
+template <class T>
+class CompensatedSumT {
     using F = Binary64;
 
   public:
-    LINEQUAD_INLINE void add_exact(double x) {
-        mag_ += std::fabs(x);
+    LINEQUAD_INLINE void add_exact(T x) {
+        using std::fabs;
+        mag_ = mag_ + fabs(x);
         if (empty_) { // the first term needs no two_sum (empty_ is known where this is inlined)
             hi_ = x, empty_ = false;
             return;
         }
-        TwoTerm t = two_sum(hi_, x);
+        TwoTermT<T> t = two_sum(hi_, x);
         hi_ = t.hi;
-        lo_ += t.lo;
+        lo_ = lo_ + t.lo;
         ++terms_;
     }
-    LINEQUAD_INLINE void add_product(double a, double b) {
-        TwoTerm p = two_prod(a, b);
+    LINEQUAD_INLINE void add_product(T a, T b) {
+        TwoTermT<T> p = two_prod(a, b);
         add_exact(p.hi);
-        lo_ += p.lo;
+        lo_ = lo_ + p.lo;
         ++terms_;
     }
     // y: small beside the sum's terms, and either exact or rounded once from what it stands for.
-    LINEQUAD_INLINE void add_small(double y) {
-        lo_ += y;
-        small_ += std::fabs(y);
+    LINEQUAD_INLINE void add_small(T y) {
+        using std::fabs;
+        lo_ = lo_ + y;
+        small_ = small_ + fabs(y);
         ++terms_;
     }
     // The sum, with the bound above plus `propagated`: the caller's bound on how far the terms
     // themselves are from the exact terms they stand for (nonnegative terms, rounded: the factor
     // 1 + 2^-40 covers a few dozen roundings of its computation too).
-    LINEQUAD_INLINE BoundedDD result(double propagated = 0) const {
-        TwoTerm s = two_sum(hi_, lo_);
+    LINEQUAD_INLINE BoundedDDT<T> result(T propagated = T(0)) const {
+        TwoTermT<T> s = two_sum(hi_, lo_);
         return {s.hi, s.lo, bound(propagated)};
     }
     // hi + lo as they are: the same bound, but |lo| may exceed half an ulp of hi (where the
     // high parts cancelled). For a value that only enters further sums.
-    LINEQUAD_INLINE BoundedDD unnormalized(double propagated = 0) const {
+    LINEQUAD_INLINE BoundedDDT<T> unnormalized(T propagated = T(0)) const {
         return {hi_, lo_, bound(propagated)};
     }
     // The sum rounded to one double, and its bound (the rounding adds at most u |value|).
-    LINEQUAD_INLINE BoundedDD rounded(double propagated = 0) const {
-        double v = hi_ + lo_;
-        return {v, 0, (bound(propagated) + F::u * std::fabs(v)) * F::cover(8)};
+    LINEQUAD_INLINE BoundedDDT<T> rounded(T propagated = T(0)) const {
+        using std::fabs;
+        T v = hi_ + lo_;
+        return {v, T(0), (bound(propagated) + T(F::u) * fabs(v)) * T(F::cover(8))};
     }
 
   private:
-    double hi_ = 0, lo_ = 0, mag_ = 0, small_ = 0;
+    T hi_ = T(0), lo_ = T(0), mag_ = T(0), small_ = T(0);
     int terms_ = 0; // additions into lo: at most 64 (every use in this library makes fewer than 20)
     bool empty_ = true;
 
-    LINEQUAD_INLINE double bound(double propagated) const {
-        double m1 = double(terms_ + 1) * F::u;
-        return (m1 * (m1 * mag_ + small_) + propagated) * F::cover(8192) + F::underflow_floor;
+    LINEQUAD_INLINE T bound(T propagated) const {
+        T m1(double(terms_ + 1) * F::u);
+        return (m1 * (m1 * mag_ + small_) + propagated) * T(F::cover(8192)) + T(F::underflow_floor);
     }
 };
+using CompensatedSum = CompensatedSumT<double>;
 
 // |x - exact| for a BoundedDD x read as the one double x.hi.
-LINEQUAD_INLINE double bound_of_hi(const BoundedDD& x) {
-    return x.e + std::fabs(x.lo);
+template <class T>
+LINEQUAD_INLINE T bound_of_hi(const BoundedDDT<T>& x) {
+    using std::fabs;
+    return x.e + fabs(x.lo);
 }
 
 // sgn(a - b) for a within ea and b within eb of the values they stand for; 0 when the bounds do
 // not settle it (NaN too). a - b rounds with an error of at most u |a - b| (2^-1074 below the
 // normal range), which 2^-50 (|a| + |b|) + 2^-1070 covers with the rounding of the bound itself.
-LINEQUAD_INLINE int certain_sign_of_difference(double a, double ea, double b, double eb) {
-    double d = a - b;
+// The difference and its bound, for a lane type too: sgn is +1 where bound < d, -1 where
+// d < -bound.
+template <class T>
+struct DifferenceTest {
+    T d, bound;
+};
+template <class T>
+LINEQUAD_INLINE DifferenceTest<T> difference_test(T a, T ea, T b, T eb) {
     using F = Binary64;
-    double e =
-        (ea + eb + 8 * F::u * (std::fabs(a) + std::fabs(b))) * F::cover(32) + F::subnormal_slack;
-    return d > e ? 1 : d < -e ? -1 : 0;
+    using std::fabs;
+    T d = a - b;
+    T e = (ea + eb + T(8 * F::u) * (fabs(a) + fabs(b))) * T(F::cover(32)) + T(F::subnormal_slack);
+    return {d, e};
+}
+LINEQUAD_INLINE int certain_sign_of_difference(double a, double ea, double b, double eb) {
+    DifferenceTest<double> t = difference_test(a, ea, b, eb);
+    return t.d > t.bound ? 1 : t.d < -t.bound ? -1 : 0;
 }
 
 } // namespace linequad::detail

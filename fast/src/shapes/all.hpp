@@ -11,6 +11,8 @@
 #include <variant>
 
 #define LINEQUAD_FOR_EACH_SHAPE(X) X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum)
+// The shapes whose quadratic has the Newton rung's form (ShapeTraits<S>::has_line_form).
+#define LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X) X(Cylinder) X(EllipticCylinder) X(EllipticCone)
 
 namespace linequad::detail {
 #define LINEQUAD_COUNT_SHAPE(S) +1

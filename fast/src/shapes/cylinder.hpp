@@ -162,12 +162,13 @@ SeedAxisT<R> seed_axis(const Src& src, Vec3 from, Vec3 to) {
 // Z = (P - C).h = w.h + t v.h in double from w and h within u of their exact values (and v
 // exact): gamma_5 of the products' magnitudes for w.h (two inputs, a product, two sums), gamma_4
 // for v.h; 6u and 5u cover them with the magnitudes' own rounding. Both line forms' Z.
-inline void cylinder_axial(LineForm& f, Vec3 w, Vec3 h, Vec3 v) {
+template <class T>
+LINEQUAD_INLINE void cylinder_axial(LineFormT<T>& f, Vec3T<T> w, Vec3T<T> h, Vec3T<T> v) {
     using F = Binary64;
     f.Z0 = dot(w, h);
-    f.e_Z0 = 6 * F::u * dot(magnitudes(w), magnitudes(h)) + F::underflow_floor;
+    f.e_Z0 = T(6 * F::u) * dot(magnitudes(w), magnitudes(h)) + T(F::underflow_floor);
     f.dZ = dot(v, h);
-    f.e_dZ = 5 * F::u * dot(magnitudes(v), magnitudes(h)) + F::underflow_floor;
+    f.e_dZ = T(5 * F::u) * dot(magnitudes(v), magnitudes(h)) + T(F::underflow_floor);
     f.lo = 0, f.e_lo = 0;
 }
 
@@ -317,22 +318,23 @@ struct ShapeTraits<Cylinder> {
 
     // ---- correct: the Newton rung's line form ----
 
-    template <class Src>
-    static LineForm line_form(const Src& src, const Line& l, int /*orientation*/) {
+    // For the line L0 + t v in T: double, or a lane type (a line per lane).
+    template <class T = double, class Src>
+    static LineFormT<T> line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
         const Cylinder& s = src.shape;
         NewtonAxis axis = newton_axis(src);
-        const Vec3TwoTerm& h = axis.h;
-        Vec3TwoTerm w = difference_exact(l.L0, s.C);
-        LineForm f;
+        Vec3TwoTermT<T> h{lanes_of<T>(axis.h.hi), lanes_of<T>(axis.h.lo)};
+        Vec3TwoTermT<T> w = difference_exact(L0, lanes_of<T>(s.C));
+        LineFormT<T> f;
 #pragma GCC unroll 3
         for (int k = 0; k < 3; ++k) {
             f.U0[k] = cross_component(w, h, k);
-            f.U1[k] = cross_component(l.v, h, k);
+            f.U1[k] = cross_component(v, h, k);
         }
         f.sigma_z = 1;
         f.K = axis.K;
         // Z from the high parts, each within u of its exact value (the low parts left out).
-        cylinder_axial(f, w.hi, h.hi, l.v);
+        cylinder_axial(f, w.hi, h.hi, v);
         f.hi = axis.hh.hi, f.e_hi = bound_of_hi(axis.hh);
         f.lo_bounded = f.hi_bounded = s.finite;
         return f;

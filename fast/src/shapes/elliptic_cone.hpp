@@ -303,19 +303,22 @@ struct ShapeTraits<EllipticCone> {
 
     // The upper end from the lower one, -|det|: Z <= 0, or with two nappes Z <= |det| when
     // finite and no bound otherwise.
-    static void nappes(const EllipticCone& s, LineForm& f) {
+    template <class T>
+    static void nappes(const EllipticCone& s, LineFormT<T>& f) {
         bool two = s.nappes == 2;
         f.hi = two ? -f.lo : 0, f.e_hi = two ? f.e_lo : 0;
         f.lo_bounded = s.finite;
         f.hi_bounded = !two || s.finite;
     }
 
-    template <class Src>
-    static LineForm line_form(const Src& src, const Line& l, int orientation) {
+    // For the line L0 + t v in T: double, or a lane type (a line per lane).
+    template <class T = double, class Src>
+    static LineFormT<T> line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         const EllipticCone& s = src.shape;
         bool negative_det = orientation < 0;
         AdjugateRowsDD rows = adjugate_rows(src);
-        LineForm f = elliptic_form(rows, difference_exact(l.L0, s.H), l.v, negative_det);
+        LineFormT<T> f =
+            elliptic_form(rows, difference_exact(L0, lanes_of<T>(s.H)), v, negative_det);
         BoundedDD det = absolute_det(rows, negative_det);
         f.sigma_z = -1;
         f.K = BoundedDD(0);

@@ -246,12 +246,14 @@ struct ShapeTraits<EllipticCylinder> {
         }
     }
 
-    template <class Src>
-    static LineForm line_form(const Src& src, const Line& l, int orientation) {
+    // For the line L0 + t v in T: double, or a lane type (a line per lane).
+    template <class T = double, class Src>
+    static LineFormT<T> line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         const EllipticCylinder& s = src.shape;
         bool negative_det = orientation < 0;
         AdjugateRowsDD rows = adjugate_rows(src);
-        LineForm f = elliptic_form(rows, difference_exact(l.L0, s.C), l.v, negative_det);
+        LineFormT<T> f =
+            elliptic_form(rows, difference_exact(L0, lanes_of<T>(s.C)), v, negative_det);
         BoundedDD det = absolute_det(rows, negative_det);
         f.sigma_z = 0;
         f.K = product(det, det);

@@ -3,6 +3,7 @@
 #include "solve/solve.hpp"
 
 #include "linequad/batch.hpp"
+#include "linequad/prepared.hpp"
 
 namespace linequad {
 
@@ -111,7 +112,73 @@ void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* o
         out[i] = solve_one<R>(shape, line_at(i), q);
 }
 
+// correct's batch: the Newton rung on N lanes (correct_x4, correct_x8), the lanes it does not
+// prove by the scalar ladder.
+template <int N, class S, class LineAt>
+std::size_t run_correct_lanes(const Prepared<S>& shape, const LineArrays& lines, Query q,
+                              Result* out, LineAt line_at) {
+    int orientation = detail::source(shape).validity().orientation;
+    const double* const soa[6] = {lines.x, lines.y, lines.z, lines.vx, lines.vy, lines.vz};
+    detail::CorrectBlock<N> block;
+    std::size_t i = 0;
+    for (; i + N <= lines.count; i += N) {
+        if constexpr (N == 8)
+            detail::correct_x8(shape, orientation, soa, i, lines.range, q, block);
+        else
+            detail::correct_x4(shape, orientation, soa, i, lines.range, q, block);
+        for (int k = 0; k < N; ++k) {
+            if ((block.proven >> k) & 1)
+                detail::write_result(block, k, q, out[i + k]);
+            else
+                out[i + k] = correct::intersect(shape, line_at(i + k), q);
+        }
+    }
+    return i;
+}
+
+template <class S>
+void correct_batch(const Prepared<S>& shape, const LineArrays& lines, Query q, Result* out,
+                   Lanes lanes) {
+    auto line_at = [&](std::size_t i) {
+        return Line{{lines.x[i], lines.y[i], lines.z[i]},
+                    {lines.vx[i], lines.vy[i], lines.vz[i]},
+                    lines.range};
+    };
+    std::size_t i = 0;
+#if defined(LINEQUAD_HAVE_AVX2_KERNELS)
+    // The ladder's Newton rung as given covers a valid open shape with a line form and a valid
+    // range; a hit test takes the scalar quick rung first, line by line.
+    if constexpr (detail::ShapeTraits<S>::has_line_form) {
+        Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
+        bool rung_applies = shape.ok() && !detail::closed(shape.shape()) &&
+                            detail::check_line(probe).ok() && q.need != Need::any;
+        lanes = std::min(lanes, batch_lanes());
+        if (rung_applies && lanes != Lanes::scalar) {
+#if defined(LINEQUAD_HAVE_AVX512_KERNELS)
+            if (lanes == Lanes::avx512)
+                i = run_correct_lanes<8>(shape, lines, q, out, line_at);
+            else
+#endif
+                i = run_correct_lanes<4>(shape, lines, q, out, line_at);
+        }
+    }
+#endif
+    for (; i < lines.count; ++i)
+        out[i] = correct::intersect(shape, line_at(i), q);
+}
+// A plain shape is prepared once for the batch: the rung's frame rows and orientation.
+template <class S>
+void correct_batch(const S& shape, const LineArrays& lines, Query q, Result* out, Lanes lanes) {
+    correct_batch(prepare(shape), lines, q, out, lanes);
+}
+
 } // namespace
+
+template <class S, if_solvable<S>>
+void correct::intersect(const S& shape, const LineArrays& lines, Query q, Result* out,
+                        Lanes lanes) {
+    correct_batch(shape, lines, q, out, lanes);
+}
 
 template <class S, if_solvable<S>>
 void stable::intersect(const S& shape, const LineArrays& lines, Query q, Result* out, Lanes lanes) {
@@ -125,6 +192,9 @@ void stable32::intersect(const S& shape, const LineArrays32& lines, Query q, Res
 
 #define LINEQUAD_INSTANTIATE_BATCH(S)                                                              \
     template void stable::intersect(const S&, const LineArrays&, Query, Result*, Lanes);           \
+    template void correct::intersect(const S&, const LineArrays&, Query, Result*, Lanes);          \
+    template void correct::intersect(const Prepared<S>&, const LineArrays&, Query, Result*,        \
+                                     Lanes);                                                       \
     template void stable::intersect(const Prepared<S>&, const LineArrays&, Query, Result*, Lanes); \
     template void stable32::intersect(const S&, const LineArrays32&, Query, Result*, Lanes);       \
     template void stable32::intersect(const Prepared<S>&, const LineArrays32&, Query, Result*,     \

@@ -1,6 +1,9 @@
-// The AVX-512 batch kernel: each shape's stable core on eight double lanes (stable), through the
-// lane steps of simd/stable_lanes.hpp.
+// The AVX-512 batch kernels: each shape's stable core on eight double lanes (stable), through the
+// lane steps of simd/stable_lanes.hpp; correct's Newton rung on eight (simd/correct_lanes.hpp).
+// The lane type first: the kernels' templates find its operations by name.
 #include "simd/lanes_avx512.hpp"
+
+#include "simd/correct_lanes.hpp"
 #include "simd/stable_lanes.hpp"
 
 namespace linequad::detail {
@@ -15,5 +18,15 @@ void stable_x8(const S& s, double shape_extent, const double* const soa[6], std:
     template void stable_x8(const S&, double, const double* const[6], std::size_t, Interval,       \
                             Query, LaneBlock<double, 8>&);
 LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_INSTANTIATE_KERNEL)
+
+template <class S>
+void correct_x8(const Prepared<S>& s, int orientation, const double* const soa[6], std::size_t i,
+                Interval range, Query q, CorrectBlock<8>& out) {
+    correct_lanes<D8>(s, orientation, soa, i, range, q, out);
+}
+#define LINEQUAD_INSTANTIATE_CORRECT(S)                                                            \
+    template void correct_x8(const Prepared<S>&, int, const double* const[6], std::size_t,         \
+                             Interval, Query, CorrectBlock<8>&);
+LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(LINEQUAD_INSTANTIATE_CORRECT)
 
 } // namespace linequad::detail

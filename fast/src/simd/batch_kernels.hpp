@@ -6,6 +6,8 @@
 
 #include "solve/finish.hpp"
 
+#include "linequad/prepared.hpp"
+
 #include <cstddef>
 #include <type_traits>
 
@@ -44,6 +46,32 @@ LINEQUAD_INLINE void write_result(const LaneBlock<R, N>& b, int k, Query q, Resu
     r.count = std::uint8_t(count);
 }
 
+// What the batch correct kernel hands back for a block of N lanes: the lanes the Newton rung
+// proved (the others go to the scalar ladder), and their hits as the rung adds them: root j is a
+// hit where bit k of keep[j] is set, t and the point already rounded (caller's units).
+template <int N>
+struct CorrectBlock {
+    unsigned proven;
+    unsigned keep[2];
+    double t[2][N];
+    double p[2][3][N];
+};
+
+// Lane k's Result, as the scalar ladder makes it from the Newton rung's hits.
+template <int N>
+LINEQUAD_INLINE void write_result(const CorrectBlock<N>& b, int k, Query q, Result& r) {
+    reset(r);
+    for (int j = 0; j < 2; ++j) {
+        if (!((b.keep[j] >> k) & 1)) continue;
+        Hit& h = r.hits[r.count++];
+        h.t = b.t[j][k], h.kind = HitKind::cross, h.part = Part::lateral;
+        h.p = q.points ? Vec3{b.p[j][0][k], b.p[j][1][k], b.p[j][2][k]} : Vec3{};
+        h.bound = Binary64::half_ulp(h.t), h.certain = true;
+    }
+    r.certainty = Certainty::certain;
+    r.rung = Rung::newton;
+}
+
 // Lines [i, i + 4) of the arrays (x, y, z, vx, vy, vz) against the shape, in double lanes;
 // AVX2 and FMA. shape_extent: the largest magnitude among the shape's points and vectors
 // (prescaling).
@@ -58,5 +86,14 @@ void stable_x8(const S& s, double shape_extent, const double* const soa[6], std:
 template <class S>
 void stable32_x8(const S& s, double shape_extent, const float* const soa[6], std::size_t i,
                  Interval range, Query q, LaneBlock<float, 8>& out);
+
+// The Newton rung of correct on lines [i, i + 4) (AVX2 and FMA) or [i, i + 8) (AVX-512F and DQ)
+// against a prepared shape with a line form; orientation: its frame's, as validation decides it.
+template <class S>
+void correct_x4(const Prepared<S>& s, int orientation, const double* const soa[6], std::size_t i,
+                Interval range, Query q, CorrectBlock<4>& out);
+template <class S>
+void correct_x8(const Prepared<S>& s, int orientation, const double* const soa[6], std::size_t i,
+                Interval range, Query q, CorrectBlock<8>& out);
 
 } // namespace linequad::detail

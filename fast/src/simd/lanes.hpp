@@ -25,4 +25,14 @@ L max_abs(Vec3T<L> a) {
 template <class L>
 constexpr int lane_count = sizeof(L) / sizeof(Real<L>);
 
+// The lanes whose line the scalar checks pass: every coordinate finite (0 x is 0 only for
+// finite x), v nonzero. The others go back to the scalar solver, which names what is wrong.
+template <class L>
+auto usual_line(const Vec3T<L>& L0, const Vec3T<L>& v) {
+    L zero(Real<L>(0));
+    L sum = (L0.x * zero + L0.y * zero) + (L0.z * zero + v.x * zero) + (v.y * zero + v.z * zero);
+    auto finite = !(sum != zero);
+    return finite & ((v.x != zero) | (v.y != zero) | (v.z != zero));
+}
+
 } // namespace linequad::detail

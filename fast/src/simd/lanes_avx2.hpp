@@ -6,6 +6,7 @@
 
 #include "simd/lanes.hpp"
 
+#include <cstdint>
 #include <immintrin.h>
 
 namespace linequad::detail {
@@ -80,6 +81,16 @@ inline D4 select(M4 m, D4 a, D4 b) {
 }
 inline int bits(M4 m) {
     return _mm256_movemask_pd(m.m);
+}
+// Binary64's half_ulp_of_normal and is_power_of_two in each lane: the same bit operations.
+inline D4 half_ulp_of_normal(D4 x) {
+    __m256i b = _mm256_and_si256(_mm256_castpd_si256(x.v), _mm256_set1_epi64x(0x7ff0000000000000));
+    return D4(_mm256_castsi256_pd(_mm256_sub_epi64(b, _mm256_set1_epi64x(std::int64_t(53) << 52))));
+}
+inline M4 is_power_of_two(D4 x) {
+    __m256i b =
+        _mm256_and_si256(_mm256_castpd_si256(x.v), _mm256_set1_epi64x((std::int64_t(1) << 52) - 1));
+    return {_mm256_castsi256_pd(_mm256_cmpeq_epi64(b, _mm256_setzero_si256()))};
 }
 // power_of_two_inverse (shapes/frame.hpp) in each lane: the same operations, so the same bits.
 inline D4 power_of_two_inverse(D4 x) {

@@ -6,6 +6,7 @@
 
 #include "simd/lanes.hpp"
 
+#include <cstdint>
 #include <immintrin.h>
 
 namespace linequad::detail {
@@ -80,6 +81,16 @@ inline D8 select(K8 m, D8 a, D8 b) {
 }
 inline int bits(K8 m) {
     return m.m;
+}
+// Binary64's half_ulp_of_normal and is_power_of_two in each lane: the same bit operations.
+inline D8 half_ulp_of_normal(D8 x) {
+    __m512i b = _mm512_and_si512(_mm512_castpd_si512(x.v), _mm512_set1_epi64(0x7ff0000000000000));
+    return D8(_mm512_castsi512_pd(_mm512_sub_epi64(b, _mm512_set1_epi64(std::int64_t(53) << 52))));
+}
+inline K8 is_power_of_two(D8 x) {
+    __m512i b =
+        _mm512_and_si512(_mm512_castpd_si512(x.v), _mm512_set1_epi64((std::int64_t(1) << 52) - 1));
+    return {_mm512_cmpeq_epi64_mask(b, _mm512_setzero_si512())};
 }
 // power_of_two_inverse (shapes/frame.hpp) in each lane: the same operations, so the same bits.
 inline D8 power_of_two_inverse(D8 x) {

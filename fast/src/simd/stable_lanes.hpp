@@ -41,17 +41,6 @@ LineLanes<L> line_lanes(const Real<L>* const soa[6], std::size_t i, double shape
     return ln;
 }
 
-// The lanes whose line the scalar checks pass: every coordinate finite (0 x is 0 only for
-// finite x), v nonzero. The others go back to the scalar solver, which names what is wrong.
-template <class L>
-MaskOf<L> usual_line(const LineLanes<L>& ln) {
-    L zero(Real<L>(0));
-    L sum = (ln.L0.x * zero + ln.L0.y * zero) + (ln.L0.z * zero + ln.v.x * zero) +
-            (ln.v.y * zero + ln.v.z * zero);
-    auto finite = !(sum != zero);
-    return finite & ((ln.v.x != zero) | (ln.v.y != zero) | (ln.v.z != zero));
-}
-
 // From the moved roots to write_result()'s facts, as shift_back() and finish() do for one line;
 // e is the extent. The roots are put in the order assemble() takes them: the smaller t first,
 // except for a hit test, which takes them as found.
@@ -114,8 +103,8 @@ void stable_lanes(const S& s, double shape_extent, const Real<L>* const soa[6], 
     auto k = ShapeTraits<S>::template stable_core<L>(
         AsGiven<S>{s}, LanePrescale<L>{ln.scale.to_unit, ln.scale.dir_to_unit}, ln.L0, ln.v);
     L tiny(Guards<R>::tiny_decisive);
-    auto generic = ln.scale.ok & usual_line(ln) & !k.smaller_than(Guards<R>::min_relative_size) &
-                   (fabs(k.A) >= tiny);
+    auto generic = ln.scale.ok & usual_line(ln.L0, ln.v) &
+                   !k.smaller_than(Guards<R>::min_relative_size) & (fabs(k.A) >= tiny);
     k.discriminant();
     generic = generic & !k.scalar_only() & (fabs(k.D) >= tiny);
     finish_lanes(k, generic, ln, k.extent(s), range, q, out);

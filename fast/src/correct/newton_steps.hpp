@@ -1,0 +1,293 @@
+// The Newton rung's arithmetic (see newton_rung.hpp for the method), written once for a number
+// type T: double for the scalar rung (newton_rung.cpp), a lane type for the batch correct solver
+// (simd/correct_lanes.hpp). Each step returns its values and, where the scalar rung would branch,
+// the mask of lanes whose bounds prove the step; the scalar rung branches on it, the lanes
+// combine it. Same operations in the same order: the same bits, so a lane proves exactly what
+// the scalar rung proves.
+#pragma once
+
+#include "correct/ladder.hpp"
+#include "correct/line_form.hpp"
+
+#include "numeric/compensated_sum.hpp"
+#include "numeric/eft.hpp"
+
+#include <cmath>
+#include <type_traits>
+
+namespace linequad::detail::newton {
+
+using F = Binary64;
+constexpr double u = F::u;
+
+template <class T>
+using Mask = decltype(T() < T());
+
+// Binary64's bit steps, for double (the lane types have their own, lanes_avx2.hpp and
+// lanes_avx512.hpp).
+LINEQUAD_INLINE double half_ulp_of_normal(double x) {
+    return F::half_ulp_of_normal(x);
+}
+LINEQUAD_INLINE bool is_power_of_two(double x) {
+    return F::is_power_of_two(x);
+}
+LINEQUAD_INLINE double select(bool m, double a, double b) {
+    return m ? a : b;
+}
+template <class T>
+LINEQUAD_INLINE Mask<T> equal(T a, T b) {
+    return !(a != b);
+}
+template <class M>
+LINEQUAD_INLINE M differ(M a, M b) {
+    return (a & (!b)) | ((!a) & b);
+}
+
+// The components k of u that g uses: x and y always, z unless sigma_z = 0.
+template <int SigmaZ>
+constexpr int used_components = SigmaZ == 0 ? 2 : 3;
+template <int SigmaZ>
+constexpr double sigma(int k) {
+    return k < 2 ? 1.0 : double(SigmaZ);
+}
+
+// ---- g near a point ----
+
+// A = sum sigma_k U1_k^2, g's leading coefficient, in double: three products and two sums err
+// by at most gamma_3 sum U1_k^2 (4u covers it), and U1's own bounds move each square by
+// d (2 |U1_k| + d), d = |U1_k - hi|.
+template <class T>
+struct Leading {
+    T A, e;
+};
+template <int SigmaZ, class T>
+LINEQUAD_INLINE Leading<T> leading(const LineFormT<T>& f) {
+    using std::fabs;
+    T A(0.0), squares(0.0), propagated(0.0);
+#pragma GCC unroll 3
+    for (int k = 0; k < used_components<SigmaZ>; ++k) {
+        T h = f.U1[k].hi, d = bound_of_hi(f.U1[k]);
+        A = A + T(sigma<SigmaZ>(k)) * (h * h);
+        squares = squares + h * h;
+        propagated = propagated + d * (T(2.0) * fabs(h) + d);
+    }
+    return {A, (T(4 * u) * squares + propagated) * T(F::cover(8192)) + T(F::underflow_floor)};
+}
+
+// g(c + x) = A x^2 + G' x + G: G = g(c) in double-double, read as a double with its bound, and
+// G' = 2 sum sigma_k u_k(c) U1_k in double. For N points at once: their chains of dependent
+// operations are independent, so the processor overlaps them.
+template <class T>
+struct Local {
+    T G, e_G, Gp, e_Gp;
+};
+template <int SigmaZ, int N, class T>
+void local_at(const LineFormT<T>& f, const T (&c)[N], Local<T> (&out)[N]) {
+    using std::fabs;
+    CompensatedSumT<T> g[N];
+    T propagated[N], Gp[N], products[N], e_Gp[N];
+    for (int n = 0; n < N; ++n)
+        propagated[n] = T(f.K.e), Gp[n] = products[n] = e_Gp[n] = T(0.0);
+#pragma GCC unroll 3
+    for (int k = 0; k < used_components<SigmaZ>; ++k) {
+        const T sg(sigma<SigmaZ>(k)); // +-1: multiplying by it is exact
+        const BoundedDDT<T>&a = f.U0[k], &b = f.U1[k];
+#pragma GCC unroll 2
+        for (int n = 0; n < N; ++n) {
+            // u_k(c) = U0_k + c U1_k
+            CompensatedSumT<T> s;
+            s.add_product(c[n], b.hi);
+            s.add_exact(a.hi);
+            s.add_small(a.lo);
+            s.add_small(c[n] * b.lo);
+            BoundedDDT<T> uk = s.unnormalized(a.e + fabs(c[n]) * b.e);
+            // sigma u_k^2 = sigma (hi^2 + 2 hi lo + lo^2); |u^2 - u'^2| <= e (2 |u'| + e)
+            T sh = sg * uk.hi;
+            g[n].add_product(sh, uk.hi);
+            g[n].add_small(T(2.0) * sh * uk.lo);
+            g[n].add_small(sg * uk.lo * uk.lo);
+            propagated[n] = propagated[n] + uk.e * (T(2.0) * (fabs(uk.hi) + fabs(uk.lo)) + uk.e);
+            // G': gamma_3 sum |u_k U1_k| for the rounding (4u covers it), and the parts left out
+            Gp[n] = Gp[n] + sh * b.hi;
+            products[n] = products[n] + fabs(uk.hi * b.hi);
+            e_Gp[n] = e_Gp[n] + (fabs(uk.hi) * bound_of_hi(b) +
+                                 (fabs(uk.lo) + uk.e) * (fabs(b.hi) + bound_of_hi(b)));
+        }
+    }
+    for (int n = 0; n < N; ++n) {
+        g[n].add_exact(T(-f.K.hi));
+        g[n].add_small(T(-f.K.lo));
+        BoundedDDT<T> G = g[n].rounded(propagated[n]);
+        out[n] = {G.hi, G.e, T(2.0) * Gp[n],
+                  T(2.0) * (T(4 * u) * products[n] + e_Gp[n]) * T(F::cover(8192)) +
+                      T(F::underflow_floor)};
+    }
+}
+
+// An upper bound of x y for upper bounds x, y >= 0 of two quantities: each may have underflowed
+// by up to 2^-1074, and the product rounds (relatively, or by 2^-1074 below the normal range).
+template <class T>
+LINEQUAD_INLINE T upper_product(T x, T y) {
+    return (x + T(F::denorm_min)) * (y + T(F::denorm_min)) * T(F::cover(8)) + T(F::denorm_min);
+}
+
+// A root of g proven to lie in c + x +- e (x and e not rounded into c), and whether it is the
+// smaller of the two; `proven` where the local quadratic proves it.
+template <class T>
+struct Enclosure {
+    T c, x, e;
+    Mask<T> smaller, proven;
+};
+
+// The root next to c, where the local quadratic proves it (see newton_rung.hpp): with
+// y = 4 A G / G'^2 and |y| <= 1/2 there are two distinct real roots (the discriminant is
+// G'^2 (1 - y) > 0); the one nearer c is x* = (-G/G') phi(y), phi(y) = 2 / (1 + sqrt(1 - y)),
+// and |phi(y) - 1| = |y| / (1 + sqrt(1 - y))^2 <= 0.35 |y|. |-G/G' - x0| is at most
+// (e_G + |x0| e_G') / |G'| + u |x0| (the perturbed quotient and its rounding). The other root is
+// at -G'/A - x*, on the side of -sgn(G' A): |2 x*| < |G'/A| when |y| <= 1/2.
+template <class T>
+LINEQUAD_INLINE Enclosure<T> root_near(const Local<T>& L, const Leading<T>& A, T c) {
+    using std::fabs;
+    T P = (fabs(L.Gp) - L.e_Gp) * T(F::shrink(8));              // |G'| >= P
+    Mask<T> proven = (P >= T(0x1p-1000)) & (P <= T(0x1p+1000)); // not NaN
+    // Bounds from 1/P (normal, so each rounding is relative: 1 + 2^-48 covers a dozen). y is
+    // formed from two ratios of like quantities, so that no product of two small ones underflows.
+    T inv_P = T(1.0) / P, G_max = fabs(L.G) + L.e_G;
+    T y = T(4.0) * upper_product((fabs(A.A) + A.e) * inv_P, G_max * inv_P);
+    proven = proven & (y <= T(0.5));
+    T x0 = -L.G / L.Gp;
+    T e = ((L.e_G + fabs(x0) * L.e_Gp + T(0.35) * y * G_max) * inv_P + T(u) * fabs(x0)) *
+              T(F::cover(32)) +
+          T(F::subnormal_slack);
+    return {c, x0, e, differ<Mask<T>>(T(0.0) < L.Gp, T(0.0) < A.A), proven};
+}
+
+// Whether g has no real root: at c (near the vertex), g(c + x) = A x^2 + G' x + G with
+// G'^2 < 4 A G; L is the local expansion at c (the precise one, or the hit test's quick one).
+template <class T>
+LINEQUAD_INLINE Mask<T> no_root_proven(const Leading<T>& A, T c, const Local<T>& L) {
+    using std::fabs;
+    T A_min = (fabs(A.A) - A.e) * T(F::shrink(8)), G_min = fabs(L.G) - L.e_G;
+    Mask<T> same_sign = !differ<Mask<T>>(T(0.0) < L.G, T(0.0) < A.A);
+    Mask<T> finite = equal(c - c, T(0.0)); // not NaN, not infinite
+    Mask<T> usable = finite & (T(0.0) < G_min) & (A_min >= T(0x1p-1000)) & same_sign;
+    // G'^2 / A < 4 G, each side of like degree (no product of two small quantities).
+    T slope = fabs(L.Gp) + L.e_Gp;
+    return usable & (upper_product(slope, slope / A_min) <
+                     T(4.0) * G_min * T(F::shrink(32)) - T(F::denorm_min));
+}
+
+// Whether the root c + x +- e is inside the extent and the range: `outside` where one bound is
+// proven violated (outside, whatever the others say), `inside` where every bound is proven met;
+// neither where the bounds cannot tell.
+template <class T>
+struct Kept {
+    Mask<T> outside, inside;
+};
+template <class T>
+LINEQUAD_INLINE Kept<T> kept(const LineFormT<T>& f, Interval range, const Enclosure<T>& en) {
+    using std::fabs;
+    using std::fma;
+    T t = en.c + en.x;
+    T e_t = en.e + T(u) * fabs(t) + T(F::denorm_min);
+    // Z(t*) = Z0 + t* dZ from z = fma(t, dZ, Z0): the bounds of Z0 and dZ, |t* - t|, and z's
+    // rounding.
+    T z = fma(t, f.dZ, f.Z0);
+    T e_z = (f.e_Z0 + e_t * (fabs(f.dZ) + f.e_dZ) + fabs(t) * f.e_dZ + T(u) * fabs(z)) *
+                T(F::cover(32)) +
+            T(F::subnormal_slack);
+    Kept<T> k{T(0.0) < T(0.0), T(0.0) <= T(0.0)};
+    auto side = [&](DifferenceTest<T> s) LINEQUAD_INLINE_LAMBDA {
+        k.outside = k.outside | (s.d < -s.bound);
+        k.inside = k.inside & (s.bound < s.d);
+    };
+    T zero(0.0);
+    if (f.lo_bounded) side(difference_test(z, e_z, T(f.lo), T(f.e_lo)));
+    if (f.hi_bounded) side(difference_test(T(f.hi), T(f.e_hi), z, e_z));
+    if (range.has_t0()) side(difference_test(t, e_t, T(range.t0), zero)); // ends exact
+    if (range.has_t1()) side(difference_test(T(range.t1), zero, t, e_t));
+    k.inside = k.inside & !k.outside;
+    return k;
+}
+
+// The double nearest x 2^k (scale = 2^k), where x's bound proves which it is (round_proven(),
+// correct/ladder.hpp, for lanes).
+template <class T>
+struct Rounded {
+    T value;
+    Mask<T> proven;
+};
+template <class T>
+LINEQUAD_INLINE Rounded<T> round_lanes(const BoundedDDT<T>& x, T scale) {
+    using std::copysign;
+    using std::fabs;
+    T zero(0.0);
+    Mask<T> exact = equal(x.e, zero), is_zero = exact & equal(x.hi, zero); // an exact 0 is +0
+    T hi = x.hi * scale, a = fabs(hi);
+    Mask<T> normal = (a >= T(0x1p-960)) & (a <= T(0x1p+1000)); // not NaN
+    if constexpr (std::is_same_v<T, double>) { // one value: the answers that need no cell
+        if (is_zero) return {0.0, true};
+        if (!normal) return {hi, false};
+        if (exact && x.lo == 0) return {hi, true};
+    }
+    T lo = x.lo * scale, e = x.e * scale + T(F::subnormal_slack);
+    // The exact value, within [hi + lo - e, hi + lo + e], must be inside hi's rounding cell:
+    // half an ulp each way, but only a quarter towards zero from a power of two.
+    T half_away = half_ulp_of_normal(a);
+    T half_toward = select(is_power_of_two(a), T(0.5) * half_away, half_away);
+    T outward = copysign(T(1.0), hi) * lo; // lo's part away from zero
+    T away = outward + e, toward = e - outward;
+    Mask<T> inside = (away * T(F::cover(8)) < half_away) & (toward * T(F::cover(8)) < half_toward);
+    Mask<T> proven = normal & ((exact & equal(x.lo, zero)) | inside);
+    return {select(is_zero, zero, hi), Mask<T>(is_zero | proven)};
+}
+
+// t = c + x rounded to the nearest double in the caller's units (scale = t's factor).
+template <class T>
+LINEQUAD_INLINE Rounded<T> rounded_t(const Enclosure<T>& en, T scale) {
+    TwoTermT<T> t = two_sum(en.c, en.x);
+    return round_lanes<T>({t.hi, t.lo, en.e}, scale);
+}
+
+// Coordinate k of the hit point L0_k + t v_k, rounded, for v_k != 0 (the caller keeps L0_k + 0
+// where v_k = 0: an exact zero is +0, as the oracle's): L0_k + c v_k + x v_k, the first two
+// exactly (hi + s.lo + cv.lo), the rest rounded three times: u (2 |x v_k| + |cv.lo| + |lo|) with
+// the rounding of the bound. L0 and v are the scaled line's, scale its positions' factor.
+template <class T>
+LINEQUAD_INLINE Rounded<T> rounded_point(const Enclosure<T>& en, T L0_k, T v, T scale) {
+    using std::fabs;
+    TwoTermT<T> cv = two_prod(en.c, v), s = two_sum(L0_k, cv.hi);
+    T xv = en.x * v, lo = s.lo + (cv.lo + xv);
+    T e = (fabs(v) * en.e + T(u) * (T(2.0) * fabs(xv) + fabs(cv.lo) + fabs(lo))) * T(F::cover(32)) +
+          T(F::underflow_floor);
+    TwoTermT<T> n = two_sum(s.hi, lo);
+    return round_lanes<T>({n.hi, n.lo, e}, scale);
+}
+
+// The roots' double estimates, from the quadratic's coefficients in the high parts: the stable
+// pair q / A, C0 / q (in that order) where the discriminant is positive (`real`); elsewhere the
+// vertex -B / A, where no_root_proven() looks.
+template <class T>
+struct Estimates {
+    Mask<T> real;
+    T vertex;
+    T root[2];
+};
+template <int SigmaZ, class T>
+LINEQUAD_INLINE Estimates<T> estimates(const LineFormT<T>& f, const Leading<T>& A) {
+    using std::copysign;
+    using std::sqrt;
+    T B(0.0), C0(-f.K.hi);
+#pragma GCC unroll 3
+    for (int k = 0; k < used_components<SigmaZ>; ++k) {
+        B = B + T(sigma<SigmaZ>(k)) * (f.U0[k].hi * f.U1[k].hi);
+        C0 = C0 + T(sigma<SigmaZ>(k)) * (f.U0[k].hi * f.U0[k].hi);
+    }
+    T D = difference_of_products(B, B, A.A, C0);
+    if constexpr (std::is_same_v<T, double>) // one line: no root, no division by q
+        if (!(D > 0)) return {false, -B / A.A, {0, 0}};
+    T q = -(B + copysign(sqrt(D), B));
+    return {T(0.0) < D, -B / A.A, {q / A.A, C0 / q}};
+}
+
+} // namespace linequad::detail::newton

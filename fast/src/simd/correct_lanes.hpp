@@ -1,0 +1,94 @@
+// The batch correct solver's kernel: the Newton rung (correct/newton_rung.hpp) on a lane of lines
+// at a time, through the rung's arithmetic written once over the number type
+// (correct/newton_steps.hpp) and each shape's line form in lanes (its line_form<L>, shapes/).
+// A lane answers only where the scalar ladder would take the same rung on the same line and
+// prove it: a usual line (finite, v nonzero) of moderate size, solved as given, every decision
+// and every rounding proven. The other lanes go back to the scalar ladder. Included only by
+// translation units built for L's instruction set.
+#pragma once
+
+#include "correct/correct.hpp"
+#include "correct/newton_steps.hpp"
+#include "simd/batch_kernels.hpp"
+#include "simd/lanes.hpp"
+
+namespace linequad::detail {
+
+namespace newton {
+
+// Both roots of one lane's line, as the scalar rung adds them (the smaller first), or the
+// proof that there is none. L0 and v: the lane's line as given.
+template <int SigmaZ, class L>
+void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, const Vec3T<L>& v,
+                 Interval range, Query q, CorrectBlock<lane_count<L>>& out) {
+    const L one(1.0), zero(0.0); // as given: t and the points need no scaling
+    Leading<L> A = leading<SigmaZ>(f);
+    usable = usable & (A.e < fabs(A.A)); // not nearly parallel to the axis or a generator
+    Estimates<L> est = estimates<SigmaZ>(f, A);
+    Mask<L> swap = est.root[1] < est.root[0];
+    L lo = select(swap, est.root[1], est.root[0]), hi = select(swap, est.root[0], est.root[1]);
+    // The first point is the vertex where the estimates are not real: one evaluation serves both.
+    const L c[2] = {select(est.real, lo, est.vertex), hi};
+    Local<L> local[2];
+    local_at<SigmaZ>(f, c, local);
+    Mask<L> no_root = no_root_proven(A, c[0], local[0]);
+
+    Mask<L> failed[2], kept_root[2];
+    for (int j = 0; j < 2; ++j) {
+        Enclosure<L> en = root_near(local[j], A, c[j]);
+        Kept<L> k = kept(f, range, en);
+        Rounded<L> t = rounded_t(en, one);
+        Mask<L> hit_proven = t.proven;
+        store(out.t[j], t.value);
+        if (q.points) {
+#pragma GCC unroll 3
+            for (int a = 0; a < 3; ++a) {
+                L va = v[a], pa = L0[a];
+                Rounded<L> p = rounded_point(en, pa, va, one);
+                Mask<L> along = equal(va, zero); // L0_k + t v_k is L0_k: +0 for a zero
+                hit_proven = hit_proven & (along | p.proven);
+                store(out.p[j][a], select(along, pa + zero, p.value));
+            }
+        }
+        Mask<L> which = j == 0 ? en.smaller : !en.smaller; // the root the scalar rung expects
+        Mask<L> decided = k.inside | k.outside;
+        failed[j] = (!en.proven) | (!which) | (!decided) | (k.inside & (!hit_proven));
+        kept_root[j] = k.inside;
+    }
+    // A hit test or the nearest hit stops at the smaller root when it is kept: the larger one
+    // is then never looked at.
+    Mask<L> stop = q.need == Need::all ? zero < zero : kept_root[0];
+    Mask<L> roots_proven = (!failed[0]) & (stop | (!failed[1]));
+    Mask<L> proven = usable & ((est.real & roots_proven) | ((!est.real) & no_root));
+    out.proven = unsigned(bits(proven));
+    out.keep[0] = unsigned(bits(est.real & kept_root[0]));
+    out.keep[1] = unsigned(bits(est.real & kept_root[1] & !stop));
+}
+
+} // namespace newton
+
+// Lines [i, i + lanes) of the arrays (x, y, z, vx, vy, vz) against the prepared shape: the lanes
+// the Newton rung proves, as the scalar ladder would answer them.
+template <class L, class S>
+void correct_lanes(const Prepared<S>& shape, int orientation, const Real<L>* const soa[6],
+                   std::size_t i, Interval range, Query q, CorrectBlock<lane_count<L>>& out) {
+    using Traits = ShapeTraits<S>;
+    auto src = source(shape);
+    Vec3T<L> L0{load(soa[0] + i), load(soa[1] + i), load(soa[2] + i)};
+    Vec3T<L> v{load(soa[3] + i), load(soa[4] + i), load(soa[5] + i)};
+    // The scalar ladder's first step for a scene of moderate size (correct.hpp: moderate()).
+    auto moderate = [](L x) { return (x >= L(0x1p-64)) & (x <= L(0x1p+64)); };
+    L extent = maximum(max_abs(L0), L(src.magnitude()));
+    auto usable = usual_line(L0, v) & moderate(extent) & moderate(max_abs(v));
+    LineFormT<L> f = Traits::template line_form<L>(src, L0, v, orientation);
+    switch (f.sigma_z) {
+    case 1:
+        return newton::solve_lanes<1>(f, usable, L0, v, range, q, out);
+    case 0:
+        return newton::solve_lanes<0>(f, usable, L0, v, range, q, out);
+    default:
+        return newton::solve_lanes<-1>(f, usable, L0, v, range, q, out);
+    }
+}
+
+} // namespace linequad::detail
