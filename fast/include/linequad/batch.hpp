@@ -42,9 +42,9 @@ void intersect(const S& shape, const LineArrays& lines, Query query, Result* out
 
 namespace correct {
 // out[i] = correct::intersect(shape, line i, query) for every i < lines.count, bit for bit, on
-// `lanes` (at most batch_lanes()). The Newton rung runs in lanes for the shapes that have it
-// (all but the frustum, without caps); the lines it cannot prove, and hit tests (Need::any,
-// whose scalar quick rung is already cheap), are solved one at a time.
+// `lanes` (at most batch_lanes()). The Newton rung (a hit test's quick rung) runs in lanes for
+// the shapes that have it (all but the frustum, without caps); the lines it cannot prove are
+// solved one at a time.
 template <class S, if_solvable<S> = 0>
 void intersect(const S& shape, const LineArrays& lines, Query query, Result* out,
                Lanes lanes = batch_lanes());

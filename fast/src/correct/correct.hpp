@@ -92,7 +92,7 @@ struct CorrectTo {
         if constexpr (Traits::has_line_form) {
             if (q.need == Need::any && !closed(src.shape) && moderate(extent, l)) {
                 Result r;
-                LineForm form = Traits::quick_line_form(src, l, valid.orientation);
+                LineForm form = Traits::quick_line_form(src, l.L0, l.v, valid.orientation);
                 if (hit_test_rung(form, Unit{1, 1, l}, r)) {
                     r.certainty = Certainty::certain;
                     r.rung = Rung::newton;
@@ -129,7 +129,7 @@ struct CorrectTo {
         bool lateral_only = Traits::has_line_form && !closed(src.shape);
         if constexpr (std::is_same_v<Target, Binary32> && Traits::has_line_form) {
             if (lateral_only && as_given) {
-                LineForm form = Traits::quick_line_form(src, l, orientation);
+                LineForm form = Traits::quick_line_form(src, l.L0, l.v, orientation);
                 if (newton_rung<Target, Residual::quick>(form, Unit{1, 1, l}, l, q, r)) {
                     mark_certain<Target>(r, Rung::newton);
                     return r;

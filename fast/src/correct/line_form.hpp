@@ -152,29 +152,36 @@ inline BoundedDD absolute_det(const AdjugateRowsDD& rows, bool negative_det) {
     return {rows.det.hi * sign, rows.det.lo * sign, rows.det.e};
 }
 
-// The quick line form's values (the hit test's, see correct/newton_rung.hpp): doubles with a
+// The quick line form's values (the hit test's, see correct/newton_rung.hpp): values with a
 // rigorous bound, computed in QuickBounded, stored with no low part.
-inline BoundedDD quick(const QuickBounded& x) {
-    return {x.v, 0, x.bound()};
+template <class T>
+LINEQUAD_INLINE BoundedDDT<T> quick(const QuickBoundedT<T>& x) {
+    return {x.v, T(0), x.bound()};
 }
 inline QuickBounded quick(const BoundedDD& x) {
     return {x.hi, bound_of_hi(x)};
 }
 // The elliptic shapes' quick form, from the precise rows (the same values, prepared or not):
 // U0 = adj(M) w, U1 = adj(M) v, Z = U_z with det's sign folded in; abs_det = |det|.
-inline LineForm quick_elliptic_form(const AdjugateRowsDD& rows, const Vec3T<QuickBounded>& w,
-                                    Vec3 v, bool negative_det, QuickBounded& abs_det) {
-    Vec3T<QuickBounded> n[3], V = exact<QuickBounded>(v);
+template <class T>
+LineFormT<T> quick_elliptic_form(const AdjugateRowsDD& rows, const Vec3T<QuickBoundedT<T>>& w,
+                                 Vec3T<T> v, bool negative_det, QuickBounded& abs_det) {
+    using Q = QuickBoundedT<T>;
+    auto lanes = [](const BoundedDD& x) {
+        QuickBounded q = quick(x);
+        return Q{T(q.v), T(q.e)};
+    };
+    Vec3T<Q> n[3], V{Q::exact(v.x), Q::exact(v.y), Q::exact(v.z)};
     for (int i = 0; i < 3; ++i)
-        n[i] = {quick(rows.n[i][0]), quick(rows.n[i][1]), quick(rows.n[i][2])};
+        n[i] = {lanes(rows.n[i][0]), lanes(rows.n[i][1]), lanes(rows.n[i][2])};
     QuickBounded det = quick(rows.det);
     abs_det = negative_det ? -det : det;
-    LineForm f;
+    LineFormT<T> f;
     for (int k = 0; k < 3; ++k) {
         f.U0[k] = quick(dot(n[k], w));
         f.U1[k] = quick(dot(n[k], V));
     }
-    double sign = negative_det ? -1 : 1;
+    T sign(negative_det ? -1.0 : 1.0);
     f.Z0 = sign * f.U0[2].hi, f.e_Z0 = f.U0[2].e;
     f.dZ = sign * f.U1[2].hi, f.e_dZ = f.U1[2].e;
     return f;

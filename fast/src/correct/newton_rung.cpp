@@ -112,36 +112,6 @@ LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, const Unit& unit, cons
 
 namespace {
 
-// g(c + x) = A x^2 + G' x + G from the quick line form (values a_k, b_k, kappa in double, each
-// within alpha_k, beta_k, e_kappa of U0_k, U1_k, K). With u_k = fma(c, b_k, a_k), one rounding:
-//   |u_k - u*_k| <= E_k = alpha_k + |c| beta_k + u |u_k| (1 + 2u),
-//   |u_k^2 - u*_k^2| <= E_k (2 |u_k| + E_k),
-// and G = sum sigma_k fl(u_k^2) - kappa rounds at most five times, each by u of a partial sum
-// no larger than S = sum u_k^2 + |kappa|: 6u S covers them with the squares' own rounding. G' =
-// 2 sum sigma_k u_k b_k as the precise rung's: |u_k b_k - u*_k U1*_k| <= E_k |b_k| +
-// (|u_k| + E_k) beta_k, and 4u sum |u_k b_k| for its roundings. Every bound is computed in a
-// dozen roundings of nonnegative terms (cover(32)), and may have underflowed (the floor).
-template <int SigmaZ>
-Local<double> quick_local_at(const LineForm& f, double c) {
-    double G = -f.K.hi, S = std::fabs(f.K.hi), e_G = f.K.e, Gp = 0, P = 0, e_Gp = 0;
-    const double ac = std::fabs(c);
-#pragma GCC unroll 3
-    for (int k = 0; k < used_components<SigmaZ>; ++k) {
-        const double a = f.U0[k].hi, b = f.U1[k].hi, beta = f.U1[k].e; // no low parts
-        double uk = std::fma(c, b, a), au = std::fabs(uk);
-        double E = f.U0[k].e + ac * beta + u * F::cover(2) * au;
-        double sq = uk * uk, ub = uk * b;
-        G += sigma<SigmaZ>(k) * sq;
-        Gp += sigma<SigmaZ>(k) * ub;
-        S += sq;
-        P += std::fabs(ub);
-        e_G += E * (2 * au + E);
-        e_Gp += E * std::fabs(b) + (au + E) * beta;
-    }
-    return {G, (e_G + 6 * u * S) * F::cover(32) + F::underflow_floor, 2 * Gp,
-            2 * (e_Gp + 4 * u * P) * F::cover(32) + F::underflow_floor};
-}
-
 // G in double-double (the precise line form), or in double from the quick line form: enough for
 // a float rounding, which has 29 bits more room.
 template <int SigmaZ, Residual R>

@@ -124,6 +124,38 @@ void local_at(const LineFormT<T>& f, const T (&c)[N], Local<T> (&out)[N]) {
     }
 }
 
+// g(c + x) = A x^2 + G' x + G from the quick line form (values a_k, b_k, kappa in double, each
+// within alpha_k, beta_k, e_kappa of U0_k, U1_k, K). With u_k = fma(c, b_k, a_k), one rounding:
+//   |u_k - u*_k| <= E_k = alpha_k + |c| beta_k + u |u_k| (1 + 2u),
+//   |u_k^2 - u*_k^2| <= E_k (2 |u_k| + E_k),
+// and G = sum sigma_k fl(u_k^2) - kappa rounds at most five times, each by u of a partial sum
+// no larger than S = sum u_k^2 + |kappa|: 6u S covers them with the squares' own rounding. G' =
+// 2 sum sigma_k u_k b_k as the precise rung's: |u_k b_k - u*_k U1*_k| <= E_k |b_k| +
+// (|u_k| + E_k) beta_k, and 4u sum |u_k b_k| for its roundings. Every bound is computed in a
+// dozen roundings of nonnegative terms (cover(32)), and may have underflowed (the floor).
+template <int SigmaZ, class T>
+LINEQUAD_INLINE Local<T> quick_local_at(const LineFormT<T>& f, T c) {
+    using std::fabs;
+    using std::fma;
+    T G(-f.K.hi), S(std::fabs(f.K.hi)), e_G(f.K.e), Gp(0.0), P(0.0), e_Gp(0.0);
+    const T ac = fabs(c);
+#pragma GCC unroll 3
+    for (int k = 0; k < used_components<SigmaZ>; ++k) {
+        const T a = f.U0[k].hi, b = f.U1[k].hi, beta = f.U1[k].e; // no low parts
+        T uk = fma(c, b, a), au = fabs(uk);
+        T E = f.U0[k].e + ac * beta + T(u * F::cover(2)) * au;
+        T sq = uk * uk, ub = uk * b;
+        G = G + T(sigma<SigmaZ>(k)) * sq;
+        Gp = Gp + T(sigma<SigmaZ>(k)) * ub;
+        S = S + sq;
+        P = P + fabs(ub);
+        e_G = e_G + E * (T(2.0) * au + E);
+        e_Gp = e_Gp + (E * fabs(b) + (au + E) * beta);
+    }
+    return {G, (e_G + T(6 * u) * S) * T(F::cover(32)) + T(F::underflow_floor), T(2.0) * Gp,
+            T(2.0) * (e_Gp + T(4 * u) * P) * T(F::cover(32)) + T(F::underflow_floor)};
+}
+
 // An upper bound of x y for upper bounds x, y >= 0 of two quantities: each may have underflowed
 // by up to 2^-1074, and the product rounds (relatively, or by 2^-1074 below the normal range).
 template <class T>

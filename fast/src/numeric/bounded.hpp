@@ -104,34 +104,43 @@ inline Bounded sqrt(Bounded a) {
 // cases that exact zeros decide (parallel, tangent, on the surface) come out uncertain. The
 // certified solvers try it first and solve again in Bounded whenever it leaves anything
 // uncertain; the values are the same in both (the same operations on v), only the bounds differ.
-struct QuickBounded {
-    double v = 0;
-    double e = 0; // |v - exact| <= bound()
+// T: double, or a lane type (the batch hit test's quick line form).
+template <class T>
+struct QuickBoundedT {
+    T v = T(0);
+    T e = T(0); // |v - exact| <= bound()
 
-    static QuickBounded exact(double x) { return {x, 0}; }
-    double bound() const { return e * detail::Binary64::cover(8192); }
+    static QuickBoundedT exact(T x) { return {x, T(0)}; }
+    T bound() const { return e * T(detail::Binary64::cover(8192)); }
     int certain_sign() const {
         double b = bound();
         return v > b ? 1 : v < -b ? -1 : 0;
     }
 };
+using QuickBounded = QuickBoundedT<double>;
 
-inline QuickBounded operator+(QuickBounded a, QuickBounded b) {
+template <class T>
+inline QuickBoundedT<T> operator+(QuickBoundedT<T> a, QuickBoundedT<T> b) {
     using bounded_detail::F;
-    double s = a.v + b.v;
-    return {s, a.e + b.e + F::u * std::fabs(s) + F::underflow_floor};
+    using std::fabs;
+    T s = a.v + b.v;
+    return {s, a.e + b.e + T(F::u) * fabs(s) + T(F::underflow_floor)};
 }
-inline QuickBounded operator-(QuickBounded a) {
+template <class T>
+inline QuickBoundedT<T> operator-(QuickBoundedT<T> a) {
     return {-a.v, a.e};
 }
-inline QuickBounded operator-(QuickBounded a, QuickBounded b) {
-    return a + QuickBounded{-b.v, b.e};
+template <class T>
+inline QuickBoundedT<T> operator-(QuickBoundedT<T> a, QuickBoundedT<T> b) {
+    return a + QuickBoundedT<T>{-b.v, b.e};
 }
-inline QuickBounded operator*(QuickBounded a, QuickBounded b) {
+template <class T>
+inline QuickBoundedT<T> operator*(QuickBoundedT<T> a, QuickBoundedT<T> b) {
     using bounded_detail::F;
-    double p = a.v * b.v;
-    double e = std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e;
-    return {p, e + F::u * std::fabs(p) + F::underflow_floor};
+    using std::fabs;
+    T p = a.v * b.v;
+    T e = fabs(a.v) * b.e + fabs(b.v) * a.e + a.e * b.e;
+    return {p, e + T(F::u) * fabs(p) + T(F::underflow_floor)};
 }
 // |b| > bound(b) is required; otherwise the bound is infinite.
 inline QuickBounded operator/(QuickBounded a, QuickBounded b) {
@@ -168,6 +177,13 @@ Vec3T<BT> within_low_part(const Vec3TwoTerm& d) {
 template <class BT>
 Vec3T<BT> difference_bounded(Vec3 p, Vec3 q) {
     return within_low_part<BT>(difference_exact(p, q));
+}
+// The same in QuickBounded for any T (lanes too).
+template <class T>
+Vec3T<QuickBoundedT<T>> difference_quick(Vec3T<T> p, Vec3T<T> q) {
+    using std::fabs;
+    Vec3TwoTermT<T> d = difference_exact(p, q);
+    return {{d.hi.x, fabs(d.lo.x)}, {d.hi.y, fabs(d.lo.y)}, {d.hi.z, fabs(d.lo.z)}};
 }
 
 } // namespace detail

@@ -348,31 +348,29 @@ struct ShapeTraits<Cylinder> {
     // absolute values (Higham, (3.5)). cross: two inputs, a product, a difference (n = 4, 5u
     // covers gamma_4 with the magnitude's own rounding); with v exact, n = 3 (4u); h.h and
     // w.h: n = 5 (6u); v.h: 5u; K = r^2 h.h: n = 7 (8u).
-    template <class Src>
-    static LineForm quick_line_form(const Src& src, const Line& l, int /*orientation*/) {
+    template <class T = double, class Src>
+    static LineFormT<T> quick_line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v,
+                                        int /*orientation*/) {
         using F = Binary64;
         const Cylinder& s = src.shape;
-        Vec3 h = [&] {
+        Vec3 h_shape = [&] {
             if constexpr (Src::prepared)
                 return src.facts.h_hi; // h.hi of the exact difference: within u
             else
                 return s.H - s.C;
         }();
-        Vec3 w = l.L0 - s.C, v = l.v;
-        Vec3 U0 = cross(w, h), U1 = cross(v, h);
-        Vec3 m0 = cross_magnitudes(w, h), m1 = cross_magnitudes(v, h);
-        double hh = dot(h, h), K = (s.r * s.r) * hh;
-        auto bounded = [](double value, double bound) {
-            return BoundedDD(value, 0, bound + F::underflow_floor);
-        };
-        LineForm f;
+        Vec3T<T> h = lanes_of<T>(h_shape), w = L0 - lanes_of<T>(s.C);
+        Vec3T<T> U0 = cross(w, h), U1 = cross(v, h);
+        Vec3T<T> m0 = cross_magnitudes(w, h), m1 = cross_magnitudes(v, h);
+        double hh = dot(h_shape, h_shape), K = (s.r * s.r) * hh;
+        LineFormT<T> f;
 #pragma GCC unroll 3
         for (int k = 0; k < 3; ++k) {
-            f.U0[k] = bounded(U0[k], 5 * F::u * m0[k]);
-            f.U1[k] = bounded(U1[k], 4 * F::u * m1[k]);
+            f.U0[k] = {U0[k], T(0.0), T(5 * F::u) * m0[k] + T(F::underflow_floor)};
+            f.U1[k] = {U1[k], T(0.0), T(4 * F::u) * m1[k] + T(F::underflow_floor)};
         }
         f.sigma_z = 1;
-        f.K = bounded(K, 8 * F::u * K);
+        f.K = BoundedDD(K, 0, 8 * F::u * K + F::underflow_floor);
         cylinder_axial(f, w, h, v);
         f.hi = hh, f.e_hi = 6 * F::u * hh + F::underflow_floor;
         f.lo_bounded = f.hi_bounded = s.finite;

@@ -329,13 +329,13 @@ struct ShapeTraits<EllipticCone> {
 
     // ---- correct: the hit test's quick line form (the same, in doubles with bounds) ----
 
-    template <class Src>
-    static LineForm quick_line_form(const Src& src, const Line& l, int orientation) {
+    template <class T = double, class Src>
+    static LineFormT<T> quick_line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         using Q = QuickBounded;
         const EllipticCone& s = src.shape;
         Q d; // |det|
-        LineForm f = quick_elliptic_form(adjugate_rows(src), difference_bounded<Q>(l.L0, s.H), l.v,
-                                         orientation < 0, d);
+        LineFormT<T> f = quick_elliptic_form(
+            adjugate_rows(src), difference_quick(L0, lanes_of<T>(s.H)), v, orientation < 0, d);
         f.sigma_z = -1;
         f.K = BoundedDD(0);
         f.lo = -d.v, f.e_lo = d.bound(); // -|det| <= Z <= 0: the nappe z <= 0

@@ -265,13 +265,13 @@ struct ShapeTraits<EllipticCylinder> {
 
     // ---- correct: the hit test's quick line form (the same, in doubles with bounds) ----
 
-    template <class Src>
-    static LineForm quick_line_form(const Src& src, const Line& l, int orientation) {
+    template <class T = double, class Src>
+    static LineFormT<T> quick_line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         using Q = QuickBounded;
         const EllipticCylinder& s = src.shape;
         Q d; // |det|
-        LineForm f = quick_elliptic_form(adjugate_rows(src), difference_bounded<Q>(l.L0, s.C), l.v,
-                                         orientation < 0, d);
+        LineFormT<T> f = quick_elliptic_form(
+            adjugate_rows(src), difference_quick(L0, lanes_of<T>(s.C)), v, orientation < 0, d);
         f.sigma_z = 0;
         f.K = quick(d * d);
         f.lo = 0, f.e_lo = 0;

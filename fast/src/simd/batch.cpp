@@ -146,12 +146,12 @@ void correct_batch(const Prepared<S>& shape, const LineArrays& lines, Query q, R
     };
     std::size_t i = 0;
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
-    // The ladder's Newton rung as given covers a valid open shape with a line form and a valid
-    // range; a hit test takes the scalar quick rung first, line by line.
+    // The ladder's Newton rung as given (a hit test's quick rung) covers a valid open shape
+    // with a line form and a valid range.
     if constexpr (detail::ShapeTraits<S>::has_line_form) {
         Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
-        bool rung_applies = shape.ok() && !detail::closed(shape.shape()) &&
-                            detail::check_line(probe).ok() && q.need != Need::any;
+        bool rung_applies =
+            shape.ok() && !detail::closed(shape.shape()) && detail::check_line(probe).ok();
         lanes = std::min(lanes, batch_lanes());
         if (rung_applies && lanes != Lanes::scalar) {
 #if defined(LINEQUAD_HAVE_AVX512_KERNELS)

@@ -46,27 +46,31 @@ LINEQUAD_INLINE void write_result(const LaneBlock<R, N>& b, int k, Query q, Resu
     r.count = std::uint8_t(count);
 }
 
-// What the batch correct kernel hands back for a block of N lanes: the lanes the Newton rung
-// proved (the others go to the scalar ladder), and their hits as the rung adds them: root j is a
-// hit where bit k of keep[j] is set, t and the point already rounded (caller's units).
+// What the batch correct kernel hands back for a block of N lanes: the lanes the Newton rung (or
+// for a hit test the quick rung) proved, the others going to the scalar ladder, and their hits
+// as the rung adds them: root j is a hit where bit k of keep[j] is set, t and the point already
+// rounded (caller's units).
 template <int N>
 struct CorrectBlock {
     unsigned proven;
     unsigned keep[2];
     double t[2][N];
     double p[2][3][N];
+    double hit_bound[N]; // a hit test's: its t is the enclosure's midpoint, not rounded
 };
 
-// Lane k's Result, as the scalar ladder makes it from the Newton rung's hits.
+// Lane k's Result, as the scalar ladder makes it from the Newton rung's hits (a hit test's
+// from its quick rung: no point, its own bound).
 template <int N>
 LINEQUAD_INLINE void write_result(const CorrectBlock<N>& b, int k, Query q, Result& r) {
     reset(r);
+    bool hit_test = q.need == Need::any, points = q.points && !hit_test;
     for (int j = 0; j < 2; ++j) {
         if (!((b.keep[j] >> k) & 1)) continue;
         Hit& h = r.hits[r.count++];
         h.t = b.t[j][k], h.kind = HitKind::cross, h.part = Part::lateral;
-        h.p = q.points ? Vec3{b.p[j][0][k], b.p[j][1][k], b.p[j][2][k]} : Vec3{};
-        h.bound = Binary64::half_ulp(h.t), h.certain = true;
+        h.p = points ? Vec3{b.p[j][0][k], b.p[j][1][k], b.p[j][2][k]} : Vec3{};
+        h.bound = hit_test ? b.hit_bound[k] : Binary64::half_ulp(h.t), h.certain = true;
     }
     r.certainty = Certainty::certain;
     r.rung = Rung::newton;

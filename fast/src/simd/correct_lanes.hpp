@@ -3,7 +3,8 @@
 // (correct/newton_steps.hpp) and each shape's line form in lanes (its line_form<L>, shapes/).
 // A lane answers only where the scalar ladder would take the same rung on the same line and
 // prove it: a usual line (finite, v nonzero) of moderate size, solved as given, every decision
-// and every rounding proven. The other lanes go back to the scalar ladder. Included only by
+// and every rounding proven; a hit test (Need::any) on the quick rung, as the scalar solver
+// takes it first. The other lanes go back to the scalar ladder. Included only by
 // translation units built for L's instruction set.
 #pragma once
 
@@ -65,6 +66,40 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
     out.keep[1] = unsigned(bits(est.real & kept_root[1] & !stop));
 }
 
+// The hit test (Need::any) of one lane's line, as the scalar quick rung takes it
+// (newton_rung.cpp: hit_test): the roots as estimated, in that order; the first proven inside
+// the extent and the range is the hit; no hit needs both roots proven outside, or none real.
+template <int SigmaZ, class L>
+void hit_test_lanes(const LineFormT<L>& f, Mask<L> usable, Interval range,
+                    CorrectBlock<lane_count<L>>& out) {
+    Leading<L> A = leading<SigmaZ>(f);
+    usable = usable & (A.e < fabs(A.A));
+    Estimates<L> est = estimates<SigmaZ>(f, A);
+    const L c[2] = {select(est.real, est.root[0], est.vertex), est.root[1]};
+    Local<L> local[2] = {quick_local_at<SigmaZ>(f, c[0]), quick_local_at<SigmaZ>(f, c[1])};
+    Mask<L> no_root = no_root_proven(A, c[0], local[0]);
+    Enclosure<L> en[2] = {root_near(local[0], A, c[0]), root_near(local[1], A, c[1])};
+    Mask<L> hit[2], outside_smaller = L(0.0) < L(0.0), outside_larger = outside_smaller;
+    for (int j = 0; j < 2; ++j) {
+        Kept<L> k = kept(f, range, en[j]);
+        hit[j] = en[j].proven & k.inside;
+        Mask<L> outside = en[j].proven & k.outside;
+        outside_smaller = outside_smaller | (outside & en[j].smaller);
+        outside_larger = outside_larger | (outside & (!en[j].smaller));
+    }
+    Mask<L> any_hit = hit[0] | hit[1];
+    Mask<L> answered = any_hit | (outside_smaller & outside_larger);
+    Mask<L> proven = usable & ((est.real & answered) | ((!est.real) & no_root));
+    // t = c + x rounded once: within e + u |t| of the root (the sum's rounding).
+    L t = select(hit[0], en[0].c + en[0].x, en[1].c + en[1].x);
+    L e = select(hit[0], en[0].e, en[1].e);
+    store(out.t[0], t);
+    store(out.hit_bound, (e + L(u) * fabs(t)) * L(F::cover(8)) + L(F::denorm_min));
+    out.proven = unsigned(bits(proven));
+    out.keep[0] = unsigned(bits(est.real & any_hit));
+    out.keep[1] = 0;
+}
+
 } // namespace newton
 
 // Lines [i, i + lanes) of the arrays (x, y, z, vx, vy, vz) against the prepared shape: the lanes
@@ -80,6 +115,17 @@ void correct_lanes(const Prepared<S>& shape, int orientation, const Real<L>* con
     auto moderate = [](L x) { return (x >= L(0x1p-64)) & (x <= L(0x1p+64)); };
     L extent = maximum(max_abs(L0), L(src.magnitude()));
     auto usable = usual_line(L0, v) & moderate(extent) & moderate(max_abs(v));
+    if (q.need == Need::any) { // the quick rung, on the quick line form
+        LineFormT<L> f = Traits::template quick_line_form<L>(src, L0, v, orientation);
+        switch (f.sigma_z) {
+        case 1:
+            return newton::hit_test_lanes<1>(f, usable, range, out);
+        case 0:
+            return newton::hit_test_lanes<0>(f, usable, range, out);
+        default:
+            return newton::hit_test_lanes<-1>(f, usable, range, out);
+        }
+    }
     LineFormT<L> f = Traits::template line_form<L>(src, L0, v, orientation);
     switch (f.sigma_z) {
     case 1:
