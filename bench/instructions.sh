@@ -49,6 +49,10 @@ if [ -z "$rows" ]; then
     for solver in seed stable certified correct; do rows="$rows $solver:$shape:all:points:direct"; done
   done
   rows="$rows certified:cylinder:all:points:direct"
+  # The batch solvers on AVX2 lanes (valgrind runs no AVX-512): 1024 lines against one prepared
+  # shape, per line.
+  rows="$rows batch-avx2:cylinder:all:points:prepared batchcorrect-avx2:cylinder:all:points:prepared"
+  rows="$rows batchcorrect-avx2:cylinder:any:no_points:prepared"
 fi
 for row in $rows; do
   IFS=: read -r solver shape need points prepared <<<"$row"

@@ -164,8 +164,9 @@ inline QuickBounded quick(const BoundedDD& x) {
 // The elliptic shapes' quick form, from the precise rows (the same values, prepared or not):
 // U0 = adj(M) w, U1 = adj(M) v, Z = U_z with det's sign folded in; abs_det = |det|.
 template <class T>
-LineFormT<T> quick_elliptic_form(const AdjugateRowsDD& rows, const Vec3T<QuickBoundedT<T>>& w,
-                                 Vec3T<T> v, bool negative_det, QuickBounded& abs_det) {
+LINEQUAD_INLINE LineFormT<T> quick_elliptic_form(const AdjugateRowsDD& rows,
+                                                 const Vec3T<QuickBoundedT<T>>& w, Vec3T<T> v,
+                                                 bool negative_det, QuickBounded& abs_det) {
     using Q = QuickBoundedT<T>;
     auto lanes = [](const BoundedDD& x) {
         QuickBounded q = quick(x);
