@@ -10,8 +10,9 @@
 //  - a certified result that says it is certain has the oracle's classification;
 //  - the correct solver returns the oracle's answer bit for bit (all hits with points, and the
 //    nearest without);
-//  - the batch solvers (stable in four double lanes, stable32 in eight float lanes, and a scalar
-//    tail) return the scalar solver's result, bit for bit, for this line among variants of it;
+//  - the batch solvers (stable and correct in four or eight double lanes, stable32 in eight float
+//    lanes, and a scalar tail) return the scalar solver's result, bit for bit (correct's rung
+//    too, for all, nearest and any), for this line among variants of it;
 //  - on the case rounded to float: correct32 is the float oracle's answer bit for bit, and the
 //    float solvers answer in floats;
 //  - every solver returns for the prepared shape what it returns for the shape, bit for bit
@@ -196,6 +197,20 @@ void check_batch(Checker& k) {
         Result scalar = find_solver(name)->solve(c.shape, variants[i], Query{});
         k.require(format_result(c.id, "", batch[i]) == format_result(c.id, "", scalar),
                   "batch equals scalar bit for bit", std::string(name) + " (batch)", batch[i]);
+    }
+    if constexpr (std::is_same_v<R, double>) {
+        // correct's batch, for each query: its lanes prove what the scalar rung proves.
+        for (Query q : {Query{}, Query{Need::nearest, false}, Query{Need::any, false}}) {
+            std::visit([&](const auto& s) { correct::intersect(s, lines, q, batch); }, c.shape);
+            for (int i = 0; i < 9; ++i) {
+                Result scalar = correct::intersect(c.shape, variants[i], q);
+                k.require(format_result(c.id, "", batch[i], q.points) ==
+                                  format_result(c.id, "", scalar, q.points) &&
+                              batch[i].rung == scalar.rung,
+                          "batch equals scalar bit for bit, rung for rung", "correct (batch)",
+                          batch[i]);
+            }
+        }
     }
 }
 
