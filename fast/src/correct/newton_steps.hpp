@@ -63,7 +63,7 @@ struct Leading {
 template <int SigmaZ, class T>
 LINEQUAD_INLINE Leading<T> leading(const LineFormT<T>& f) {
     using std::fabs;
-    T A(0.0), squares(0.0), propagated(0.0);
+    T A(0.0), squares(-0.0), propagated(-0.0); // -0 + x = x: see CompensatedSumT
 #pragma GCC unroll 3
     for (int k = 0; k < used_components<SigmaZ>; ++k) {
         T h = f.U1[k].hi, d = bound_of_hi(f.U1[k]);
@@ -87,7 +87,7 @@ void local_at(const LineFormT<T>& f, const T (&c)[N], Local<T> (&out)[N]) {
     CompensatedSumT<T> g[N];
     T propagated[N], Gp[N], products[N], e_Gp[N];
     for (int n = 0; n < N; ++n)
-        propagated[n] = T(f.K.e), Gp[n] = products[n] = e_Gp[n] = T(0.0);
+        propagated[n] = T(f.K.e), Gp[n] = T(0.0), products[n] = e_Gp[n] = T(-0.0);
 #pragma GCC unroll 3
     for (int k = 0; k < used_components<SigmaZ>; ++k) {
         const T sg(sigma<SigmaZ>(k)); // +-1: multiplying by it is exact

@@ -82,7 +82,10 @@ class CompensatedSumT {
     }
 
   private:
-    T hi_ = T(0), lo_ = T(0), mag_ = T(0), small_ = T(0);
+    // The magnitudes start at -0: -0 + x is x exactly for every x, so the first addition folds
+    // away (+0 + x would not: it is +0 for x = -0, which fabs never gives, but the compiler
+    // cannot know that).
+    T hi_ = T(0), lo_ = T(0), mag_ = T(-0.0), small_ = T(-0.0);
     int terms_ = 0; // additions into lo: at most 64 (every use in this library makes fewer than 20)
     bool empty_ = true;
 

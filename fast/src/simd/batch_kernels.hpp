@@ -56,7 +56,7 @@ struct CorrectBlock {
     unsigned keep[2];
     double t[2][N];
     double p[2][3][N];
-    double hit_bound[N]; // a hit test's: its t is the enclosure's midpoint, not rounded
+    double bound[2][N]; // half an ulp of t; a hit test's own (its t is not rounded)
 };
 
 // Lane k's Result, as the scalar ladder makes it from the Newton rung's hits (a hit test's
@@ -64,13 +64,13 @@ struct CorrectBlock {
 template <int N>
 LINEQUAD_INLINE void write_result(const CorrectBlock<N>& b, int k, Query q, Result& r) {
     reset(r);
-    bool hit_test = q.need == Need::any, points = q.points && !hit_test;
+    bool points = q.points && q.need != Need::any;
     for (int j = 0; j < 2; ++j) {
         if (!((b.keep[j] >> k) & 1)) continue;
         Hit& h = r.hits[r.count++];
         h.t = b.t[j][k], h.kind = HitKind::cross, h.part = Part::lateral;
         h.p = points ? Vec3{b.p[j][0][k], b.p[j][1][k], b.p[j][2][k]} : Vec3{};
-        h.bound = hit_test ? b.hit_bound[k] : Binary64::half_ulp(h.t), h.certain = true;
+        h.bound = b.bound[j][k], h.certain = true;
     }
     r.certainty = Certainty::certain;
     r.rung = Rung::newton;

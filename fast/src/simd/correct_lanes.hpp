@@ -41,6 +41,7 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
         Rounded<L> t = rounded_t(en, one);
         Mask<L> hit_proven = t.proven;
         store(out.t[j], t.value);
+        store(out.bound[j], half_ulp(t.value)); // mark_certain's bound
         if (q.points) {
 #pragma GCC unroll 3
             for (int a = 0; a < 3; ++a) {
@@ -94,7 +95,7 @@ void hit_test_lanes(const LineFormT<L>& f, Mask<L> usable, Interval range,
     L t = select(hit[0], en[0].c + en[0].x, en[1].c + en[1].x);
     L e = select(hit[0], en[0].e, en[1].e);
     store(out.t[0], t);
-    store(out.hit_bound, (e + L(u) * fabs(t)) * L(F::cover(8)) + L(F::denorm_min));
+    store(out.bound[0], (e + L(u) * fabs(t)) * L(F::cover(8)) + L(F::denorm_min));
     out.proven = unsigned(bits(proven));
     out.keep[0] = unsigned(bits(est.real & any_hit));
     out.keep[1] = 0;

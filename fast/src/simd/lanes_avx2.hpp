@@ -82,6 +82,13 @@ inline D4 select(M4 m, D4 a, D4 b) {
 inline int bits(M4 m) {
     return _mm256_movemask_pd(m.m);
 }
+// Binary64::half_ulp of a finite x in each lane: the distance to the next double away from
+// zero, halved (the same operations).
+inline D4 half_ulp(D4 x) {
+    D4 a = fabs(x);
+    D4 next(_mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(a.v), _mm256_set1_epi64x(1))));
+    return (next - a) * D4(0.5); // x / 2 and x * 0.5 round alike
+}
 // Binary64's half_ulp_of_normal and is_power_of_two in each lane: the same bit operations.
 inline D4 half_ulp_of_normal(D4 x) {
     __m256i b = _mm256_and_si256(_mm256_castpd_si256(x.v), _mm256_set1_epi64x(0x7ff0000000000000));

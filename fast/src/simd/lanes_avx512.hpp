@@ -82,6 +82,13 @@ inline D8 select(K8 m, D8 a, D8 b) {
 inline int bits(K8 m) {
     return m.m;
 }
+// Binary64::half_ulp of a finite x in each lane: the distance to the next double away from
+// zero, halved (the same operations).
+inline D8 half_ulp(D8 x) {
+    D8 a = fabs(x);
+    D8 next(_mm512_castsi512_pd(_mm512_add_epi64(_mm512_castpd_si512(a.v), _mm512_set1_epi64(1))));
+    return (next - a) * D8(0.5); // x / 2 and x * 0.5 round alike
+}
 // Binary64's half_ulp_of_normal and is_power_of_two in each lane: the same bit operations.
 inline D8 half_ulp_of_normal(D8 x) {
     __m512i b = _mm512_and_si512(_mm512_castpd_si512(x.v), _mm512_set1_epi64(0x7ff0000000000000));
