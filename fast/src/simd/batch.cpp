@@ -36,6 +36,13 @@ Lanes batch_lanes() {
 
 namespace {
 
+// Line i of the arrays, in double (a float line's coordinates are exact in double).
+template <class R>
+Line line_at(const LineArraysT<R>& lines, std::size_t i) {
+    return Line{
+        {lines.x[i], lines.y[i], lines.z[i]}, {lines.vx[i], lines.vy[i], lines.vz[i]}, lines.range};
+}
+
 // The scalar solver for lines in R.
 template <class R, class S>
 Result solve_one(const S& shape, const Line& l, Query q) {
@@ -63,9 +70,8 @@ struct Kernel {
 // Lines [i, i + N) of the batch that the kernel takes: their results, assembled from the lanes;
 // the lanes it does not take (bad lines, the branches of the scalar solver) by the scalar
 // solver, which names any problem. Returns the first line it has not done.
-template <class R, int N, class S, class LineAt>
-std::size_t run_lanes(const S& shape, const LineArraysT<R>& lines, Query q, Result* out,
-                      LineAt line_at) {
+template <class R, int N, class S>
+std::size_t run_lanes(const S& shape, const LineArraysT<R>& lines, Query q, Result* out) {
     auto src = detail::source(shape);
     const R* const soa[6] = {lines.x, lines.y, lines.z, lines.vx, lines.vy, lines.vz};
     double shape_extent = src.magnitude();
@@ -77,7 +83,7 @@ std::size_t run_lanes(const S& shape, const LineArraysT<R>& lines, Query q, Resu
             if ((block.generic >> k) & 1)
                 detail::write_result(block, k, q, out[i + k]);
             else
-                out[i + k] = solve_one<R>(shape, line_at(i + k), q);
+                out[i + k] = solve_one<R>(shape, line_at(lines, i + k), q);
         }
     }
     return i;
@@ -85,11 +91,6 @@ std::size_t run_lanes(const S& shape, const LineArraysT<R>& lines, Query q, Resu
 
 template <class R, class S>
 void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* out, Lanes lanes) {
-    auto line_at = [&](std::size_t i) {
-        return Line{{lines.x[i], lines.y[i], lines.z[i]},
-                    {lines.vx[i], lines.vy[i], lines.vz[i]},
-                    lines.range};
-    };
     std::size_t i = 0;
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
     // The shape is checked once, and the range (for float lines: that they are floats). A closed
@@ -102,21 +103,21 @@ void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* o
     if (shape_ok && lanes != Lanes::scalar) {
 #if defined(LINEQUAD_HAVE_AVX512_KERNELS)
         if (lanes == Lanes::avx512 && std::is_same_v<R, double>)
-            i = run_lanes<R, 8>(shape, lines, q, out, line_at);
+            i = run_lanes<R, 8>(shape, lines, q, out);
         else
 #endif
-            i = run_lanes < R, std::is_same_v<R, float> ? 8 : 4 > (shape, lines, q, out, line_at);
+            i = run_lanes < R, std::is_same_v<R, float> ? 8 : 4 > (shape, lines, q, out);
     }
 #endif
     for (; i < lines.count; ++i)
-        out[i] = solve_one<R>(shape, line_at(i), q);
+        out[i] = solve_one<R>(shape, line_at(lines, i), q);
 }
 
 // correct's batch: the Newton rung on N lanes (correct_x4, correct_x8), the lanes it does not
 // prove by the scalar ladder.
-template <int N, class S, class LineAt>
+template <int N, class S>
 std::size_t run_correct_lanes(const Prepared<S>& shape, const LineArrays& lines, Query q,
-                              Result* out, LineAt line_at) {
+                              Result* out) {
     int orientation = detail::source(shape).validity().orientation;
     const double* const soa[6] = {lines.x, lines.y, lines.z, lines.vx, lines.vy, lines.vz};
     detail::CorrectBlock<N> block;
@@ -130,7 +131,7 @@ std::size_t run_correct_lanes(const Prepared<S>& shape, const LineArrays& lines,
             if ((block.proven >> k) & 1)
                 detail::write_result(block, k, q, out[i + k]);
             else
-                out[i + k] = correct::intersect(shape, line_at(i + k), q);
+                out[i + k] = correct::intersect(shape, line_at(lines, i + k), q);
         }
     }
     return i;
@@ -139,11 +140,6 @@ std::size_t run_correct_lanes(const Prepared<S>& shape, const LineArrays& lines,
 template <class S>
 void correct_batch(const Prepared<S>& shape, const LineArrays& lines, Query q, Result* out,
                    Lanes lanes) {
-    auto line_at = [&](std::size_t i) {
-        return Line{{lines.x[i], lines.y[i], lines.z[i]},
-                    {lines.vx[i], lines.vy[i], lines.vz[i]},
-                    lines.range};
-    };
     std::size_t i = 0;
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
     // The ladder's Newton rung as given (a hit test's quick rung) covers a valid open shape
@@ -156,15 +152,15 @@ void correct_batch(const Prepared<S>& shape, const LineArrays& lines, Query q, R
         if (rung_applies && lanes != Lanes::scalar) {
 #if defined(LINEQUAD_HAVE_AVX512_KERNELS)
             if (lanes == Lanes::avx512)
-                i = run_correct_lanes<8>(shape, lines, q, out, line_at);
+                i = run_correct_lanes<8>(shape, lines, q, out);
             else
 #endif
-                i = run_correct_lanes<4>(shape, lines, q, out, line_at);
+                i = run_correct_lanes<4>(shape, lines, q, out);
         }
     }
 #endif
     for (; i < lines.count; ++i)
-        out[i] = correct::intersect(shape, line_at(i), q);
+        out[i] = correct::intersect(shape, line_at(lines, i), q);
 }
 // A plain shape is prepared once for the batch: the rung's frame rows and orientation.
 template <class S>

@@ -57,8 +57,8 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
         failed[j] = (!en.proven) | (!which) | (!decided) | (k.inside & (!hit_proven));
         kept_root[j] = k.inside;
     }
-    // A hit test or the nearest hit stops at the smaller root when it is kept: the larger one
-    // is then never looked at.
+    // The nearest hit stops at the smaller root when it is kept: the larger one is then never
+    // looked at.
     Mask<L> stop = q.need == Need::all ? zero < zero : kept_root[0];
     Mask<L> roots_proven = (!failed[0]) & (stop | (!failed[1]));
     Mask<L> proven = usable & ((est.real & roots_proven) | ((!est.real) & no_root));
