@@ -155,7 +155,9 @@ void correct_lines(benchmark::State& state, int shape, Lanes lanes) {
         },
         o.shape);
     state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
-    state.SetLabel(lanes_name(std::min(lanes, batch_lanes())));
+    // The frustum has no Newton form: its batch is the scalar loop on any path.
+    bool in_lanes = !std::holds_alternative<Frustum>(o.shape);
+    state.SetLabel(lanes_name(in_lanes ? std::min(lanes, batch_lanes()) : Lanes::scalar));
 }
 
 int register_all() {
