@@ -169,21 +169,16 @@ template <class BT>
 Vec3T<BT> exact(Vec3 a) {
     return {BT::exact(a.x), BT::exact(a.y), BT::exact(a.z)};
 }
-template <class BT>
-Vec3T<BT> within_low_part(const Vec3TwoTerm& d) {
-    return {{d.hi.x, std::fabs(d.lo.x)}, {d.hi.y, std::fabs(d.lo.y)}, {d.hi.z, std::fabs(d.lo.z)}};
+// R: the components' number type (double, or a lane type for QuickBoundedT of it).
+template <class BT, class R>
+Vec3T<BT> within_low_part(const Vec3TwoTermT<R>& d) {
+    using std::fabs;
+    return {{d.hi.x, fabs(d.lo.x)}, {d.hi.y, fabs(d.lo.y)}, {d.hi.z, fabs(d.lo.z)}};
 }
 // p - q, computed exactly (difference_exact), as its rounded value with the bound |lo|.
-template <class BT>
-Vec3T<BT> difference_bounded(Vec3 p, Vec3 q) {
+template <class BT, class R>
+Vec3T<BT> difference_bounded(Vec3T<R> p, Vec3T<R> q) {
     return within_low_part<BT>(difference_exact(p, q));
-}
-// The same in QuickBounded for any T (lanes too).
-template <class T>
-Vec3T<QuickBoundedT<T>> difference_quick(Vec3T<T> p, Vec3T<T> q) {
-    using std::fabs;
-    Vec3TwoTermT<T> d = difference_exact(p, q);
-    return {{d.hi.x, fabs(d.lo.x)}, {d.hi.y, fabs(d.lo.y)}, {d.hi.z, fabs(d.lo.z)}};
 }
 
 } // namespace detail

@@ -335,7 +335,8 @@ struct ShapeTraits<EllipticCone> {
         const EllipticCone& s = src.shape;
         Q d; // |det|
         LineFormT<T> f = quick_elliptic_form(
-            adjugate_rows(src), difference_quick(L0, lanes_of<T>(s.H)), v, orientation < 0, d);
+            adjugate_rows(src), difference_bounded<QuickBoundedT<T>>(L0, lanes_of<T>(s.H)), v,
+            orientation < 0, d);
         f.sigma_z = -1;
         f.K = BoundedDD(0);
         f.lo = -d.v, f.e_lo = d.bound(); // -|det| <= Z <= 0: the nappe z <= 0

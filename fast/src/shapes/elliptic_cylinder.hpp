@@ -271,7 +271,8 @@ struct ShapeTraits<EllipticCylinder> {
         const EllipticCylinder& s = src.shape;
         Q d; // |det|
         LineFormT<T> f = quick_elliptic_form(
-            adjugate_rows(src), difference_quick(L0, lanes_of<T>(s.C)), v, orientation < 0, d);
+            adjugate_rows(src), difference_bounded<QuickBoundedT<T>>(L0, lanes_of<T>(s.C)), v,
+            orientation < 0, d);
         f.sigma_z = 0;
         f.K = quick(d * d);
         f.lo = 0, f.e_lo = 0;
