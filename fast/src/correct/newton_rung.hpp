@@ -12,6 +12,9 @@
 // existence, a simple root, which of the two roots it is (the other is at -G'/A - x*), and an
 // enclosure about 2^-100 |t| wide, from one evaluation. The extent, the range, t and the points
 // are then decided on the enclosure; whatever the bounds leave open goes to the next rung.
+// The arithmetic is written once, over the number type (newton_steps.hpp): newton_rung.cpp
+// branches on its proofs for one line, the batch kernels (simd/correct_lanes.hpp) combine them as
+// lane masks.
 #pragma once
 
 #include "correct/ladder.hpp"
