@@ -142,6 +142,59 @@ TEST_CASE("batch: correct equals the scalar solver bit for bit and rung for rung
     }
 }
 
+TEST_CASE("batch: correct names a bad shape or range on every line as the scalar solver does",
+          "[batch]") {
+    // Sixteen lines (full blocks on every path) through a cylinder; each refusal names its field.
+    std::vector<double> soa[6];
+    for (int i = 0; i < 16; ++i) {
+        double p[6] = {-10, 0.25 * i, 1, 1, 0, 0};
+        for (int a = 0; a < 6; ++a)
+            soa[a].push_back(p[a]);
+    }
+    auto lines_with = [&](Interval range) {
+        return LineArrays{soa[0].data(),
+                          soa[1].data(),
+                          soa[2].data(),
+                          soa[3].data(),
+                          soa[4].data(),
+                          soa[5].data(),
+                          16,
+                          range};
+    };
+    Cylinder good{{0, 0, 0}, {0, 0, 10}, 5}, flat{{0, 0, 0}, {0, 0, 10}, 0};
+    struct Input {
+        Cylinder shape;
+        Interval range;
+        ErrorCode want;
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const Input& in : {Input{flat, Range::line, ErrorCode::bad_radius},
+                            Input{good, Interval(2, 1), ErrorCode::empty_range},
+                            Input{good, Interval(nan, 1), ErrorCode::not_a_number},
+                            Input{good, Range::ray, ErrorCode::none}}) {
+        for (Lanes lanes : paths())
+            for (Query q : {Query{}, Query{Need::nearest, false}, Query{Need::any, false}}) {
+                Result got[16];
+                correct::intersect(prepare(in.shape), lines_with(in.range), q, got, lanes);
+                for (int i = 0; i < 16; ++i) {
+                    Line l{{soa[0][i], soa[1][i], soa[2][i]}, {1, 0, 0}, in.range};
+                    Result want = correct::intersect(in.shape, l, q);
+                    INFO("lanes " << lanes_name(lanes) << " line " << i);
+                    REQUIRE(got[i].error_code == in.want);
+                    REQUIRE(format_result("0", "", got[i], q.points) ==
+                            format_result("0", "", want, q.points));
+                }
+            }
+    }
+    // No lines: nothing written, nothing read.
+    Result untouched;
+    untouched.count = 7;
+    correct::intersect(
+        good, LineArrays{nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, 0, Range::line},
+        Query{}, &untouched);
+    CHECK(untouched.count == 7);
+}
+
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
 namespace {
 
