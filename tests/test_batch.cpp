@@ -82,8 +82,8 @@ std::size_t compare_with_scalar(std::size_t per_shape, Lanes lanes) {
                     LineArraysT<R> lines{soa[0].data(), soa[1].data(),          soa[2].data(),
                                          soa[3].data(), soa[4].data(),          soa[5].data(),
                                          per_shape,     cases[first].line.range};
-                    for (Query q :
-                         {Query{}, Query{Need::nearest, false}, Query{Need::any, false}}) {
+                    for (Query q : {Query{}, Query{Need::all, false}, Query{Need::nearest, true},
+                                    Query{Need::nearest, false}, Query{Need::any, false}}) {
                         std::vector<Result> got(per_shape);
                         batch<B>(shape, lines, q, got.data(), lanes);
                         for (std::size_t j = 0; j < per_shape; ++j) {
