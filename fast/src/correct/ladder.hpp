@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <optional>
+#include <type_traits>
 
 namespace linequad::detail {
 
@@ -40,25 +41,62 @@ std::optional<Unit> unit_scale(const Src& src, double extent, const Line& l) {
     return Unit{1 / ps.to_unit, ps.t_factor, Line{ps.pos(l.L0), ps.dir(l.v), range}};
 }
 
-// The double nearest x 2^k (scale = 2^k) when x's bound proves which it is. Inline: every t and
-// every coordinate of every point of the first two rungs passes through it.
-inline std::optional<double> round_proven(const BoundedDD& x, double scale, Binary64) {
+// Binary64's bit steps for double, as the lane types have them (simd/lanes_avx2.hpp and
+// lanes_avx512.hpp), so that the templates below serve both.
+LINEQUAD_INLINE double half_ulp_of_normal(double x) {
+    return Binary64::half_ulp_of_normal(x);
+}
+LINEQUAD_INLINE bool is_power_of_two(double x) {
+    return Binary64::is_power_of_two(x);
+}
+LINEQUAD_INLINE double select(bool m, double a, double b) {
+    return m ? a : b;
+}
+template <class T>
+LINEQUAD_INLINE MaskOf<T> equal(T a, T b) {
+    return !(a != b);
+}
+
+// The double nearest x 2^k (scale = 2^k), and whether x's bound proves which it is; T is double
+// or a lane type (the batch correct solver's). Inline: every t and every coordinate of every
+// point of the first two rungs passes through it.
+template <class T>
+struct Rounded {
+    T value;
+    MaskOf<T> proven;
+};
+template <class T>
+LINEQUAD_INLINE Rounded<T> round_proven_to_double(const BoundedDDT<T>& x, T scale) {
     using F = Binary64;
-    if (x.e == 0 && x.hi == 0) return 0.0; // an exact zero is +0
-    double hi = x.hi * scale, a = std::fabs(hi);
-    if (!(a >= 0x1p-960 && a <= 0x1p+1000)) return std::nullopt; // NaN too
-    if (x.e == 0 && x.lo == 0) return hi;                        // exact
+    using std::copysign;
+    using std::fabs;
+    T zero(0.0);
+    MaskOf<T> exact = equal(x.e, zero), is_zero = exact & equal(x.hi, zero); // an exact 0 is +0
+    T hi = x.hi * scale, a = fabs(hi);
+    MaskOf<T> normal = (a >= T(0x1p-960)) & (a <= T(0x1p+1000)); // not NaN
+    if constexpr (std::is_same_v<T, double>) { // one value: the answers that need no cell
+        if (is_zero) return {0.0, true};
+        if (!normal) return {hi, false};
+        if (exact && x.lo == 0) return {hi, true}; // exact
+    }
     // Far from overflow and underflow, scaling is exact but for lo's last bits (the slack
     // covers them).
-    double lo = x.lo * scale, e = x.e * scale + F::subnormal_slack;
+    T lo = x.lo * scale, e = x.e * scale + T(F::subnormal_slack);
     // The exact value, within [hi + lo - e, hi + lo + e], must be inside hi's rounding cell:
     // half an ulp each way, but only a quarter towards zero from a power of two.
-    double half_away = F::half_ulp_of_normal(a);
-    double half_toward = F::is_power_of_two(a) ? 0.5 * half_away : half_away;
-    double outward = std::copysign(1.0, hi) * lo; // lo's part away from zero
-    double away = outward + e, toward = e - outward;
-    if (away * F::cover(8) < half_away && toward * F::cover(8) < half_toward) return hi;
-    return std::nullopt;
+    T half_away = half_ulp_of_normal(a);
+    T half_toward = select(is_power_of_two(a), T(0.5) * half_away, half_away);
+    T outward = copysign(T(1.0), hi) * lo; // lo's part away from zero
+    T away = outward + e, toward = e - outward;
+    MaskOf<T> inside =
+        (away * T(F::cover(8)) < half_away) & (toward * T(F::cover(8)) < half_toward);
+    MaskOf<T> proven = normal & ((exact & equal(x.lo, zero)) | inside);
+    return {select(is_zero, zero, hi), MaskOf<T>(is_zero | proven)};
+}
+inline std::optional<double> round_proven(const BoundedDD& x, double scale, Binary64) {
+    Rounded<double> r = round_proven_to_double(x, scale);
+    if (!r.proven) return std::nullopt;
+    return r.value;
 }
 
 // The float nearest x 2^k, held in a double, when x's bound proves which it is: y = hi + lo in

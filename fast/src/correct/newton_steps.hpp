@@ -21,23 +21,8 @@ using F = Binary64;
 constexpr double u = F::u;
 
 template <class T>
-using Mask = decltype(T() < T());
+using Mask = MaskOf<T>;
 
-// Binary64's bit steps, for double (the lane types have their own, lanes_avx2.hpp and
-// lanes_avx512.hpp).
-LINEQUAD_INLINE double half_ulp_of_normal(double x) {
-    return F::half_ulp_of_normal(x);
-}
-LINEQUAD_INLINE bool is_power_of_two(double x) {
-    return F::is_power_of_two(x);
-}
-LINEQUAD_INLINE double select(bool m, double a, double b) {
-    return m ? a : b;
-}
-template <class T>
-LINEQUAD_INLINE Mask<T> equal(T a, T b) {
-    return !(a != b);
-}
 template <class M>
 LINEQUAD_INLINE M differ(M a, M b) {
     return (a & (!b)) | ((!a) & b);
@@ -242,43 +227,11 @@ LINEQUAD_INLINE Kept<T> kept(const LineFormT<T>& f, Interval range, const Enclos
     return k;
 }
 
-// The double nearest x 2^k (scale = 2^k), where x's bound proves which it is (round_proven(),
-// correct/ladder.hpp, for lanes).
-template <class T>
-struct Rounded {
-    T value;
-    Mask<T> proven;
-};
-template <class T>
-LINEQUAD_INLINE Rounded<T> round_lanes(const BoundedDDT<T>& x, T scale) {
-    using std::copysign;
-    using std::fabs;
-    T zero(0.0);
-    Mask<T> exact = equal(x.e, zero), is_zero = exact & equal(x.hi, zero); // an exact 0 is +0
-    T hi = x.hi * scale, a = fabs(hi);
-    Mask<T> normal = (a >= T(0x1p-960)) & (a <= T(0x1p+1000)); // not NaN
-    if constexpr (std::is_same_v<T, double>) { // one value: the answers that need no cell
-        if (is_zero) return {0.0, true};
-        if (!normal) return {hi, false};
-        if (exact && x.lo == 0) return {hi, true};
-    }
-    T lo = x.lo * scale, e = x.e * scale + T(F::subnormal_slack);
-    // The exact value, within [hi + lo - e, hi + lo + e], must be inside hi's rounding cell:
-    // half an ulp each way, but only a quarter towards zero from a power of two.
-    T half_away = half_ulp_of_normal(a);
-    T half_toward = select(is_power_of_two(a), T(0.5) * half_away, half_away);
-    T outward = copysign(T(1.0), hi) * lo; // lo's part away from zero
-    T away = outward + e, toward = e - outward;
-    Mask<T> inside = (away * T(F::cover(8)) < half_away) & (toward * T(F::cover(8)) < half_toward);
-    Mask<T> proven = normal & ((exact & equal(x.lo, zero)) | inside);
-    return {select(is_zero, zero, hi), Mask<T>(is_zero | proven)};
-}
-
 // t = c + x rounded to the nearest double in the caller's units (scale = t's factor).
 template <class T>
 LINEQUAD_INLINE Rounded<T> rounded_t(const Enclosure<T>& en, T scale) {
     TwoTermT<T> t = two_sum(en.c, en.x);
-    return round_lanes<T>({t.hi, t.lo, en.e}, scale);
+    return round_proven_to_double<T>({t.hi, t.lo, en.e}, scale);
 }
 
 // Coordinate k of the hit point L0_k + t v_k, rounded, for v_k != 0 (the caller keeps L0_k + 0
@@ -293,7 +246,7 @@ LINEQUAD_INLINE Rounded<T> rounded_point(const Enclosure<T>& en, T L0_k, T v, T 
     T e = (fabs(v) * en.e + T(u) * (T(2.0) * fabs(xv) + fabs(cv.lo) + fabs(lo))) * T(F::cover(32)) +
           T(F::underflow_floor);
     TwoTermT<T> n = two_sum(s.hi, lo);
-    return round_lanes<T>({n.hi, n.lo, e}, scale);
+    return round_proven_to_double<T>({n.hi, n.lo, e}, scale);
 }
 
 // The roots' double estimates, from the quadratic's coefficients in the high parts: the stable

@@ -31,6 +31,10 @@ LINEQUAD_INLINE Vec3T<T> cross(const Vec3T<T>& a, const Vec3T<T>& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
+// What a comparison of two T gives: bool for double, a lane mask for a lane type.
+template <class T>
+using MaskOf = decltype(T() < T());
+
 // a in every lane of T (a itself for T = double).
 template <class T>
 LINEQUAD_INLINE Vec3T<T> lanes_of(const Vec3& a) {

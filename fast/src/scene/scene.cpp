@@ -461,6 +461,7 @@ struct Scene::Impl {
 
 bool scene_traversal_available(SceneTraversal t) {
 #ifdef LINEQUAD_HAVE_EMBREE
+    (void)t; // every traversal is built in
     return true;
 #else
     return t != SceneTraversal::embree;

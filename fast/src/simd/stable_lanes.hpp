@@ -12,9 +12,6 @@
 
 namespace linequad::detail {
 
-template <class L>
-using MaskOf = decltype(L() < L());
-
 // A line's lanes: L0 and v as given, and prescale_for()'s powers of two (ScaleLanes).
 template <class L>
 struct LineLanes {
