@@ -184,26 +184,15 @@ bool hit_test(const LineForm& f, const Unit& unit, Result& r) {
 } // namespace
 
 bool hit_test_rung(const LineForm& f, const Unit& unit, Result& r) {
-    switch (f.sigma_z) {
-    case 1:
-        return hit_test<1>(f, unit, r);
-    case 0:
-        return hit_test<0>(f, unit, r);
-    default:
-        return hit_test<-1>(f, unit, r);
-    }
+    return with_sigma_z(
+        f.sigma_z, [&](auto sigma_z) { return hit_test<decltype(sigma_z)::value>(f, unit, r); });
 }
 
 template <class Target, Residual R>
 bool newton_rung(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
-    switch (f.sigma_z) {
-    case 1:
-        return solve<1, Target, R>(f, unit, caller, query, r);
-    case 0:
-        return solve<0, Target, R>(f, unit, caller, query, r);
-    default:
-        return solve<-1, Target, R>(f, unit, caller, query, r);
-    }
+    return with_sigma_z(f.sigma_z, [&](auto sigma_z) {
+        return solve<decltype(sigma_z)::value, Target, R>(f, unit, caller, query, r);
+    });
 }
 
 template bool newton_rung<Binary64, Residual::double_double>(const LineForm&, const Unit&,

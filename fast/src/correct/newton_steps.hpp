@@ -36,6 +36,20 @@ constexpr double sigma(int k) {
     return k < 2 ? 1.0 : double(SigmaZ);
 }
 
+// f(std::integral_constant<int, sigma_z>{}): each step is compiled for its sigma_z (1: the
+// cylinder, 0: the elliptic cylinder, -1: the cone).
+template <class F>
+LINEQUAD_INLINE decltype(auto) with_sigma_z(int sigma_z, F&& f) {
+    switch (sigma_z) {
+    case 1:
+        return f(std::integral_constant<int, 1>{});
+    case 0:
+        return f(std::integral_constant<int, 0>{});
+    default:
+        return f(std::integral_constant<int, -1>{});
+    }
+}
+
 // ---- g near a point ----
 
 // A = sum sigma_k U1_k^2, g's leading coefficient, in double: three products and two sums err

@@ -118,24 +118,14 @@ void correct_lanes(const Prepared<S>& shape, int orientation, const Real<L>* con
     auto usable = usual_line(L0, v) & moderate(extent) & moderate(max_abs(v));
     if (q.need == Need::any) { // the quick rung, on the quick line form
         LineFormT<L> f = Traits::template quick_line_form<L>(src, L0, v, orientation);
-        switch (f.sigma_z) {
-        case 1:
-            return newton::hit_test_lanes<1>(f, usable, range, out);
-        case 0:
-            return newton::hit_test_lanes<0>(f, usable, range, out);
-        default:
-            return newton::hit_test_lanes<-1>(f, usable, range, out);
-        }
+        return newton::with_sigma_z(f.sigma_z, [&](auto sigma_z) {
+            newton::hit_test_lanes<decltype(sigma_z)::value>(f, usable, range, out);
+        });
     }
     LineFormT<L> f = Traits::template line_form<L>(src, L0, v, orientation);
-    switch (f.sigma_z) {
-    case 1:
-        return newton::solve_lanes<1>(f, usable, L0, v, range, q, out);
-    case 0:
-        return newton::solve_lanes<0>(f, usable, L0, v, range, q, out);
-    default:
-        return newton::solve_lanes<-1>(f, usable, L0, v, range, q, out);
-    }
+    newton::with_sigma_z(f.sigma_z, [&](auto sigma_z) {
+        newton::solve_lanes<decltype(sigma_z)::value>(f, usable, L0, v, range, q, out);
+    });
 }
 
 } // namespace linequad::detail
