@@ -14,6 +14,7 @@
 
 #include "linequad/linequad.hpp"
 
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -24,6 +25,21 @@ namespace {
 using namespace linequad;
 
 volatile double sink;
+
+// The solves, between linequad_stepcount's marks when it runs the program (bench/stepcount.cpp).
+class Marked {
+  public:
+    Marked() { mark(); }
+    ~Marked() { mark(); }
+    Marked(const Marked&) = delete;
+    Marked& operator=(const Marked&) = delete;
+
+  private:
+    static void mark() {
+        static const bool on = std::getenv("LINEQUAD_STEP_MARKS") != nullptr;
+        if (on) std::raise(SIGUSR1);
+    }
+};
 
 // Each case's shape as given, or prepared before the solves (which are what is counted).
 template <class ShapeT, class Solve>
@@ -37,6 +53,7 @@ void run(int shape_index, long n, Query q, bool prepared, Solve solve, Precision
         if (prepared) ready.push_back(prepare(shapes.back()));
     }
     double acc = 0;
+    Marked solves;
     for (long i = 0; i < n; ++i) {
         std::size_t k = std::size_t(i) & 1023;
         Result r = prepared ? solve(ready[k], lines[k], q) : solve(shapes[k], lines[k], q);
@@ -87,6 +104,7 @@ bool run_batch(int shape_index, long n, Query q, Lanes lanes, bool correct_solve
     LineArraysT<R> lines = o.lines();
     std::vector<Result> out(lines.count);
     double acc = 0;
+    Marked solves;
     for (long done = 0; done < n; done += long(lines.count)) {
         if constexpr (std::is_same_v<R, float>)
             stable32::intersect(p, lines, q, out.data(), lanes);
@@ -141,6 +159,7 @@ int main(int argc, char** argv) {
             fc.push_back({s.C, s.H, s.r, c.line.L0, c.line.v});
         }
         double acc = 0;
+        Marked solves;
         for (long i = 0; i < n; ++i)
             acc += bench::textbook_cylinder(fc[std::size_t(i) & 1023]).t[0];
         sink = acc;

@@ -5,16 +5,33 @@
 # textbook cylinder quadratic, bench/floor.hpp).
 #   bash bench/instructions.sh [BUILD_DIR] [N]     (defaults: build, 2048)
 # ROWS="solver:shape:need:points:prepared ..." chooses the rows (default: the table).
+# COUNTER=steps counts by single-stepping the solves under ptrace (bench/stepcount.cpp) instead:
+# the only counter here for the AVX-512 rows, which valgrind cannot run; about 15 s per 100k
+# instructions, so for a few rows with N of about 1024.
 set -euo pipefail
 build="${1:-build}"
 n="${2:-2048}"
+counter="${COUNTER:-callgrind}"
 exe="$build/bench/linequad_instructions"
 [ -x "$exe" ] || { echo "no $exe: build first (bash scripts/build.sh)" >&2; exit 2; }
-command -v valgrind >/dev/null || { echo "valgrind is not installed" >&2; exit 2; }
+case "$counter" in
+callgrind) command -v valgrind >/dev/null || { echo "valgrind is not installed" >&2; exit 2; } ;;
+steps) [ -x "$build/bench/linequad_stepcount" ] || { echo "no $build/bench/linequad_stepcount" >&2; exit 2; } ;;
+*) echo "COUNTER is callgrind or steps, not $counter" >&2; exit 2 ;;
+esac
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-ir() { # instructions of one run (a run that fails under valgrind stops the script, named)
+ir() { # instructions of one run (a run that fails stops the script, named)
+  if [ "$counter" = steps ]; then
+    if ! "$build/bench/linequad_stepcount" "$exe" "$@" >"$tmp/out" 2>"$tmp/err"; then
+      echo "instructions.sh: $* failed under linequad_stepcount:" >&2
+      head -20 "$tmp/err" >&2
+      exit 1
+    fi
+    cat "$tmp/out"
+    return
+  fi
   if ! valgrind --tool=callgrind --error-exitcode=3 --callgrind-out-file="$tmp/out" "$exe" "$@" \
       >/dev/null 2>"$tmp/err"; then
     echo "instructions.sh: $* failed under valgrind:" >&2

@@ -11,6 +11,8 @@
 #include "simd/batch_kernels.hpp"
 
 #include <limits>
+#include <set>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -51,6 +53,13 @@ void batch(const Shape& s, const LineArraysT<RealOf<B>>& lines, Query q, Result*
         s);
 }
 
+// The lines held in soa (x, y, z, vx, vy, vz), all of one range.
+template <class R>
+LineArraysT<R> arrays_of(std::vector<R> (&soa)[6], Interval range) {
+    return {soa[0].data(), soa[1].data(), soa[2].data(), soa[3].data(),
+            soa[4].data(), soa[5].data(), soa[0].size(), range};
+}
+
 // Every family's cases in R's precision, one shape against `per_shape` lines: two full batches
 // and a scalar tail, with a zero direction and a NaN among them. Returns the lines compared.
 template <Batch B>
@@ -79,9 +88,7 @@ std::size_t compare_with_scalar(std::size_t per_shape, Lanes lanes) {
                     for (int a = 3; a < 6; ++a)
                         soa[a][5] = 0; // bad lines go through too
                     soa[1][6] = nan;
-                    LineArraysT<R> lines{soa[0].data(), soa[1].data(),          soa[2].data(),
-                                         soa[3].data(), soa[4].data(),          soa[5].data(),
-                                         per_shape,     cases[first].line.range};
+                    LineArraysT<R> lines = arrays_of(soa, cases[first].line.range);
                     for (Query q : {Query{}, Query{Need::all, false}, Query{Need::nearest, true},
                                     Query{Need::nearest, false}, Query{Need::any, false}}) {
                         std::vector<Result> got(per_shape);
@@ -151,16 +158,7 @@ TEST_CASE("batch: correct names a bad shape or range on every line as the scalar
         for (int a = 0; a < 6; ++a)
             soa[a].push_back(p[a]);
     }
-    auto lines_with = [&](Interval range) {
-        return LineArrays{soa[0].data(),
-                          soa[1].data(),
-                          soa[2].data(),
-                          soa[3].data(),
-                          soa[4].data(),
-                          soa[5].data(),
-                          16,
-                          range};
-    };
+    auto lines_with = [&](Interval range) { return arrays_of(soa, range); };
     Cylinder good{{0, 0, 0}, {0, 0, 10}, 5}, flat{{0, 0, 0}, {0, 0, 10}, 0};
     struct Input {
         Cylinder shape;
@@ -193,6 +191,47 @@ TEST_CASE("batch: correct names a bad shape or range on every line as the scalar
         good, LineArrays{nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, 0, Range::line},
         Query{}, &untouched);
     CHECK(untouched.count == 7);
+}
+
+TEST_CASE("batch: stable refuses a t or a point beyond double's range as the scalar solver does",
+          "[batch]") {
+    // An infinite cylinder of radius 2^999 and lines from x = 2^998 that cross it where t
+    // overflows (v = (2^-40, 0, 1)), or where the point's z does (2^998 |t| 1.5 2^25 beyond
+    // double's largest for the farther hit): the lanes keep such lines only if they refuse them
+    // as assemble() does. The nearest of the reversed line is the near hit, whose point is finite.
+    Cylinder wide{{0, 0, 0}, {0, 0, 0x1p999}, 0x1p999, false, false};
+    const Vec3 directions[4] = {{1, 0, 0x1.8p25}, {-1, 0, -0x1.8p25}, {0x1p-40, 0, 1}, {1, 0, 1}};
+    std::vector<double> soa[6];
+    for (int i = 0; i < 16; ++i) {
+        Vec3 L0{0x1p998, 0x1p990 * (i / 4), 0}, v = directions[i % 4];
+        for (int a = 0; a < 3; ++a)
+            soa[a].push_back(L0[a]), soa[3 + a].push_back(v[a]);
+    }
+    LineArrays lines = arrays_of(soa, Range::line);
+    std::set<std::string> refused;
+    int answered_nearest_not_all = 0;
+    for (Lanes lanes : paths())
+        for (Query q : {Query{}, Query{Need::all, false}, Query{Need::nearest, true},
+                        Query{Need::nearest, false}, Query{Need::any, false}}) {
+            Result got[16];
+            stable::intersect(wide, lines, q, got, lanes);
+            for (int i = 0; i < 16; ++i) {
+                Line l{{soa[0][i], soa[1][i], soa[2][i]},
+                       {soa[3][i], soa[4][i], soa[5][i]},
+                       Range::line};
+                Result want = stable::intersect(wide, l, q);
+                INFO("lanes " << lanes_name(lanes) << " line " << i);
+                REQUIRE(format_result("0", "", got[i], q.points) ==
+                        format_result("0", "", want, q.points));
+                if (!want.ok()) refused.insert(want.error_field);
+                if (q.need == Need::nearest && q.points && want.ok() &&
+                    !stable::intersect(wide, l, Query{}).ok())
+                    ++answered_nearest_not_all;
+            }
+        }
+    // The cases are what they claim: both refusals, and a nearest hit beside a refused farther one.
+    CHECK(refused == std::set<std::string>{"p", "t"});
+    CHECK(answered_nearest_not_all > 0);
 }
 
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)

@@ -43,6 +43,27 @@ Line line_at(const LineArraysT<R>& lines, std::size_t i) {
         {lines.x[i], lines.y[i], lines.z[i]}, {lines.vx[i], lines.vy[i], lines.vz[i]}, lines.range};
 }
 
+// A block's Results: the lanes in `answered` from the block, the others by `scalar(k)`. A block
+// the lanes answer whole (the usual case) is written without a test per lane.
+template <class Block, class Scalar>
+void write_results(const Block& block, unsigned answered, Result* out, Scalar scalar) {
+    constexpr int n = int(sizeof(block.tp[0]) / sizeof(block.tp[0][0]));
+    std::uint64_t counts = detail::hit_counts(block);
+    auto count = [counts](int k) { return std::uint8_t(counts >> (8 * k)); };
+    if (answered == (1u << n) - 1) {
+#pragma GCC unroll 8
+        for (int k = 0; k < n; ++k)
+            detail::write_result(block, k, count(k), out[k]);
+        return;
+    }
+    for (int k = 0; k < n; ++k) {
+        if ((answered >> k) & 1)
+            detail::write_result(block, k, count(k), out[k]);
+        else
+            scalar(k);
+    }
+}
+
 // The scalar solver for lines in R.
 template <class R, class S>
 Result solve_one(const S& shape, const Line& l, Query q) {
@@ -79,12 +100,8 @@ std::size_t run_lanes(const S& shape, const LineArraysT<R>& lines, Query q, Resu
     std::size_t i = 0;
     for (; i + N <= lines.count; i += N) {
         Kernel<R, N>::run(src.shape, shape_extent, soa, i, lines.range, q, block);
-        for (int k = 0; k < N; ++k) {
-            if ((block.generic >> k) & 1)
-                detail::write_result(block, k, q, out[i + k]);
-            else
-                out[i + k] = solve_one<R>(shape, line_at(lines, i + k), q);
-        }
+        write_results(block, block.generic, out + i,
+                      [&](int k) { out[i + k] = solve_one<R>(shape, line_at(lines, i + k), q); });
     }
     return i;
 }
@@ -127,12 +144,9 @@ std::size_t run_correct_lanes(const Prepared<S>& shape, const LineArrays& lines,
             detail::correct_x8(shape, orientation, soa, i, lines.range, q, block);
         else
             detail::correct_x4(shape, orientation, soa, i, lines.range, q, block);
-        for (int k = 0; k < N; ++k) {
-            if ((block.proven >> k) & 1)
-                detail::write_result(block, k, q, out[i + k]);
-            else
-                out[i + k] = correct::intersect(shape, line_at(lines, i + k), q);
-        }
+        write_results(block, block.proven, out + i, [&](int k) {
+            out[i + k] = correct::intersect(shape, line_at(lines, i + k), q);
+        });
     }
     return i;
 }

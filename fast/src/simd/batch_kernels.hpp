@@ -1,7 +1,7 @@
 // What a batch kernel hands back for a block of lanes: for each lane either "solve this line with
 // the scalar solver" (a branch the lanes do not take together: parallel, tangent, underflow, bad
-// input), or the two roots' facts, already in the order assemble() (solve/finish.hpp) takes them,
-// from which write_result() makes the Result as the scalar solver would.
+// input, a result refused as out of range), or its hits, already in the order the scalar solver
+// gives them, from which write_result() makes the Result as it would.
 #pragma once
 
 #include "solve/finish.hpp"
@@ -9,71 +9,127 @@
 #include "linequad/prepared.hpp"
 
 #include <cstddef>
+#include <cstring>
 #include <type_traits>
 
 namespace linequad::detail {
 
-// N lanes of lines in R; bit k of each mask is lane k. Root 0 is the one assemble() looks at first
-// (the smaller t, except for a hit test, which takes them as found).
+// A block's hits in R: bit k of each mask is lane k. Slot 0 holds the first hit, slot 1 the
+// second; a slot's values are written whether it holds a hit or not, so that writing a Result
+// takes no branch.
 template <class R, int N>
-struct LaneBlock {
-    unsigned generic; // 0: the scalar solver takes the line
-    unsigned two;     // two real roots (else none)
-    unsigned bad;     // a root's t or z not finite
-    unsigned keep[2]; // the root inside the extent and the range
-    unsigned finite_point[2];
-    R t[2][N];    // in the caller's units
-    R p[2][3][N]; // fma(t, v, L0)
+struct HitSlots {
+    unsigned keep[2]; // slot j holds a hit (slot 1 only where slot 0 does)
+    // Lane k's slot j as a Hit begins: t (the caller's units), then the point (zeros where the
+    // query asks for none). The kernels transpose their lanes into these rows (store_rows).
+    R tp[2][N][4];
 };
 
-// Lane k's Result, as assemble() makes it from the same facts.
+// The stable kernel's block: `generic` is 0 where the scalar solver takes the line.
 template <class R, int N>
-LINEQUAD_INLINE void write_result(const LaneBlock<R, N>& b, int k, Query q, Result& r) {
-    reset(r);
-    if (!((b.two >> k) & 1)) return;
-    if ((b.bad >> k) & 1) return fail(r, ErrorCode::out_of_range, "t");
-    bool points = q.points && q.need != Need::any;
-    int count = 0;
+struct LaneBlock : HitSlots<R, N> {
+    unsigned generic;
+};
+
+// The one-byte fields that end a Result (error_code to rung) and a Hit (kind to certain), with
+// the padding after them, as the bytes of one word: GCC 12 stores each such field on its own,
+// which was a fifth of the batch writer's instructions.
+template <class T, std::size_t First>
+LINEQUAD_INLINE void store_byte_fields(T& object, const unsigned char (&bytes)[sizeof(T) - First]) {
+    static_assert(std::is_trivially_copyable_v<T> && std::is_standard_layout_v<T>);
+    std::memcpy(reinterpret_cast<unsigned char*>(&object) + First, bytes, sizeof(bytes));
+}
+static_assert(offsetof(Result, count) == offsetof(Result, error_code) + 1 &&
+              offsetof(Result, on_surface) == offsetof(Result, error_code) + 2 &&
+              offsetof(Result, surface_part) == offsetof(Result, error_code) + 3 &&
+              offsetof(Result, certainty) == offsetof(Result, error_code) + 4 &&
+              offsetof(Result, rung) == offsetof(Result, error_code) + 5 &&
+              sizeof(Result) == offsetof(Result, error_code) + 8);
+static_assert(offsetof(Hit, part) == offsetof(Hit, kind) + 1 &&
+              offsetof(Hit, certain) == offsetof(Hit, kind) + 2 &&
+              sizeof(Hit) == offsetof(Hit, kind) + 8);
+template <class E>
+constexpr unsigned char byte_of(E e) {
+    return static_cast<unsigned char>(e);
+}
+
+// The hits of lane k of a block into r, with what the solver says of them; hits past the count
+// are written too, and read by no one.
+template <class R, int N, class Facts>
+LINEQUAD_INLINE void write_hits(const HitSlots<R, N>& b, int k, std::uint8_t count, Facts facts,
+                                Result& r) {
+    r.error_field = "";
+    store_byte_fields<Result, offsetof(Result, error_code)>(
+        r, {byte_of(ErrorCode::none), 0, byte_of(false), byte_of(Part::lateral),
+            byte_of(facts.certainty), byte_of(facts.rung), 0, 0});
+    r.count = count;
     for (int j = 0; j < 2; ++j) {
-        if (!((b.keep[j] >> k) & 1)) continue;
-        if (points && !((b.finite_point[j] >> k) & 1)) return fail(r, ErrorCode::out_of_range, "p");
-        Hit& h = r.hits[count++];
-        h.t = b.t[j][k], h.kind = HitKind::cross, h.part = Part::lateral; // closed: scalar
-        h.bound = no_bound, h.certain = false;
-        h.p = points ? Vec3{b.p[j][0][k], b.p[j][1][k], b.p[j][2][k]} : Vec3{};
-        if (q.need != Need::all) break; // the first kept is the nearest
+        Hit& h = r.hits[j];
+        const R* row = b.tp[j][k];
+        if constexpr (std::is_same_v<R, double>) { // t and p at once
+            static_assert(sizeof(Vec3) == 3 * sizeof(double) &&
+                          offsetof(Hit, p) == offsetof(Hit, t) + sizeof(double));
+            std::memcpy(reinterpret_cast<unsigned char*>(&h) + offsetof(Hit, t), row,
+                        4 * sizeof(double));
+        } else {
+            h.t = row[0], h.p = Vec3{row[1], row[2], row[3]};
+        }
+        h.bound = facts.bound(j, k);
+        // kind, part, certain: a crossing of the lateral surface (closed shapes: the scalar
+        // solver's)
+        store_byte_fields<Hit, offsetof(Hit, kind)>(
+            h, {byte_of(HitKind::cross), byte_of(Part::lateral),
+                byte_of(facts.certainty == Certainty::certain), 0, 0, 0, 0, 0});
     }
-    r.count = std::uint8_t(count);
+}
+
+// Bit k of a block's mask as byte k of a word (up to eight lanes), without a loop: the lanes'
+// hit counts are then one addition for the block.
+constexpr std::uint64_t bytes_of_bits(unsigned m) {
+    constexpr std::uint64_t each_byte = 0x0101010101010101, bit_k_of_byte_k = 0x8040201008040201;
+    std::uint64_t b = (std::uint64_t(m & 0xff) * each_byte) & bit_k_of_byte_k; // 0 or 2^k
+    return ((b + 0x7f7f7f7f7f7f7f7f) >> 7) & each_byte; // 0 or 1: no byte carries
+}
+static_assert(bytes_of_bits(0) == 0 && bytes_of_bits(0xff) == 0x0101010101010101 &&
+              bytes_of_bits(0x05) == 0x0000000000010001 && bytes_of_bits(0x80) == 0x01ull << 56);
+// The count of hits in each lane of a block, lane k in byte k.
+template <class R, int N>
+std::uint64_t hit_counts(const HitSlots<R, N>& b) {
+    static_assert(N <= 8);
+    return bytes_of_bits(b.keep[0]) + bytes_of_bits(b.keep[1]);
+}
+
+// Lane k's Result, as assemble() (solve/finish.hpp) makes it: no bound, nothing certified.
+template <class R, int N>
+LINEQUAD_INLINE void write_result(const LaneBlock<R, N>& b, int k, std::uint8_t count, Result& r) {
+    struct Stable {
+        Certainty certainty = Certainty::unknown;
+        Rung rung = Rung::none;
+        double bound(int, int) const { return no_bound; }
+    };
+    write_hits(b, k, count, Stable{}, r);
 }
 
 // What the batch correct kernel hands back for a block of N lanes: the lanes the Newton rung (or
 // for a hit test the quick rung) proved, the others going to the scalar ladder, and their hits
-// as the rung adds them: root j is a hit where bit k of keep[j] is set, t and the point already
-// rounded (caller's units).
+// as the rung adds them, t and the point already rounded (caller's units).
 template <int N>
-struct CorrectBlock {
+struct CorrectBlock : HitSlots<double, N> {
     unsigned proven;
-    unsigned keep[2];
-    double t[2][N];
-    double p[2][3][N];
     double bound[2][N]; // half an ulp of t; a hit test's own (its t is not rounded)
 };
 
 // Lane k's Result, as the scalar ladder makes it from the Newton rung's hits (a hit test's
 // from its quick rung: no point, its own bound).
 template <int N>
-LINEQUAD_INLINE void write_result(const CorrectBlock<N>& b, int k, Query q, Result& r) {
-    reset(r);
-    bool points = q.points && q.need != Need::any;
-    for (int j = 0; j < 2; ++j) {
-        if (!((b.keep[j] >> k) & 1)) continue;
-        Hit& h = r.hits[r.count++];
-        h.t = b.t[j][k], h.kind = HitKind::cross, h.part = Part::lateral;
-        h.p = points ? Vec3{b.p[j][0][k], b.p[j][1][k], b.p[j][2][k]} : Vec3{};
-        h.bound = b.bound[j][k], h.certain = true;
-    }
-    r.certainty = Certainty::certain;
-    r.rung = Rung::newton;
+LINEQUAD_INLINE void write_result(const CorrectBlock<N>& b, int k, std::uint8_t count, Result& r) {
+    struct Newton {
+        const CorrectBlock<N>& b;
+        Certainty certainty = Certainty::certain;
+        Rung rung = Rung::newton;
+        double bound(int j, int k) const { return b.bound[j][k]; }
+    };
+    write_hits(b, k, count, Newton{b}, r);
 }
 
 // Lines [i, i + 4) of the arrays (x, y, z, vx, vy, vz) against the shape, in double lanes;

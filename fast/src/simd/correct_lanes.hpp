@@ -35,36 +35,46 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
     Mask<L> no_root = no_root_proven(A, c[0], local[0]);
 
     Mask<L> failed[2], kept_root[2];
+    L t[2], bound[2], p[3][2]; // p[a][j]: coordinate a of root j's point
     for (int j = 0; j < 2; ++j) {
         Enclosure<L> en = root_near(local[j], A, c[j]);
         Kept<L> k = kept(f, range, en);
-        Rounded<L> t = rounded_t(en, one);
-        Mask<L> hit_proven = t.proven;
-        store(out.t[j], t.value);
-        store(out.bound[j], half_ulp(t.value)); // mark_certain's bound
-        if (q.points) {
+        Rounded<L> rt = rounded_t(en, one);
+        Mask<L> hit_proven = rt.proven;
+        t[j] = rt.value;
+        bound[j] = half_ulp(rt.value); // mark_certain's bound
 #pragma GCC unroll 3
-            for (int a = 0; a < 3; ++a) {
-                L va = v[a], pa = L0[a];
-                Rounded<L> p = rounded_point(en, pa, va, one);
-                Mask<L> along = equal(va, zero); // L0_k + t v_k is L0_k: +0 for a zero
-                hit_proven = hit_proven & (along | p.proven);
-                store(out.p[j][a], select(along, pa + zero, p.value));
+        for (int a = 0; a < 3; ++a) {
+            if (!q.points) {
+                p[a][j] = zero;
+                continue;
             }
+            L va = v[a], pa = L0[a];
+            Rounded<L> pr = rounded_point(en, pa, va, one);
+            Mask<L> along = equal(va, zero); // L0_k + t v_k is L0_k: +0 for a zero
+            hit_proven = hit_proven & (along | pr.proven);
+            p[a][j] = select(along, pa + zero, pr.value);
         }
         Mask<L> which = j == 0 ? en.smaller : !en.smaller; // the root the scalar rung expects
         Mask<L> decided = k.inside | k.outside;
         failed[j] = (!en.proven) | (!which) | (!decided) | (k.inside & (!hit_proven));
-        kept_root[j] = k.inside;
+        kept_root[j] = est.real & k.inside;
     }
     // The nearest hit stops at the smaller root when it is kept: the larger one is then never
     // looked at.
     Mask<L> stop = q.need == Need::all ? zero < zero : kept_root[0];
     Mask<L> roots_proven = (!failed[0]) & (stop | (!failed[1]));
     Mask<L> proven = usable & ((est.real & roots_proven) | ((!est.real) & no_root));
+    // The first slot takes the smaller root where it is kept, else the larger.
+    Mask<L> larger_first = !kept_root[0];
+    auto first = [&](const L(&x)[2]) { return select(larger_first, x[1], x[0]); };
+    store_rows(first(t), first(p[0]), first(p[1]), first(p[2]), out.tp[0]);
+    store_rows(t[1], p[0][1], p[1][1], p[2][1], out.tp[1]);
+    store(out.bound[0], first(bound));
+    store(out.bound[1], bound[1]);
     out.proven = unsigned(bits(proven));
-    out.keep[0] = unsigned(bits(est.real & kept_root[0]));
-    out.keep[1] = unsigned(bits(est.real & kept_root[1] & !stop));
+    out.keep[0] = unsigned(bits(kept_root[0] | (kept_root[1] & !stop)));
+    out.keep[1] = unsigned(bits(kept_root[0] & kept_root[1] & !stop));
 }
 
 // The hit test (Need::any) of one lane's line, as the scalar quick rung takes it
@@ -94,8 +104,11 @@ void hit_test_lanes(const LineFormT<L>& f, Mask<L> usable, Interval range,
     // t = c + x rounded once: within e + u |t| of the root (the sum's rounding).
     L t = select(hit[0], en[0].c + en[0].x, en[1].c + en[1].x);
     L e = select(hit[0], en[0].e, en[1].e);
-    store(out.t[0], t);
-    store(out.bound[0], (e + L(u) * fabs(t)) * L(F::cover(8)) + L(F::denorm_min));
+    L bound = (e + L(u) * fabs(t)) * L(F::cover(8)) + L(F::denorm_min), zero(0.0);
+    for (int j = 0; j < 2; ++j) { // the second slot unused, written all the same
+        store_rows(t, zero, zero, zero, out.tp[j]);
+        store(out.bound[j], bound);
+    }
     out.proven = unsigned(bits(proven));
     out.keep[0] = unsigned(bits(est.real & any_hit));
     out.keep[1] = 0;

@@ -268,6 +268,29 @@ inline void store(double* p, D4 x) {
 inline void store(float* p, F8 x) {
     _mm256_storeu_ps(p, x.v);
 }
+// Lane k of a, b, c and d as row k: {a_k, b_k, c_k, d_k} (a 4 x 4 transpose), for writers that
+// copy a row at once.
+inline void store_rows(D4 a, D4 b, D4 c, D4 d, double (*rows)[4]) {
+    __m256d ab_lo = _mm256_unpacklo_pd(a.v, b.v), ab_hi = _mm256_unpackhi_pd(a.v, b.v);
+    __m256d cd_lo = _mm256_unpacklo_pd(c.v, d.v), cd_hi = _mm256_unpackhi_pd(c.v, d.v);
+    _mm256_storeu_pd(rows[0], _mm256_permute2f128_pd(ab_lo, cd_lo, 0x20));
+    _mm256_storeu_pd(rows[1], _mm256_permute2f128_pd(ab_hi, cd_hi, 0x20));
+    _mm256_storeu_pd(rows[2], _mm256_permute2f128_pd(ab_lo, cd_lo, 0x31));
+    _mm256_storeu_pd(rows[3], _mm256_permute2f128_pd(ab_hi, cd_hi, 0x31));
+}
+inline void store_rows(F8 a, F8 b, F8 c, F8 d, float (*rows)[4]) {
+    for (int half = 0; half < 2; ++half) {
+        auto part = [half](F8 x) {
+            return half == 0 ? _mm256_castps256_ps128(x.v) : _mm256_extractf128_ps(x.v, 1);
+        };
+        __m128 r0 = part(a), r1 = part(b), r2 = part(c), r3 = part(d);
+        _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+        _mm_storeu_ps(rows[4 * half + 0], r0);
+        _mm_storeu_ps(rows[4 * half + 1], r1);
+        _mm_storeu_ps(rows[4 * half + 2], r2);
+        _mm_storeu_ps(rows[4 * half + 3], r3);
+    }
+}
 // The larger of a and b by the max instructions.
 inline D4 maximum(D4 a, D4 b) {
     return D4(_mm256_max_pd(a.v, b.v));

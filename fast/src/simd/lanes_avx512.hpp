@@ -143,6 +143,23 @@ inline D8 load(const double* p) {
 inline void store(double* p, D8 x) {
     _mm512_storeu_pd(p, x.v);
 }
+// Lane k of a, b, c and d as row k: {a_k, b_k, c_k, d_k} (an 8 x 4 transpose, as two 4 x 4 ones),
+// for writers that copy a row at once.
+inline void store_rows(D8 a, D8 b, D8 c, D8 d, double (*rows)[4]) {
+    for (int half = 0; half < 2; ++half) {
+        auto part = [half](D8 x) {
+            return half == 0 ? _mm512_castpd512_pd256(x.v) : _mm512_extractf64x4_pd(x.v, 1);
+        };
+        __m256d ab_lo = _mm256_unpacklo_pd(part(a), part(b));
+        __m256d ab_hi = _mm256_unpackhi_pd(part(a), part(b));
+        __m256d cd_lo = _mm256_unpacklo_pd(part(c), part(d));
+        __m256d cd_hi = _mm256_unpackhi_pd(part(c), part(d));
+        _mm256_storeu_pd(rows[4 * half + 0], _mm256_permute2f128_pd(ab_lo, cd_lo, 0x20));
+        _mm256_storeu_pd(rows[4 * half + 1], _mm256_permute2f128_pd(ab_hi, cd_hi, 0x20));
+        _mm256_storeu_pd(rows[4 * half + 2], _mm256_permute2f128_pd(ab_lo, cd_lo, 0x31));
+        _mm256_storeu_pd(rows[4 * half + 3], _mm256_permute2f128_pd(ab_hi, cd_hi, 0x31));
+    }
+}
 // Through the zero-masked form: GCC 12's _mm512_max_pd reads an undefined register it warns about.
 inline D8 maximum(D8 a, D8 b) {
     return D8(_mm512_maskz_max_pd(0xff, a.v, b.v));

@@ -38,9 +38,10 @@ LineLanes<L> line_lanes(const Real<L>* const soa[6], std::size_t i, double shape
     return ln;
 }
 
-// From the moved roots to write_result()'s facts, as shift_back() and finish() do for one line;
-// e is the extent. The roots are put in the order assemble() takes them: the smaller t first,
-// except for a hit test, which takes them as found.
+// From the moved roots to write_result()'s facts, as shift_back() and assemble() make them for
+// one line; e is the extent. The kept roots go to the block's first slots in assemble()'s order
+// (the smaller t first, except for a hit test, which takes them as found). A line assemble()
+// would refuse (a root's t or z not finite, a hit's point beyond the range) is left to it.
 template <class L, class Core>
 void finish_lanes(const Core& k, MaskOf<L> generic, const LineLanes<L>& ln, ExtentT<L> e,
                   Interval range, Query q, LaneBlock<Real<L>, lane_count<L>>& out) {
@@ -59,35 +60,42 @@ void finish_lanes(const Core& k, MaskOf<L> generic, const LineLanes<L>& ln, Exte
     L big(std::numeric_limits<R>::max());
     const Vec3T<L>& L0 = ln.L0;
     const Vec3T<L>& v = ln.v;
-    L tcall[2], p[2][3];
-    MaskOf<L> in[2], finite[2];
-    unsigned bad = 0;
+    L tcall[2], p[3][2]; // p[c][j]: coordinate c of root j's point
+    MaskOf<L> in[2], finite[2], bad = zero < zero;
     for (int j = 0; j < 2; ++j) {
         L z = k.z_lanes(t[j], sm[j], from_vieta[j]);
         tcall[j] = t[j] * ln.scale.t_scale;
-        in[j] =
-            (z >= e.lo) & (z <= e.hi) & (tcall[j] >= L(R(range.t0))) & (tcall[j] <= L(R(range.t1)));
-        bad |= unsigned(bits((!(fabs(tcall[j]) <= big)) | (z != z)));
-        p[j][0] = fma(tcall[j], v.x, L0.x);
-        p[j][1] = fma(tcall[j], v.y, L0.y);
-        p[j][2] = fma(tcall[j], v.z, L0.z);
-        finite[j] = (fabs(p[j][0]) <= big) & (fabs(p[j][1]) <= big) & (fabs(p[j][2]) <= big);
+        in[j] = two & (z >= e.lo) & (z <= e.hi) & (tcall[j] >= L(R(range.t0))) &
+                (tcall[j] <= L(R(range.t1)));
+        bad = bad | (!(fabs(tcall[j]) <= big)) | (z != z);
+        for (int c = 0; c < 3; ++c)
+            p[c][j] = fma(tcall[j], v[c], L0[c]);
+        finite[j] = (fabs(p[0][j]) <= big) & (fabs(p[1][j]) <= big) & (fabs(p[2][j]) <= big);
     }
     // assemble()'s order: the second root first where it is smaller (not for a hit test).
-    auto swap = tcall[1] < tcall[0];
-    if (q.need == Need::any) swap = zero < zero; // no lane: a hit test takes them as found
-    auto in_order = !swap;
+    using M = MaskOf<L>;
+    auto either = [](M m, M a, M b) { return (m & a) | ((!m) & b); }; // select, on masks
+    M no_lane = zero < zero;
+    M swap = q.need == Need::any ? no_lane : tcall[1] < tcall[0];
+    M first_in = either(swap, in[1], in[0]), second_in = either(swap, in[0], in[1]);
+    // The first slot takes the first root kept, the second the other when both are kept and all
+    // hits are asked for (the first kept is the nearest).
+    M slot[2] = {first_in | second_in, q.need == Need::all ? first_in & second_in : no_lane};
+    M root1_in[2] = {either(first_in, swap, !swap), !swap}; // slot j holds root 1
+    bool points = q.points && q.need != Need::any;
+    M refused = two & bad;
     for (int j = 0; j < 2; ++j) {
-        int from = j, other = 1 - j;
-        store(out.t[j], select(swap, tcall[other], tcall[from]));
-        for (int c = 0; c < 3; ++c)
-            store(out.p[j][c], select(swap, p[other][c], p[from][c]));
-        out.keep[j] = unsigned(bits((swap & in[other]) | (in_order & in[from])));
-        out.finite_point[j] = unsigned(bits((swap & finite[other]) | (in_order & finite[from])));
+        auto pick = [&](const L(&x)[2]) { return select(root1_in[j], x[1], x[0]); };
+        if (points) {
+            store_rows(pick(tcall), pick(p[0]), pick(p[1]), pick(p[2]), out.tp[j]);
+            refused = refused | (slot[j] & !either(root1_in[j], finite[1], finite[0]));
+        } else {
+            store_rows(pick(tcall), zero, zero, zero, out.tp[j]);
+        }
     }
-    out.generic = unsigned(bits(generic));
-    out.two = unsigned(bits(two));
-    out.bad = bad;
+    out.generic = unsigned(bits(generic & !refused));
+    out.keep[0] = unsigned(bits(slot[0]));
+    out.keep[1] = unsigned(bits(slot[1]));
 }
 
 // The lanes the scalar solver would branch on (sizes out of reach, A or D zero or in the
