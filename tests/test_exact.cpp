@@ -93,6 +93,31 @@ TEST_CASE("exact: the interval filter decides as the exact path does", "[exact]"
     CHECK(hits > 500);
 }
 
+TEST_CASE("exact: floats rounded from double intervals equal the exact path's", "[exact]") {
+    // The oracle (Mpzf) rounds a float answer from double enclosures of its parts where they
+    // prove the rounding; Gmpq rounds every value by MPFR. Every family's float cases, every
+    // query that rounds (t alone, and t with points), both ways taken.
+    std::uint64_t from_intervals = 0, by_mpfr = 0;
+    std::size_t compared = 0;
+    for_each_family_case(21, 20, Precision::binary32, [&](const Case& c) {
+        for (Query q : {Query{}, Query{Need::nearest, false}}) {
+            const exact::RoundingStats& stats = exact::rounding_stats();
+            std::uint64_t intervals0 = stats.from_intervals, mpfr0 = stats.values;
+            Result a = exact::intersect(c.shape, c.line, q, Precision::binary32);
+            from_intervals += stats.from_intervals - intervals0, by_mpfr += stats.values - mpfr0;
+            Result b = exact::intersect_gmpq(c.shape, c.line, q, Precision::binary32);
+            INFO(format_case(c) << "\n" << describe(a) << "\n" << describe(b));
+            REQUIRE(same(a, b));
+            ++compared;
+        }
+    });
+    // Both ways: most values from intervals; by MPFR those beyond double's normal range (the
+    // scale family), near a tie or on the surface (about 2% in all).
+    CHECK(from_intervals > 10000);
+    CHECK(by_mpfr > 100);
+    CHECK(compared > 5000);
+}
+
 TEST_CASE("exact: a circular cylinder is an elliptic cylinder with axes of length r", "[exact]") {
     Random r;
     // Axis 2 (3, 4, 0); a, b orthogonal to it with length 5, exactly.

@@ -44,9 +44,9 @@ OrderedJson row_json(const RowKey& key, const Row& r) {
     for (const Worst& w : r.worst)
         worst.push_back({{"mismatch", w.mismatch},
                          {"t_ulps", w.ulps},
-                         {"case", w.case_line},
-                         {"solver", w.solver_line},
-                         {"oracle", w.oracle_line}});
+                         {"case", w.case_line()},
+                         {"solver", w.solver_line()},
+                         {"oracle", w.oracle_line()}});
     // mean, p50, p99, ... are for people reading the file; only the exact fields are read back.
     return {
         {"family", key.family},
@@ -285,12 +285,9 @@ Row read_row(const Node& n) {
     Node w = n.at("worst");
     for (std::size_t i = 0, size = w.size(Row::keep_worst); i < size; ++i) {
         Node x = w.item(i);
-        Worst k;
+        Worst k(x.at("case").text(), x.at("solver").text(), x.at("oracle").text());
         k.mismatch = x.at("mismatch").flag();
         k.ulps = x.at("t_ulps").count();
-        k.case_line = x.at("case").text();
-        k.solver_line = x.at("solver").text();
-        k.oracle_line = x.at("oracle").text();
         r.worst.push_back(k);
     }
     return r;
@@ -373,6 +370,8 @@ void read_report(const Json& root, Report* r) {
     if (steps.size() != r->oracle_steps.size()) steps.fail("expected 8 counts");
     for (std::size_t i = 0; i < r->oracle_steps.size(); ++i)
         r->oracle_steps[i] = steps.item(i).count();
+    if (top.find("oracle_rounded_from_intervals"))
+        r->oracle_from_intervals = top.at("oracle_rounded_from_intervals").count();
 
     Node rows = top.at("rows");
     for (std::size_t i = 0, n = rows.size(); i < n; ++i) {
@@ -449,6 +448,7 @@ std::string to_json(const Report& r) {
         head["external"] = ex;
     }
     head["oracle_rounding_steps"] = r.oracle_steps;
+    head["oracle_rounded_from_intervals"] = r.oracle_from_intervals;
     // One row and one curve per line, so that two reports diff line by line.
     std::string s = jsonl::dump(head);
     s.pop_back(); // the closing brace

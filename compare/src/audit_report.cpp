@@ -43,7 +43,7 @@ std::string fmt_ulps(std::uint64_t u) {
 // solver with its plugin loaded; an external solver's case is the one it was posed).
 std::string replay(const Report& r, const Worst& w, const std::string& solver) {
     std::string quoted;
-    for (char c : w.case_line)
+    for (char c : w.case_line())
         quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
     // `solve` takes one line at a time; batch's results are stable's, bit for bit.
     std::string scalar = solver == batch_name ? "stable" : solver;
@@ -319,15 +319,16 @@ std::string markdown(const Report& r) {
         for (const Worst& w : row.worst) {
             md << (w.mismatch ? "- **mismatch**" : "- t error " + fmt_ulps(w.ulps) + " ulps")
                << "\n\n";
-            md << "  ```\n  " << w.case_line << "\n  " << w.solver_line << "\n  " << w.oracle_line
-               << "\n  ```\n\n";
+            md << "  ```\n  " << w.case_line() << "\n  " << w.solver_line() << "\n  "
+               << w.oracle_line() << "\n  ```\n\n";
             md << "  `" << replay(r, w, key.solver) << "`\n\n";
         }
     }
     md << "## Oracle rounding\n\nValues rounded at 64, 128, 256, ... bits: ";
     for (int i = 0; i < 8; ++i)
         md << (i ? ", " : "") << r.oracle_steps[i];
-    md << ".\n";
+    md << ". Float values rounded from double intervals, before any of these: "
+       << r.oracle_from_intervals << ".\n";
     return md.str();
 }
 
@@ -473,6 +474,11 @@ Report save_pair(const Report& r, const std::string& dir) {
 
 void OutputDirectory::save(const Report& r) {
     save_pair(r, dir_);
+}
+
+void OutputDirectory::checkpoint(const Report& r) {
+    jsonl::write_file(dir_ + "/report.json", to_json(r));
+    jsonl::write_file(dir_ + "/report.md", markdown(r));
 }
 
 void OutputDirectory::save_with_plots(const Report& r) {

@@ -261,7 +261,7 @@ class Saver {
             return;
         last_ = now;
         rep.seconds = std::chrono::duration<double>(now - start).count();
-        dir_->save(rep);
+        dir_->checkpoint(rep);
     }
     void end(Report& rep, const Options& o, std::chrono::steady_clock::time_point start) {
         rep.seconds =
@@ -396,6 +396,7 @@ Report grade_results(const Options& o) {
     rep.status = Status::complete;
     const auto& steps = exact::rounding_stats().by_steps;
     std::copy(std::begin(steps), std::end(steps), rep.oracle_steps.begin());
+    rep.oracle_from_intervals = exact::rounding_stats().from_intervals;
     saver.end(rep, o, start);
     return rep;
 }
@@ -470,6 +471,7 @@ class ChunkGrader {
                 grade_external(*e, cases, family, shape, out);
         const auto& steps = exact::rounding_stats().by_steps;
         std::copy(std::begin(steps), std::end(steps), out.oracle_steps.begin());
+        out.oracle_from_intervals = exact::rounding_stats().from_intervals;
         return out;
     }
 

@@ -91,6 +91,42 @@ const char* mismatch_name(int m) {
     return names[m];
 }
 
+struct Worst::Graded {
+    Case c;
+    std::string solver;
+    Result got, oracle;
+    bool points;
+};
+
+Worst::Worst(std::string case_line, std::string solver_line, std::string oracle_line)
+    : case_line_(std::move(case_line)), solver_line_(std::move(solver_line)),
+      oracle_line_(std::move(oracle_line)) {}
+
+Worst::Worst(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
+             bool points)
+    : graded_(std::make_shared<const Graded>(Graded{c, solver, got, oracle, points})) {}
+
+void Worst::write_lines() const {
+    if (!graded_) return;
+    const Graded& g = *graded_;
+    case_line_ = format_case(g.c);
+    solver_line_ = format_result(g.c.id, g.solver, g.got, g.points);
+    oracle_line_ = format_result(g.c.id, "exact", g.oracle);
+    graded_.reset();
+}
+const std::string& Worst::case_line() const {
+    write_lines();
+    return case_line_;
+}
+const std::string& Worst::solver_line() const {
+    write_lines();
+    return solver_line_;
+}
+const std::string& Worst::oracle_line() const {
+    write_lines();
+    return oracle_line_;
+}
+
 namespace {
 bool worse(const Worst& a, const Worst& b) {
     if (a.mismatch != b.mismatch) return a.mismatch;
@@ -295,11 +331,8 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
         curve->t_max = std::max(curve->t_max, case_max);
     }
     if (qualifies(row.worst, mismatch, case_max)) {
-        Worst w;
+        Worst w(c, solver, got, oracle, points);
         w.mismatch = mismatch, w.ulps = case_max;
-        w.case_line = format_case(c);
-        w.solver_line = format_result(c.id, solver, got, points);
-        w.oracle_line = format_result(c.id, "exact", oracle);
         keep(row.worst, std::move(w));
     }
 }
@@ -374,6 +407,7 @@ void Report::merge_statistics(const Report& o) {
         }
     for (int i = 0; i < 8; ++i)
         oracle_steps[i] += o.oracle_steps[i];
+    oracle_from_intervals += o.oracle_from_intervals;
 }
 
 Row Report::total(const std::string& solver) const {

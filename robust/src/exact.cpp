@@ -13,6 +13,7 @@
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
@@ -198,6 +199,51 @@ exact_form::Classification<NT> rebuilt(const Verdict& v, const exact_form::LineQ
     return c;
 }
 
+// (X + Y sqrt(D)) / Den rounded to float, from double enclosures of its parts where they prove
+// it: both ends of the value's enclosure round to one normal float, and rounding is monotone, so
+// the value rounds to it too. Terms of opposite signs are taken in the conjugate form, as the
+// SurdRounder takes them: (X^2 - Y^2 D) / (Den (X - Y sqrt(D))), the square exact. The
+// SurdRounder takes the rest: parts or answers beyond double's normal range, zero answers, and
+// enclosures too wide to say.
+bool round_to_float(const CGAL::Mpzf& X, const CGAL::Mpzf& Y, const CGAL::Mpzf& Den,
+                    const CGAL::Mpzf& D, double& out) {
+    using I = CGAL::Interval_nt<false>;
+    int sx = sgn(X), sy = CGAL::is_zero(D) ? 0 : sgn(Y);
+    CGAL::Mpzf N2;
+    if (sx * sy < 0) N2 = X * X - Y * Y * D;
+    // Each part's enclosure, within double's normal range: to_interval() does not enclose a
+    // value beyond it.
+    using Pair = std::pair<double, double>;
+    auto normal = [](const CGAL::Mpzf& x, Pair& e) {
+        e = CGAL::to_interval(x);
+        return CGAL::is_zero(x) ||
+               (std::fpclassify(e.first) == FP_NORMAL && std::fpclassify(e.second) == FP_NORMAL &&
+                (e.first > 0) == (e.second > 0));
+    };
+    Pair x, y, den, d, n2;
+    if (!normal(X, x) || !normal(Den, den) || (sy != 0 && !(normal(Y, y) && normal(D, d))) ||
+        (sx * sy < 0 && !normal(N2, n2)))
+        return false;
+    double lo, hi;
+    {
+        CGAL::Protect_FPU_rounding<true> upward;
+        I v(x), by(den);
+        if (sy != 0) {
+            I root = CGAL::sqrt(I(d));
+            v = sx * sy > 0 ? v + I(y) * root : I(n2) / (v - I(y) * root);
+        }
+        if (!(by.inf() > 0 || by.sup() < 0)) return false;
+        v = v / by;
+        lo = v.inf(), hi = v.sup();
+    }
+    // Rounding to nearest again: each end's conversion is its correct rounding.
+    if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+    float a = float(lo), b = float(hi);
+    if (a != b || std::fpclassify(a) != FP_NORMAL) return false;
+    out = a;
+    return true;
+}
+
 } // namespace filter
 
 // roots, when given, receives the exact classification the answer was rounded from.
@@ -230,31 +276,52 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
     if (c.outcome != exact_form::Outcome::hits) return Result{}; // exact: never undecided
     bool points = query.points && query.need != Need::any;       // a hit test computes no point
 
-    // Round t and, if asked, each coordinate of L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den.
-    SurdRounder& rd = rounder();
-    rd.clear();
-    to_dyadic(c.D, rd.D());
+    // Round t and, if asked, each coordinate of L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den:
+    // value i is (X[i] + Y[i] sqrt(D)) / Den of its root.
+    constexpr std::size_t most = 4 * max_hits;
+    NT X[most], Y[most];
+    const NT* Den[most];
+    std::size_t n = 0;
     for (int j = 0; j < c.count; ++j) {
         const exact_form::SurdRoot<NT>& rt = c.roots[j];
         NT S(rt.S);
-        queue(rd, rt.N, S, rt.Den, c.D);
+        X[n] = rt.N, Y[n] = S, Den[n++] = &rt.Den;
         if (!points) continue;
         for (int k = 0; k < 3; ++k) {
             NT L0(l.L0[k]), v(l.v[k]);
-            queue(rd, NT(L0 * rt.Den + v * rt.N), NT(v * S), rt.Den, c.D);
+            X[n] = NT(L0 * rt.Den + v * rt.N), Y[n] = NT(v * S), Den[n++] = &rt.Den;
         }
     }
-    rd.run(target);
+    double rounded[most];
+    bool from_intervals[most] = {}; // a float answer's values double intervals decide
+    std::size_t left = n;
+    if constexpr (std::is_same_v<NT, CGAL::Mpzf>) {
+        if (target == Precision::binary32)
+            for (std::size_t i = 0; i < n; ++i)
+                if ((from_intervals[i] =
+                         filter::round_to_float(X[i], Y[i], *Den[i], c.D, rounded[i])))
+                    --left;
+        rounding_stats().from_intervals += n - left;
+    }
+    if (left > 0) {
+        SurdRounder& rd = rounder();
+        rd.clear();
+        to_dyadic(c.D, rd.D());
+        for (std::size_t i = 0; i < n; ++i)
+            if (!from_intervals[i]) queue(rd, X[i], Y[i], *Den[i], c.D);
+        rd.run(target);
+        for (std::size_t i = 0, slot = 0; i < n; ++i)
+            if (!from_intervals[i]) rounded[i] = rd.result(slot++);
+    }
     Result r;
     std::size_t per_root = points ? 4 : 1;
     for (int j = 0; j < c.count; ++j) {
         Hit& h = r.hits[r.count++];
         h.kind = c.roots[j].kind;
         h.part = c.roots[j].part;
-        h.t = rd.result(j * per_root);
-        h.p = points ? Vec3{rd.result(j * per_root + 1), rd.result(j * per_root + 2),
-                            rd.result(j * per_root + 3)}
-                     : Vec3{};
+        const double* at = rounded + j * per_root;
+        h.t = at[0];
+        h.p = points ? Vec3{at[1], at[2], at[3]} : Vec3{};
         h.bound = std::numeric_limits<double>::quiet_NaN(), h.certain = false;
     }
     return r;

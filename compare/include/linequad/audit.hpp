@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -58,10 +59,30 @@ enum Mismatch {
 };
 const char* mismatch_name(int m);
 
-struct Worst {
+// One of a row's worst cases: the case and both answers as `linequad solve` reads and writes
+// them. Grading meets many more candidates than a row keeps, so a graded one holds what its lines
+// are made from and writes them when they are first read (formatting every candidate was a tenth
+// of the audit's time). Read by one thread at a time: a chunk's grader, then the merging thread.
+class Worst {
+  public:
     std::uint64_t ulps = 0; // t error; mismatches rank above any error
     bool mismatch = false;
-    std::string case_line, solver_line, oracle_line;
+
+    Worst() = default;
+    // As a report holds it.
+    Worst(std::string case_line, std::string solver_line, std::string oracle_line);
+    // As grading meets it.
+    Worst(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
+          bool points);
+    const std::string& case_line() const;
+    const std::string& solver_line() const;
+    const std::string& oracle_line() const;
+
+  private:
+    struct Graded;
+    void write_lines() const;
+    mutable std::shared_ptr<const Graded> graded_; // until the lines are written
+    mutable std::string case_line_, solver_line_, oracle_line_;
 };
 
 struct Row {
@@ -163,8 +184,10 @@ struct Report {
     // Statistics.
     std::map<RowKey, Row> rows;
     std::map<CurveKey, std::map<int, CurvePoint>> curves;
-    // Oracle rounding: values resolved at 64, 128, ... bits.
+    // Oracle rounding: values resolved at 64, 128, ... bits, and float values rounded from
+    // double intervals before any of them (0 in a report from before it did).
     std::array<std::uint64_t, 8> oracle_steps{};
+    std::uint64_t oracle_from_intervals = 0;
 
     // Every case of the campaign graded: each shard present and complete.
     bool complete() const {
@@ -287,6 +310,9 @@ class OutputDirectory {
     OutputDirectory& operator=(const OutputDirectory&) = delete;
     void save(const Report& r);            // report.json and report.md
     void save_with_plots(const Report& r); // and the figures
+    // A running report's save: the same files, without reading report.json back to check it
+    // (the reading was three fifths of a save); the final save checks it.
+    void checkpoint(const Report& r);
     const std::string& path() const { return dir_; }
 
   private:

@@ -43,6 +43,8 @@ struct RoundingStats {
     std::uint64_t values = 0;       // values rounded
     std::uint64_t by_steps[8] = {}; // values resolved at 64, 128, ... bits (last: more)
     int max_steps = 0;              // most precision levels any value needed (1 = 64 bits)
+    // Values rounded to float from double intervals of their parts, before any of the above.
+    std::uint64_t from_intervals = 0;
 };
 RoundingStats& rounding_stats();
 
