@@ -7,6 +7,11 @@
 set -euo pipefail
 build="$1"
 here="$(dirname "$0")"
+# A container that forbids ptrace cannot single-step: skipped (CTest's SKIP_RETURN_CODE).
+if "$build/bench/linequad_stepcount" true 2>&1 | grep -q "not permitted"; then
+  echo "ptrace is not permitted here: skipped"
+  exit 77
+fi
 rows="seed:cylinder:all:points:direct correct:elliptic_cone:any:no_points:prepared"
 table() { ROWS="$rows" COUNTER="$1" bash "$here/instructions.sh" "$build" 64 | awk 'NR > 1 { print $6 }'; }
 callgrind=$(table callgrind)

@@ -60,7 +60,11 @@ int main(int argc, char** argv) {
     }
     if (child == 0) {
         setenv("LINEQUAD_STEP_MARKS", "1", 1);
-        ptrace(PTRACE_TRACEME, 0, nullptr, nullptr);
+        if (ptrace(PTRACE_TRACEME, 0, nullptr, nullptr) != 0) {
+            std::fprintf(stderr, "linequad_stepcount: ptrace is not permitted here: %s\n",
+                         std::strerror(errno));
+            _exit(126);
+        }
         execvp(argv[1], argv + 1);
         std::fprintf(stderr, "linequad_stepcount: cannot run %s: %s\n", argv[1],
                      std::strerror(errno));
