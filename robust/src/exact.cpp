@@ -230,7 +230,7 @@ bool round_to_float(const CGAL::Mpzf& X, const CGAL::Mpzf& Y, const CGAL::Mpzf& 
         I v(x), by(den);
         if (sy != 0) {
             I root = CGAL::sqrt(I(d));
-            v = sx * sy > 0 ? v + I(y) * root : I(n2) / (v - I(y) * root);
+            v = sx * sy >= 0 ? v + I(y) * root : I(n2) / (v - I(y) * root);
         }
         if (!(by.inf() > 0 || by.sup() < 0)) return false;
         v = v / by;
