@@ -16,8 +16,6 @@ namespace linequad {
 
 namespace {
 
-using Limbs = std::vector<std::uint64_t>;
-
 LINEQUAD_LIMB_LOOP int compare_mag(const Limbs& a, const Limbs& b) {
     if (a.size() != b.size()) return a.size() < b.size() ? -1 : 1;
     for (std::size_t i = a.size(); i-- > 0;)

@@ -4,10 +4,90 @@
 // promise once a product underflows. Only ring operations: the rung never divides.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
-#include <vector>
+#include <cstring>
 
 namespace linequad {
+
+// A BigFloat's limbs: up to `local` of them in place, more on the heap. The exact rung builds
+// and drops BigFloats by the million (an audit made nine million heap allocations from them),
+// and almost all of its values are products of a few doubles: eight limbs hold 512 bits.
+class Limbs {
+  public:
+    static constexpr std::size_t local = 8;
+
+    Limbs() = default;
+    Limbs(std::size_t n, std::uint64_t fill) { assign(n, fill); }
+    Limbs(const Limbs& o) { copy_from(o); }
+    Limbs(Limbs&& o) noexcept { take(o); }
+    Limbs& operator=(const Limbs& o) {
+        if (this != &o) size_ = 0, copy_from(o);
+        return *this;
+    }
+    Limbs& operator=(Limbs&& o) noexcept {
+        if (this != &o) release(), take(o);
+        return *this;
+    }
+    ~Limbs() { release(); }
+
+    std::size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+    std::uint64_t& operator[](std::size_t i) { return data_[i]; }
+    std::uint64_t operator[](std::size_t i) const { return data_[i]; }
+    std::uint64_t back() const { return data_[size_ - 1]; }
+    void pop_back() { --size_; }
+    void push_back(std::uint64_t x) {
+        reserve(size_ + 1);
+        data_[size_++] = x;
+    }
+    // The limbs past the old size are `fill`.
+    void resize(std::size_t n, std::uint64_t fill = 0) {
+        reserve(n);
+        if (n > size_) std::fill(data_ + size_, data_ + n, fill);
+        size_ = n;
+    }
+    void assign(std::size_t n, std::uint64_t fill) {
+        size_ = 0;
+        resize(n, fill);
+    }
+
+  private:
+    std::uint64_t* data_ = in_place_;
+    std::size_t size_ = 0, capacity_ = local;
+    std::uint64_t in_place_[local];
+
+    bool on_heap() const { return data_ != in_place_; }
+    void reserve(std::size_t n) {
+        if (n <= capacity_) return;
+        std::size_t grown = std::max(n, 2 * capacity_);
+        auto* d = new std::uint64_t[grown];
+        std::memcpy(d, data_, size_ * sizeof *d);
+        release();
+        data_ = d, capacity_ = grown;
+    }
+    void release() {
+        if (on_heap()) delete[] data_;
+        data_ = in_place_, capacity_ = local;
+    }
+    // Into an empty *this.
+    void copy_from(const Limbs& o) {
+        reserve(o.size_);
+        std::memcpy(data_, o.data_, o.size_ * sizeof *data_);
+        size_ = o.size_;
+    }
+    void take(Limbs& o) {
+        if (o.on_heap()) {
+            data_ = o.data_, size_ = o.size_, capacity_ = o.capacity_;
+            o.data_ = o.in_place_, o.size_ = 0, o.capacity_ = local;
+        } else {
+            size_ = 0;
+            copy_from(o);
+            o.size_ = 0;
+        }
+    }
+};
 
 class BigFloat {
   public:
@@ -40,8 +120,8 @@ class BigFloat {
 
   private:
     int sign_ = 0;
-    long exp_ = 0;                  // value = sign * mag * 2^exp
-    std::vector<std::uint64_t> mag; // little-endian limbs, odd (lowest bit set) unless zero
+    long exp_ = 0; // value = sign * mag * 2^exp
+    Limbs mag;     // little-endian, odd (lowest bit set) unless zero
 
     void normalize();
 };
