@@ -5,10 +5,12 @@
 #include "linequad/exact.hpp"
 
 #include <gmp.h>
+#include <gmpxx.h>
 #include <mpfr.h>
 
 #include <cstring>
 #include <random>
+#include <string>
 
 using namespace linequad;
 using namespace linequad::test;
@@ -93,29 +95,111 @@ TEST_CASE("exact: the interval filter decides as the exact path does", "[exact]"
     CHECK(hits > 500);
 }
 
-TEST_CASE("exact: floats rounded from double intervals equal the exact path's", "[exact]") {
-    // The oracle (Mpzf) rounds a float answer from double enclosures of its parts where they
-    // prove the rounding; Gmpq rounds every value by MPFR. Every family's float cases, every
-    // query that rounds (t alone, and t with points), both ways taken.
-    std::uint64_t from_intervals = 0, by_mpfr = 0;
-    std::size_t compared = 0;
-    for_each_family_case(21, 20, Precision::binary32, [&](const Case& c) {
-        for (Query q : {Query{}, Query{Need::nearest, false}}) {
-            const exact::RoundingStats& stats = exact::rounding_stats();
-            std::uint64_t intervals0 = stats.from_intervals, mpfr0 = stats.values;
-            Result a = exact::intersect(c.shape, c.line, q, Precision::binary32);
-            from_intervals += stats.from_intervals - intervals0, by_mpfr += stats.values - mpfr0;
-            Result b = exact::intersect_gmpq(c.shape, c.line, q, Precision::binary32);
-            INFO(format_case(c) << "\n" << describe(a) << "\n" << describe(b));
-            REQUIRE(same(a, b));
-            ++compared;
+TEST_CASE("exact: the rounding filter's answers equal the unfiltered path's on every family",
+          "[exact]") {
+    // The oracle (Mpzf) rounds each value from double-word enclosures of its parts where their
+    // error bound proves the rounding; Gmpq rounds every value by MPFR. Every family's cases in
+    // both precisions, every query that rounds (t alone, and t with points), both ways taken.
+    for (Precision p : {Precision::binary64, Precision::binary32}) {
+        std::uint64_t by_filter = 0, by_mpfr = 0;
+        std::size_t compared = 0;
+        for_each_family_case(21, 20, p, [&](const Case& c) {
+            for (Query q : {Query{}, Query{Need::nearest, false}}) {
+                const exact::RoundingStats& stats = exact::rounding_stats();
+                std::uint64_t filter0 = stats.by_filter, mpfr0 = stats.values;
+                Result a = exact::intersect(c.shape, c.line, q, p);
+                by_filter += stats.by_filter - filter0, by_mpfr += stats.values - mpfr0;
+                Result b = exact::intersect_gmpq(c.shape, c.line, q, p);
+                INFO(format_case(c) << "\n" << describe(a) << "\n" << describe(b));
+                REQUIRE(same(a, b));
+                ++compared;
+            }
+        });
+        // Both ways: almost every value by the filter; by MPFR those beyond its range (the
+        // scale family), zeros, ties and the ends of an interval on the surface.
+        INFO((p == Precision::binary32 ? "binary32" : "binary64")
+             << ": " << by_filter << " by the filter, " << by_mpfr << " by MPFR");
+        CHECK(by_filter > 10000);
+        CHECK(by_mpfr > 100);
+        CHECK(compared > 5000);
+    }
+}
+
+TEST_CASE("exact: the rounding filter proves only what MPFR rounds, and defers near a tie",
+          "[exact][rounding]") {
+    using P = Precision;
+    // Y is a double here, as in the oracle's own values.
+    auto both = [](const std::string& X, double Y, const std::string& D, const std::string& Den,
+                   P p) {
+        std::string y = mpz_class(Y).get_str();
+        double quick = exact::round_surd_by_filter(X.c_str(), Y, D.c_str(), Den.c_str(), p);
+        double sure = exact::round_surd(X.c_str(), y.c_str(), D.c_str(), Den.c_str(), p);
+        INFO(X << " + " << y << " sqrt(" << D << ") / " << Den
+               << (p == P::binary32 ? " (float)" : " (double)"));
+        if (!std::isnan(quick)) REQUIRE(std::memcmp(&quick, &sure, sizeof quick) == 0);
+        return !std::isnan(quick);
+    };
+    auto pow2 = [](int k) {
+        mpz_class z;
+        mpz_ui_pow_ui(z.get_mpz_t(), 2, unsigned(k));
+        return z;
+    };
+    // Random values of every form and sign: all but a few decided.
+    std::mt19937_64 rng(5);
+    int decided = 0, tried = 0;
+    for (int i = 0; i < 4000; ++i) {
+        auto part = [&](bool positive) {
+            mpz_class n = mpz_class(std::to_string(rng() >> (rng() % 64))) *
+                          mpz_class(std::to_string(rng() >> (rng() % 64)));
+            return (!positive && rng() % 2) ? mpz_class(-n) : n;
+        };
+        mpz_class X = part(false), D = part(true), Den = part(false);
+        // An integer double: up to 53 bits, scaled by up to 2^70.
+        double Y = i % 5 == 0
+                       ? 0
+                       : std::ldexp(double(rng() >> 11) * (rng() % 2 ? 1 : -1), int(rng() % 71));
+        if (Den == 0 || (X == 0 && (Y == 0 || D == 0))) continue;
+        for (P p : {P::binary64, P::binary32}) {
+            decided += both(X.get_str(), Y, D.get_str(), Den.get_str(), p);
+            ++tried;
         }
-    });
-    // Both ways: most values from intervals; by MPFR those beyond double's normal range (the
-    // scale family), near a tie or on the surface (about 2% in all).
-    CHECK(from_intervals > 10000);
-    CHECK(by_mpfr > 100);
-    CHECK(compared > 5000);
+    }
+    CHECK(decided * 100 >= tried * 99);
+    // Near a tie: m / 2^b with m = 2^b + 1 is the midpoint after 1 in a b-bit format (53 or
+    // 24). Values 2^-(b+j) from it (relatively): (m 2^j +- 1) / 2^(b+j), and the square root
+    // sqrt(M^2 +- m^2 2^(b+j+1)) / 2^(2b+j) with M = m 2^(b+j), that is m / 2^b times
+    // sqrt(1 +- 2^-(b+j-1)). The filter must never disagree, must decide while the distance is
+    // far above its bound (relative: 2^-94 for the value, under 2^-90 with the double's final
+    // step, under 2^-74 with the float's), and must defer at the tie itself.
+    for (P p : {P::binary64, P::binary32}) {
+        int b = p == P::binary64 ? 53 : 24;
+        mpz_class m = pow2(b) + 1;
+        for (int j = 0; j <= 80; ++j) {
+            for (int side : {-1, 1}) {
+                mpz_class X = m * pow2(j) + side, Den = pow2(b + j);
+                bool d1 = both(X.get_str(), 0, "0", Den.get_str(), p);
+                mpz_class M = m * pow2(b + j), D = M * M + side * m * m * pow2(b + j + 1);
+                bool d2 = both("0", 1, D.get_str(), pow2(2 * b + j).get_str(), p);
+                // The same rational, signs on both parts; and twice it as 3X - sqrt(X^2) and
+                // -X + sqrt(9 X^2), one term more than twice the other.
+                bool d3 = both(mpz_class(-X).get_str(), 0, "0", mpz_class(-Den).get_str(), p);
+                mpz_class X2 = X * X;
+                bool d4 = both(mpz_class(3 * X).get_str(), -1, X2.get_str(), Den.get_str(), p);
+                bool d5 =
+                    both(mpz_class(-X).get_str(), 1, mpz_class(9 * X2).get_str(), Den.get_str(), p);
+                INFO("b " << b << ", j " << j << ", side " << side);
+                if (b + j <= (p == P::binary64 ? 88 : 72)) CHECK((d1 && d2 && d3 && d4 && d5));
+            }
+        }
+        CHECK_FALSE(both(m.get_str(), 0, "0", pow2(b).get_str(), p)); // exactly the tie
+        CHECK(both("3", 0, "0", "1", p));                             // exactly a double
+        CHECK(both("0", 2, "4", "1", p));                             // sqrt(4) 2 = 4
+        CHECK(both("-7", 3, "5", "2", p)); // the conjugate form: (-7 + 3 sqrt(5)) / 2
+    }
+    // Zero, and parts beyond its range: left to MPFR.
+    CHECK_FALSE(both("0", 0, "0", "5", P::binary64));
+    CHECK_FALSE(both("3", -1, "9", "1", P::binary64)); // 3 - sqrt(9) = 0
+    CHECK_FALSE(both(pow2(1000).get_str(), 0, "0", "1", P::binary64));
 }
 
 TEST_CASE("exact: a circular cylinder is an elliptic cylinder with axes of length r", "[exact]") {
@@ -282,7 +366,9 @@ TEST_CASE("exact: rounding needs few precision steps on the oracle's own cases",
     for (int i = 0; i < 2000; ++i)
         exact::intersect(r.shape(), r.line());
     const auto& st = exact::rounding_stats();
-    CHECK(st.values > 1000);
-    // Almost all values resolve at the first precision (64 bits).
+    // Almost every value by the filter, none of the rest beyond MPFR's first precision (64 bits)
+    // but a few.
+    CHECK(st.by_filter > 1000);
+    CHECK(st.by_filter * 100 >= (st.by_filter + st.values) * 99);
     CHECK(st.by_steps[0] * 100 >= st.values * 99);
 }

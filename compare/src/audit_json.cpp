@@ -370,8 +370,8 @@ void read_report(const Json& root, Report* r) {
     if (steps.size() != r->oracle_steps.size()) steps.fail("expected 8 counts");
     for (std::size_t i = 0; i < r->oracle_steps.size(); ++i)
         r->oracle_steps[i] = steps.item(i).count();
-    if (top.find("oracle_rounded_from_intervals"))
-        r->oracle_from_intervals = top.at("oracle_rounded_from_intervals").count();
+    if (top.find("oracle_rounded_by_filter"))
+        r->oracle_by_filter = top.at("oracle_rounded_by_filter").count();
 
     Node rows = top.at("rows");
     for (std::size_t i = 0, n = rows.size(); i < n; ++i) {
@@ -448,7 +448,7 @@ std::string to_json(const Report& r) {
         head["external"] = ex;
     }
     head["oracle_rounding_steps"] = r.oracle_steps;
-    head["oracle_rounded_from_intervals"] = r.oracle_from_intervals;
+    head["oracle_rounded_by_filter"] = r.oracle_by_filter;
     // One row and one curve per line, so that two reports diff line by line.
     std::string s = jsonl::dump(head);
     s.pop_back(); // the closing brace

@@ -324,11 +324,11 @@ std::string markdown(const Report& r) {
             md << "  `" << replay(r, w, key.solver) << "`\n\n";
         }
     }
-    md << "## Oracle rounding\n\nValues rounded at 64, 128, 256, ... bits: ";
+    md << "## Oracle rounding\n\nValues rounded by the oracle's filter (double-word enclosures): "
+       << r.oracle_by_filter << ". The rest, by MPFR at 64, 128, 256, ... bits: ";
     for (int i = 0; i < 8; ++i)
         md << (i ? ", " : "") << r.oracle_steps[i];
-    md << ". Float values rounded from double intervals, before any of these: "
-       << r.oracle_from_intervals << ".\n";
+    md << ".\n";
     return md.str();
 }
 

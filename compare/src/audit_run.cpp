@@ -396,7 +396,7 @@ Report grade_results(const Options& o) {
     rep.status = Status::complete;
     const auto& steps = exact::rounding_stats().by_steps;
     std::copy(std::begin(steps), std::end(steps), rep.oracle_steps.begin());
-    rep.oracle_from_intervals = exact::rounding_stats().from_intervals;
+    rep.oracle_by_filter = exact::rounding_stats().by_filter;
     saver.end(rep, o, start);
     return rep;
 }
@@ -471,7 +471,7 @@ class ChunkGrader {
                 grade_external(*e, cases, family, shape, out);
         const auto& steps = exact::rounding_stats().by_steps;
         std::copy(std::begin(steps), std::end(steps), out.oracle_steps.begin());
-        out.oracle_from_intervals = exact::rounding_stats().from_intervals;
+        out.oracle_by_filter = exact::rounding_stats().by_filter;
         return out;
     }
 

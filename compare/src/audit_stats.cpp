@@ -407,7 +407,7 @@ void Report::merge_statistics(const Report& o) {
         }
     for (int i = 0; i < 8; ++i)
         oracle_steps[i] += o.oracle_steps[i];
-    oracle_from_intervals += o.oracle_from_intervals;
+    oracle_by_filter += o.oracle_by_filter;
 }
 
 Row Report::total(const std::string& solver) const {

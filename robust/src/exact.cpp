@@ -1,13 +1,15 @@
 // The oracle: each shape's exact form (fast/src/shapes/: derivation and classification) in
 // CGAL::Mpzf, every decision exact; then each output rounded to the nearest double, or float for
-// a binary32 answer, by MPFR.
+// a binary32 answer: from double-word enclosures where their bound decides, else by MPFR.
 #include "linequad/exact.hpp"
 
+#include "double_word.hpp"
 #include "rounding.hpp"
 #include "shapes/all.hpp"
 #include "solve/finish.hpp"
 
 #include <CGAL/Gmpq.h>
+#include <CGAL/Gmpz.h>
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
 #include <CGAL/number_utils.h>
@@ -199,50 +201,131 @@ exact_form::Classification<NT> rebuilt(const Verdict& v, const exact_form::LineQ
     return c;
 }
 
-// (X + Y sqrt(D)) / Den rounded to float, from double enclosures of its parts where they prove
-// it: both ends of the value's enclosure round to one normal float, and rounding is monotone, so
-// the value rounds to it too. Terms of opposite signs are taken in the conjugate form, as the
-// SurdRounder takes them: (X^2 - Y^2 D) / (Den (X - Y sqrt(D))), the square exact. The
-// SurdRounder takes the rest: parts or answers beyond double's normal range, zero answers, and
-// enclosures too wide to say.
-bool round_to_float(const CGAL::Mpzf& X, const CGAL::Mpzf& Y, const CGAL::Mpzf& Den,
-                    const CGAL::Mpzf& D, double& out) {
-    using I = CGAL::Interval_nt<false>;
-    int sx = sgn(X), sy = CGAL::is_zero(D) ? 0 : sgn(Y);
-    CGAL::Mpzf N2;
-    if (sx * sy < 0) N2 = X * X - Y * Y * D;
-    // Each part's enclosure, within double's normal range: to_interval() does not enclose a
-    // value beyond it.
-    using Pair = std::pair<double, double>;
-    auto normal = [](const CGAL::Mpzf& x, Pair& e) {
-        e = CGAL::to_interval(x);
-        return CGAL::is_zero(x) ||
-               (std::fpclassify(e.first) == FP_NORMAL && std::fpclassify(e.second) == FP_NORMAL &&
-                (e.first > 0) == (e.second > 0));
-    };
-    Pair x, y, den, d, n2;
-    if (!normal(X, x) || !normal(Den, den) || (sy != 0 && !(normal(Y, y) && normal(D, d))) ||
-        (sx * sy < 0 && !normal(N2, n2)))
-        return false;
-    double lo, hi;
-    {
-        CGAL::Protect_FPU_rounding<true> upward;
-        I v(x), by(den);
+// Correct rounding of (X + Y sqrt(D)) / Den from double-word enclosures of its parts
+// (double_word.hpp), where their error bound proves it; the SurdRounder (MPFR) takes the rest:
+// parts or answers far from double's normal range, zero answers, values the bound leaves too
+// near a rounding boundary (ties among them). One per case: sqrt(D) and each root's Den are
+// enclosed once for all of the case's values.
+class QuickRounder {
+  public:
+    QuickRounder(const CGAL::Mpzf& D, Precision target) : D_(D), target_(target) {}
+
+    // Y is a double, as every Y of the oracle's values is (S or v S).
+    bool round(const CGAL::Mpzf& X, double Y, const CGAL::Mpzf& Den, double& out) {
+        using dw::DoubleWord;
+        int sx = sgn(X), sy = CGAL::is_zero(D_) ? 0 : (Y > 0) - (Y < 0), sden = sgn(Den);
+        if (sx == 0 && sy == 0) return false;
+        if (&Den != den_of_) den_of_ = &Den, den_ok_ = enclose(Den, den_);
+        DoubleWord x, v;
+        if (!den_ok_ || (sx != 0 && !enclose(X, x))) return false;
+        // A form without cancellation:
+        //   X / Den;  (X + Y sqrt(D)) / Den for X, Y of one sign, or for one term over twice
+        //   the other; otherwise (X^2 - Y^2 D) / (Den (X - Y sqrt(D))), the square exact.
+        int sign = sx * sden;
         if (sy != 0) {
-            I root = CGAL::sqrt(I(d));
-            v = sx * sy >= 0 ? v + I(y) * root : I(n2) / (v - I(y) * root);
+            if (!dw::in_range(Y) || !root_ok()) return false;
+            DoubleWord ysd = dw::mul({std::fabs(Y), 0}, root_);
+            DoubleWord sum = sx == 0 ? ysd : dw::add(x, ysd);
+            if (!dw::in_range(ysd.hi) || !dw::in_range(sum.hi)) return false;
+            if (sx * sy >= 0) {
+                v = dw::div(sum, den_);
+                sign = (sx != 0 ? sx : sy) * sden;
+            } else if (x.hi > 2.01 * ysd.hi || ysd.hi > 2.01 * x.hi) {
+                // X + Y sqrt(D) with one term over twice the other (2.01 covers their errors):
+                // the difference at most triples their relative errors.
+                bool x_larger = x.hi > ysd.hi;
+                v = dw::div(x_larger ? dw::sub(x, ysd) : dw::sub(ysd, x), den_);
+                sign = (x_larger ? sx : sy) * sden;
+            } else {
+                CGAL::Mpzf y(Y), N2 = X * X - y * y * D_;
+                DoubleWord n2, by = dw::mul(den_, sum);
+                if (!dw::in_range(by.hi) || CGAL::is_zero(N2) || !enclose(N2, n2)) return false;
+                v = dw::div(n2, by);
+                sign = sgn(N2) * sden * sx; // X - Y sqrt(D) has the sign of X
+            }
+        } else {
+            v = dw::div(x, den_);
         }
-        if (!(by.inf() > 0 || by.sup() < 0)) return false;
-        v = v / by;
-        lo = v.inf(), hi = v.sup();
+        return dw::in_range(v.hi) && nearest(v, sign, out);
     }
-    // Rounding to nearest again: each end's conversion is its correct rounding.
-    if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
-    float a = float(lo), b = float(hi);
-    if (a != b || std::fpclassify(a) != FP_NORMAL) return false;
-    out = a;
-    return true;
-}
+
+  private:
+    const CGAL::Mpzf& D_;
+    Precision target_;
+    const CGAL::Mpzf* den_of_ = nullptr;
+    dw::DoubleWord den_, root_;
+    bool den_ok_ = false;
+    int root_state_ = 0; // 0 not yet enclosed, 1 enclosed, -1 out of range
+
+    bool root_ok() {
+        if (root_state_ == 0) {
+            dw::DoubleWord d;
+            root_state_ = enclose(D_, d) ? 1 : -1;
+            if (root_state_ == 1) root_ = dw::sqrt(d);
+        }
+        return root_state_ == 1;
+    }
+
+    // |x| as a double-word within 2^-100 |x| (x != 0): its leading double (to_double, within a
+    // few ulps), then the exact remainder's enclosure (to_interval: an enclosure where its ends
+    // are normal doubles), the lower end kept, the width bounded.
+    static bool enclose(const CGAL::Mpzf& x, dw::DoubleWord& out) {
+        double h = CGAL::to_double(x), m = std::fabs(h);
+        if (!dw::in_range(h)) return false;
+        CGAL::Mpzf rest = x - CGAL::Mpzf(h);
+        double lo = 0;
+        if (!CGAL::is_zero(rest)) {
+            std::pair<double, double> e = CGAL::to_interval(rest);
+            if (std::fpclassify(e.first) != FP_NORMAL || std::fpclassify(e.second) != FP_NORMAL ||
+                !(e.second - e.first <= m * 0x1p-101) || !(std::fabs(e.first) <= m * 0x1p-40))
+                return false;
+            lo = h < 0 ? -e.first : e.first;
+        }
+        out = dw::fast_two_sum(m, lo);
+        return true;
+    }
+
+    // The relative error of v against the exact value, to first order: each part within
+    // 2^-100 = 64 u^2 (Y exact; D half that through the square root), each operation as
+    // double_word.hpp bounds it. Y sqrt(D): 43.4 u^2. The sum form: 67 u^2, then 143 u^2 over
+    // Den. The difference of a term and at most half of it: (64 a + 43.4 b) / (a - b) <= 172.3
+    // u^2 for a = |X| >= 2b, <= 152 u^2 for b >= 2a, then 8 u^2 more, and 257 u^2 over Den.
+    // The conjugate form: 214 u^2. All under 258 u^2 < 2^-97.9; budgeted: |value - v| <=
+    // 2^-94 |v|.
+    bool nearest(dw::DoubleWord v, int sign, double& out) const {
+        dw::DoubleWord w = dw::two_sum(v.hi, v.lo); // c + r = v exactly, c = RN(v) > 0
+        double c = w.hi, r = w.lo;
+        // The half gap from x in [2^E, 2^(E+1)) (lead = 2^E) to its neighbour above (up) or
+        // below, for a format of `digits` bits; below a power of two the gap is half the one
+        // above. Every product here is by a power of two, in range: exact.
+        auto half_gap = [](double x, double lead, double half_ulp, bool up) {
+            return !up && x == lead ? lead * half_ulp * 0.5 : lead * half_ulp;
+        };
+        // |value - c| <= |r| + 2^-94 |v| < |r| + 2^(E-92): the value rounds to c when that is
+        // under the half gap on r's side (were the value on the other side, it would be within
+        // 2^(E-92) of c, under either half gap). The difference is exact.
+        if (target_ == Precision::binary64) {
+            double lead = dw::binade(c);
+            if (!(std::fabs(r) < half_gap(c, lead, 0x1p-53, r >= 0) - lead * 0x1p-92)) return false;
+            out = sign > 0 ? c : -c;
+            return true;
+        }
+        // A float f, normal, and s = RN((c - f) + r) (c - f is exact): |value - f| <=
+        // |s| (1 + 2^-52) + 2^-94 |v| < |s| + 2^(F-75) where |s| < 2^(F-24) and |v| < 2^(F+1).
+        // f is RN(c), or its neighbour towards the value where c lies at a float midpoint
+        // (rounding c is then not rounding the value).
+        float f = float(c);
+        for (int tries = 0;; ++tries) {
+            if (std::fpclassify(f) != FP_NORMAL) return false;
+            double lead = dw::binade(f), s = (c - double(f)) + r;
+            if (std::fabs(s) < half_gap(f, lead, 0x1p-24, s >= 0) - lead * 0x1p-75) break;
+            if (tries == 1) return false;
+            f = std::nextafter(f, s > 0 ? INFINITY : 0.0f);
+        }
+        out = sign > 0 ? double(f) : -double(f);
+        return true;
+    }
+};
 
 } // namespace filter
 
@@ -277,41 +360,39 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
     bool points = query.points && query.need != Need::any;       // a hit test computes no point
 
     // Round t and, if asked, each coordinate of L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den:
-    // value i is (X[i] + Y[i] sqrt(D)) / Den of its root.
+    // value i is (X[i] + Y[i] sqrt(D)) / Den of its root, Y[i] (S or v S) a double.
     constexpr std::size_t most = 4 * max_hits;
-    NT X[most], Y[most];
+    NT X[most];
+    double Y[most];
     const NT* Den[most];
     std::size_t n = 0;
     for (int j = 0; j < c.count; ++j) {
         const exact_form::SurdRoot<NT>& rt = c.roots[j];
-        NT S(rt.S);
-        X[n] = rt.N, Y[n] = S, Den[n++] = &rt.Den;
+        X[n] = rt.N, Y[n] = rt.S, Den[n++] = &rt.Den;
         if (!points) continue;
         for (int k = 0; k < 3; ++k) {
             NT L0(l.L0[k]), v(l.v[k]);
-            X[n] = NT(L0 * rt.Den + v * rt.N), Y[n] = NT(v * S), Den[n++] = &rt.Den;
+            X[n] = NT(L0 * rt.Den + v * rt.N), Y[n] = l.v[k] * rt.S, Den[n++] = &rt.Den;
         }
     }
     double rounded[most];
-    bool from_intervals[most] = {}; // a float answer's values double intervals decide
+    bool quick[most] = {}; // values the filter rounded
     std::size_t left = n;
     if constexpr (std::is_same_v<NT, CGAL::Mpzf>) {
-        if (target == Precision::binary32)
-            for (std::size_t i = 0; i < n; ++i)
-                if ((from_intervals[i] =
-                         filter::round_to_float(X[i], Y[i], *Den[i], c.D, rounded[i])))
-                    --left;
-        rounding_stats().from_intervals += n - left;
+        filter::QuickRounder quick_rounder(c.D, target);
+        for (std::size_t i = 0; i < n; ++i)
+            if ((quick[i] = quick_rounder.round(X[i], Y[i], *Den[i], rounded[i]))) --left;
+        rounding_stats().by_filter += n - left;
     }
     if (left > 0) {
         SurdRounder& rd = rounder();
         rd.clear();
         to_dyadic(c.D, rd.D());
         for (std::size_t i = 0; i < n; ++i)
-            if (!from_intervals[i]) queue(rd, X[i], Y[i], *Den[i], c.D);
+            if (!quick[i]) queue(rd, X[i], NT(Y[i]), *Den[i], c.D);
         rd.run(target);
         for (std::size_t i = 0, slot = 0; i < n; ++i)
-            if (!from_intervals[i]) rounded[i] = rd.result(slot++);
+            if (!quick[i]) rounded[i] = rd.result(slot++);
     }
     Result r;
     std::size_t per_root = points ? 4 : 1;
@@ -470,6 +551,20 @@ double round_surd(const char* X, const char* Y, const char* D, const char* Den, 
     queue(rd, x, y, den, d);
     rd.run(p);
     return rd.result(0);
+}
+
+double round_surd_by_filter(const char* X, double Y, const char* D, const char* Den, Precision p) {
+    // CGAL 5.5's Mpzf(const Gmpz&) drops the sign and misreads zero: built from a nonzero
+    // magnitude, then negated.
+    auto integer = [](const char* s) {
+        CGAL::Gmpz z(s);
+        if (CGAL::is_zero(z)) return CGAL::Mpzf(0);
+        CGAL::Mpzf m(CGAL::abs(z));
+        return CGAL::is_negative(z) ? CGAL::Mpzf(-m) : m;
+    };
+    CGAL::Mpzf x = integer(X), d = integer(D), den = integer(Den);
+    double out;
+    return filter::QuickRounder(d, p).round(x, Y, den, out) ? out : NAN;
 }
 
 const Solver& solver(Precision p) {

@@ -184,10 +184,10 @@ struct Report {
     // Statistics.
     std::map<RowKey, Row> rows;
     std::map<CurveKey, std::map<int, CurvePoint>> curves;
-    // Oracle rounding: values resolved at 64, 128, ... bits, and float values rounded from
-    // double intervals before any of them (0 in a report from before it did).
+    // Oracle rounding: values its filter rounded from double-word enclosures (0 in a report from
+    // before it did), and the rest, resolved by MPFR at 64, 128, ... bits.
     std::array<std::uint64_t, 8> oracle_steps{};
-    std::uint64_t oracle_from_intervals = 0;
+    std::uint64_t oracle_by_filter = 0;
 
     // Every case of the campaign graded: each shard present and complete.
     bool complete() const {

@@ -2,11 +2,13 @@
 //
 // Inputs are taken as the exact rationals their doubles denote. Each shape's derivation in its
 // exact, division-free form and the classification (fast/'s exact form) run in CGAL::Mpzf (exact
-// ring arithmetic on dyadic numbers: no rounding, no gcd); roots stay in the form
-// (N + S sqrt(D)) / Den and every decision (discriminant, extent, range, order) is the exact sign
-// of such a number. Only the outputs are rounded, each to the nearest double (or, for a binary32
-// answer, float; ties to even) by an MPFR enclosure whose precision doubles until both ends
-// round to the same value. A binary32 answer needs float inputs (else not_binary32).
+// ring arithmetic on dyadic numbers: no rounding, no gcd), with an interval filter of its own
+// ahead of them; roots stay in the form (N + S sqrt(D)) / Den and every decision (discriminant,
+// extent, range, order) is the exact sign of such a number. Only the outputs are rounded, each to
+// the nearest double (or, for a binary32 answer, float; ties to even): by a double-word
+// enclosure with a proven error bound where the bound decides, else by an MPFR enclosure whose
+// precision doubles until both ends round to the same value. A binary32 answer needs float
+// inputs (else not_binary32).
 #pragma once
 
 #include "linequad/scene.hpp"
@@ -40,11 +42,12 @@ const Solver& solver(Precision p = Precision::binary64);
 
 // How much precision the rounding needed, counted on this thread since the last reset.
 struct RoundingStats {
+    // Values rounded by the filter (double-word enclosures), before MPFR sees any.
+    std::uint64_t by_filter = 0;
+    // The rest, by MPFR:
     std::uint64_t values = 0;       // values rounded
     std::uint64_t by_steps[8] = {}; // values resolved at 64, 128, ... bits (last: more)
     int max_steps = 0;              // most precision levels any value needed (1 = 64 bits)
-    // Values rounded to float from double intervals of their parts, before any of the above.
-    std::uint64_t from_intervals = 0;
 };
 RoundingStats& rounding_stats();
 
@@ -52,5 +55,10 @@ RoundingStats& rounding_stats();
 // Den != 0 given as decimal strings; exposed for the tests of the rounding itself.
 double round_surd(const char* X, const char* Y, const char* D, const char* Den,
                   Precision p = Precision::binary64);
+// The same by the oracle's rounding filter alone, for Y a double (as Y is in the oracle's own
+// values): the value it proves, or NaN where it leaves the value to MPFR; exposed for the tests
+// of the filter.
+double round_surd_by_filter(const char* X, double Y, const char* D, const char* Den,
+                            Precision p = Precision::binary64);
 
 } // namespace linequad::exact
