@@ -72,14 +72,19 @@ LINEQUAD_LIMB_LOOP void subtract_from(Limbs& a, const Limbs& b) {
 
 } // namespace
 
+// From the encoding: the significand (with its hidden bit, unless subnormal) times 2^(e - 1075),
+// its trailing zero bits moved into the exponent. x is finite.
 BigFloat::BigFloat(double x) {
     if (x == 0) return;
-    int e;
-    double f = std::frexp(std::fabs(x), &e); // |x| = f 2^e, f in [0.5, 1): f 2^53 is an integer
-    mag.push_back(std::uint64_t(std::ldexp(f, 53)));
-    exp_ = long(e) - 53;
-    sign_ = x < 0 ? -1 : 1;
-    normalize();
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    long biased = long((bits >> 52) & 0x7ff);
+    std::uint64_t m = bits & ((std::uint64_t(1) << 52) - 1);
+    if (biased != 0) m |= std::uint64_t(1) << 52;
+    unsigned zeros = unsigned(__builtin_ctzll(m));
+    mag.push_back(m >> zeros);
+    exp_ = (biased != 0 ? biased - 1075 : -1074) + long(zeros);
+    sign_ = bits >> 63 ? -1 : 1;
 }
 
 BigFloat BigFloat::pow2(long e) {
