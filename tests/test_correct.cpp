@@ -74,6 +74,29 @@ TEST_CASE("BigFloat sums and products are exact over the whole double range") {
     }
 }
 
+TEST_CASE("BigFloat differences that cancel whole low limbs are exact") {
+    // x = a 2^k + c and y = b 2^k + c share their low part c: x - y = (a - b) 2^k exactly,
+    // whose low limbs cancel to zero (the borrow, or a negated result's carry, crosses them).
+    std::mt19937_64 rng(3);
+    for (int i = 0; i < 2000; ++i) {
+        double a = wide_double(rng), b = wide_double(rng), c = wide_double(rng);
+        long k = long(rng() % 400);
+        BigFloat x = BigFloat(a) * BigFloat::pow2(k) + BigFloat(c);
+        BigFloat y = BigFloat(b) * BigFloat::pow2(k) + BigFloat(c);
+        BigFloat want = (BigFloat(a) - BigFloat(b)) * BigFloat::pow2(k);
+        INFO(hex(a) << " " << hex(b) << " " << hex(c) << " 2^" << k);
+        REQUIRE(sign(x - y - want) == 0);
+        REQUIRE(sign(y - x + want) == 0);
+        REQUIRE(sign(x - y) == sign(want));
+    }
+    // 3 2^64 + 5 - (4 2^64 + 5) = -2^64: every low bit cancels.
+    BigFloat five(5.0), p64 = BigFloat::pow2(64);
+    BigFloat x = BigFloat(3.0) * p64 + five, y = BigFloat(4.0) * p64 + five;
+    CHECK(sign(x - y) < 0);
+    CHECK(sign(x - y + p64) == 0);
+    CHECK(sign(y - x - p64) == 0);
+}
+
 namespace {
 
 // A vector whose components are far apart: one exponent near `base`, the others up to 1100

@@ -16,59 +16,20 @@ namespace linequad {
 
 namespace {
 
-LINEQUAD_LIMB_LOOP int compare_mag(const Limbs& a, const Limbs& b) {
-    if (a.size() != b.size()) return a.size() < b.size() ? -1 : 1;
-    for (std::size_t i = a.size(); i-- > 0;)
-        if (a[i] != b[i]) return a[i] < b[i] ? -1 : 1;
-    return 0;
-}
-
-// a << bits.
-LINEQUAD_LIMB_LOOP Limbs shifted_left(const Limbs& a, unsigned long bits) {
-    std::size_t words = bits / 64;
-    unsigned s = bits % 64;
-    Limbs r(a.size() + words + 1, 0);
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        r[i + words] |= a[i] << s;
-        if (s != 0) r[i + words + 1] |= a[i] >> (64 - s);
+// Limb i of y shifted left by 64 words + s bits (s < 64), formed as it is read.
+struct Shifted {
+    const Limbs& y;
+    std::size_t words;
+    unsigned s;
+    std::size_t size() const { return y.size() + words + (s != 0); }
+    std::uint64_t operator[](std::size_t i) const {
+        if (i < words) return 0;
+        std::size_t j = i - words;
+        std::uint64_t lo = j < y.size() ? y[j] << s : 0;
+        std::uint64_t hi = s != 0 && j >= 1 && j - 1 < y.size() ? y[j - 1] >> (64 - s) : 0;
+        return lo | hi;
     }
-    while (!r.empty() && r.back() == 0)
-        r.pop_back();
-    return r;
-}
-
-LINEQUAD_LIMB_LOOP void add_to(Limbs& a, const Limbs& b) {
-    if (a.size() < b.size()) a.resize(b.size(), 0);
-    unsigned carry = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        std::uint64_t bi = i < b.size() ? b[i] : 0;
-        std::uint64_t s = a[i] + bi;
-        unsigned c1 = s < a[i];
-        std::uint64_t s2 = s + carry;
-        unsigned c2 = s2 < s;
-        a[i] = s2;
-        carry = c1 | c2;
-        if (i >= b.size() && carry == 0) break;
-    }
-    if (carry) a.push_back(1);
-}
-
-// a -= b, for |a| >= |b|.
-LINEQUAD_LIMB_LOOP void subtract_from(Limbs& a, const Limbs& b) {
-    unsigned borrow = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        std::uint64_t bi = i < b.size() ? b[i] : 0;
-        std::uint64_t d = a[i] - bi;
-        unsigned b1 = a[i] < bi;
-        std::uint64_t d2 = d - borrow;
-        unsigned b2 = d < std::uint64_t(borrow);
-        a[i] = d2;
-        borrow = b1 | b2;
-        if (i >= b.size() && borrow == 0) break;
-    }
-    while (!a.empty() && a.back() == 0)
-        a.pop_back();
-}
+};
 
 } // namespace
 
@@ -119,32 +80,49 @@ LINEQUAD_LIMB_LOOP void BigFloat::normalize() {
     exp_ += long(words) * 64 + s;
 }
 
-BigFloat operator+(const BigFloat& a, const BigFloat& b) {
+// In one pass: x, the operand of the smaller exponent, as it is; y shifted onto it as it is read;
+// their sum or difference limb by limb. A difference that borrows out of the top was y - x:
+// negated (two's complement) and given y's sign.
+LINEQUAD_LIMB_LOOP BigFloat operator+(const BigFloat& a, const BigFloat& b) {
     if (a.sign_ == 0) return b;
     if (b.sign_ == 0) return a;
-    // Both at the smaller exponent; the other one's magnitude shifted left.
-    long e = std::min(a.exp_, b.exp_);
-    Limbs x = a.exp_ == e ? a.mag : shifted_left(a.mag, static_cast<unsigned long>(a.exp_ - e));
-    Limbs y = b.exp_ == e ? b.mag : shifted_left(b.mag, static_cast<unsigned long>(b.exp_ - e));
+    const BigFloat& x = a.exp_ <= b.exp_ ? a : b;
+    const BigFloat& y = &x == &a ? b : a;
+    unsigned long d = static_cast<unsigned long>(y.exp_ - x.exp_);
+    Shifted ys{y.mag, d / 64, unsigned(d % 64)};
+    std::size_t n = std::max(x.mag.size(), ys.size());
     BigFloat r;
-    r.exp_ = e;
-    if (a.sign_ == b.sign_) {
-        add_to(x, y);
-        r.mag = std::move(x);
-        r.sign_ = a.sign_;
+    r.exp_ = x.exp_;
+    r.sign_ = x.sign_;
+    r.mag.resize(n + 1);
+    std::uint64_t carry = 0; // or borrow
+    if (x.sign_ == y.sign_) {
+        for (std::size_t i = 0; i < n; ++i) {
+            std::uint64_t xi = i < x.mag.size() ? x.mag[i] : 0, s = xi + ys[i];
+            std::uint64_t c1 = s < xi;
+            r.mag[i] = s + carry;
+            carry = c1 | (r.mag[i] < s);
+        }
+        r.mag[n] = carry;
     } else {
-        int c = compare_mag(x, y);
-        if (c == 0) return BigFloat();
-        if (c > 0) {
-            subtract_from(x, y);
-            r.mag = std::move(x);
-            r.sign_ = a.sign_;
-        } else {
-            subtract_from(y, x);
-            r.mag = std::move(y);
-            r.sign_ = b.sign_;
+        for (std::size_t i = 0; i < n; ++i) {
+            std::uint64_t xi = i < x.mag.size() ? x.mag[i] : 0, yi = ys[i], t = xi - yi;
+            std::uint64_t b1 = xi < yi;
+            r.mag[i] = t - carry;
+            carry = b1 | (t < carry);
+        }
+        r.mag[n] = 0;
+        if (carry != 0) {
+            std::uint64_t c = 1;
+            for (std::size_t i = 0; i < n; ++i) {
+                r.mag[i] = ~r.mag[i] + c;
+                c = c != 0 && r.mag[i] == 0;
+            }
+            r.sign_ = y.sign_;
         }
     }
+    while (!r.mag.empty() && r.mag.back() == 0)
+        r.mag.pop_back();
     r.normalize();
     return r;
 }
