@@ -7,6 +7,7 @@
 #include "rng.hpp"
 #include "shape_types.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <random>
 #include <type_traits>
@@ -701,10 +702,24 @@ Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint
         c.precision = precision;
     }
     c.family = family_name(fam);
-    c.id = "\"" + std::string(family_name(fam)) + "/" + std::to_string(shape) + "/" +
-           range_name(range) + "/" + std::to_string(seed) + "/" + std::to_string(index) +
-           (frames == Frames::any ? "" : std::string("/") + frames_name(frames)) +
-           (precision == Precision::binary32 ? "/binary32" : "") + "\"";
+    // "family/shape/range/seed/index[/frames][/binary32]", built in place: one allocation per
+    // case, not one per piece (the audit makes a case for every one it grades).
+    std::string& id = c.id;
+    id.clear();
+    id.reserve(80);
+    auto number = [&id](std::uint64_t v) {
+        char digits[24];
+        id.append(digits, std::to_chars(digits, digits + sizeof digits, v).ptr);
+    };
+    id.append("\"").append(family_name(fam)).append("/");
+    number(std::uint64_t(shape));
+    id.append("/").append(range_name(range)).append("/");
+    number(seed);
+    id.append("/");
+    number(index);
+    if (frames != Frames::any) id.append("/").append(frames_name(frames));
+    if (precision == Precision::binary32) id.append("/binary32");
+    id.append("\"");
     return c;
 }
 
