@@ -107,25 +107,34 @@ struct Invalid : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// A value with the path that names it in errors ("rows[3].t_ulps.max").
+// A value with the path that names it in errors ("rows[3].t_ulps.max"), spelled only for an
+// error: a node knows its parent (alive in an enclosing scope) and its key or index. A report
+// holds hundreds of thousands of values, and each save reads one back.
 struct Node {
     const Json& v;
-    std::string path;
+    const Node* parent = nullptr;
+    const char* key = nullptr; // else the index in the parent array
+    std::size_t index = 0;
 
-    [[noreturn]] void fail(const std::string& what) const { throw Invalid(path + ": " + what); }
+    std::string path() const {
+        if (!parent) return "";
+        std::string p = parent->path();
+        if (key) return p.empty() ? std::string(key) : p + "." + key;
+        return p + "[" + std::to_string(index) + "]";
+    }
+    [[noreturn]] void fail(const std::string& what) const { throw Invalid(path() + ": " + what); }
 
     const Json* find(const char* key) const {
         auto it = v.find(key);
         return it == v.end() ? nullptr : &*it;
     }
-    Node at(const char* key) const {
+    Node at(const char* k) const {
         if (!v.is_object()) fail("expected an object");
-        const Json* x = find(key);
-        std::string p = path.empty() ? key : path + "." + key;
-        if (!x) throw Invalid(p + ": missing");
-        return {*x, p};
+        const Json* x = find(k);
+        if (!x) Node{v, this, k}.fail("missing");
+        return {*x, this, k};
     }
-    Node item(std::size_t i) const { return {v[i], path + "[" + std::to_string(i) + "]"}; }
+    Node item(std::size_t i) const { return {v[i], this, nullptr, i}; }
     std::size_t size(std::size_t at_most = SIZE_MAX) const {
         if (!v.is_array()) fail("expected an array");
         if (v.size() > at_most) fail("more than " + std::to_string(at_most) + " entries");
@@ -261,7 +270,7 @@ Row read_row(const Node& n) {
         if (!f.v.is_object()) f.fail("expected an object of counts by name");
         std::uint64_t total = 0;
         for (auto it = f.v.begin(); it != f.v.end(); ++it) {
-            Node x{*it, f.path + "." + it.key()};
+            Node x{*it, &f, it.key().c_str()};
             std::uint64_t k = x.count(r.cases);
             if (k == 0) x.fail("a zero count is not written");
             r.foreign[it.key()] = k;
@@ -300,7 +309,7 @@ std::string expect_in(const std::vector<std::string>& list, const std::string& s
 }
 
 void read_report(const Json& root, Report* r) {
-    Node top{root, ""};
+    Node top{root};
     if (!root.is_object()) throw Invalid("not a JSON object");
     std::string format = top.at("format").text();
     if (format == "linequad-audit-1")
