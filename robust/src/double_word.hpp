@@ -67,6 +67,12 @@ inline DoubleWord sub(DoubleWord x, DoubleWord y) {
     return fast_two_sum(s.hi, s.lo + t);
 }
 
+// One of x, y over twice the other, with room for their low parts and errors: where sub()
+// applies, and where a difference at most triples its terms' relative errors.
+inline bool apart(DoubleWord x, DoubleWord y) {
+    return x.hi > 2.01 * y.hi || y.hi > 2.01 * x.hi;
+}
+
 // x y, error <= 7.05 u^2 x y. (ph, pl) is exact; xl yl (<= u^2 xh yh) is dropped; the fused
 // t = RN(xh yl + RN(xl yh)) errs by u^2 + 2u^2, and RN(pl + t) (|pl + t| <= 3u xh yh) by 3u^2.
 inline DoubleWord mul(DoubleWord x, DoubleWord y) {

@@ -210,8 +210,15 @@ class QuickRounder {
   public:
     QuickRounder(const CGAL::Mpzf& D, Precision target) : D_(D), target_(target) {}
 
-    // Y is a double, as every Y of the oracle's values is (S or v S).
-    bool round(const CGAL::Mpzf& X, double Y, const CGAL::Mpzf& Den, double& out) {
+    // A value's magnitude as a double-word, and its sign.
+    struct Value {
+        dw::DoubleWord v;
+        int sign = 0;
+    };
+
+    // (X + Y sqrt(D)) / Den, for Y a double (as every Y of the oracle's values is: S or v S);
+    // false for zero, or beyond the range of the bounds.
+    bool value(const CGAL::Mpzf& X, double Y, const CGAL::Mpzf& Den, Value& out) {
         using dw::DoubleWord;
         int sx = sgn(X), sy = CGAL::is_zero(D_) ? 0 : (Y > 0) - (Y < 0), sden = sgn(Den);
         if (sx == 0 && sy == 0) return false;
@@ -225,20 +232,20 @@ class QuickRounder {
         if (sy != 0) {
             if (!dw::in_range(Y) || !root_ok()) return false;
             DoubleWord ysd = dw::mul({std::fabs(Y), 0}, root_);
-            DoubleWord sum = sx == 0 ? ysd : dw::add(x, ysd);
-            if (!dw::in_range(ysd.hi) || !dw::in_range(sum.hi)) return false;
+            if (!dw::in_range(ysd.hi)) return false;
             if (sx * sy >= 0) {
+                DoubleWord sum = sx == 0 ? ysd : dw::add(x, ysd);
+                if (!dw::in_range(sum.hi)) return false;
                 v = dw::div(sum, den_);
                 sign = (sx != 0 ? sx : sy) * sden;
-            } else if (x.hi > 2.01 * ysd.hi || ysd.hi > 2.01 * x.hi) {
-                // X + Y sqrt(D) with one term over twice the other (2.01 covers their errors):
-                // the difference at most triples their relative errors.
-                bool x_larger = x.hi > ysd.hi;
-                v = dw::div(x_larger ? dw::sub(x, ysd) : dw::sub(ysd, x), den_);
+            } else if (bool x_larger = x.hi > ysd.hi; dw::apart(x, ysd)) {
+                DoubleWord difference = x_larger ? dw::sub(x, ysd) : dw::sub(ysd, x);
+                if (!dw::in_range(difference.hi)) return false;
+                v = dw::div(difference, den_);
                 sign = (x_larger ? sx : sy) * sden;
             } else {
                 CGAL::Mpzf y(Y), N2 = X * X - y * y * D_;
-                DoubleWord n2, by = dw::mul(den_, sum);
+                DoubleWord n2, by = dw::mul(den_, dw::add(x, ysd));
                 if (!dw::in_range(by.hi) || CGAL::is_zero(N2) || !enclose(N2, n2)) return false;
                 v = dw::div(n2, by);
                 sign = sgn(N2) * sden * sx; // X - Y sqrt(D) has the sign of X
@@ -246,7 +253,78 @@ class QuickRounder {
         } else {
             v = dw::div(x, den_);
         }
-        return dw::in_range(v.hi) && nearest(v, sign, out);
+        out = {v, sign};
+        return dw::in_range(v.hi);
+    }
+
+    // A point's coordinate L0 + v t from t's value, where that sum has no cancellation: its terms
+    // of one sign, or one over twice the other. (The others take their exact numerator.)
+    bool point(double L0, double v, const Value& t, double& out) const {
+        if (v == 0) { // exactly L0: a double, and a float in a binary32 case; zero is +0
+            out = L0 == 0 ? 0.0 : L0;
+            return true;
+        }
+        if (!dw::in_range(v) || (L0 != 0 && !dw::in_range(L0))) return false;
+        dw::DoubleWord vt = dw::mul({std::fabs(v), 0}, t.v), a{std::fabs(L0), 0};
+        int s_vt = (v > 0 ? 1 : -1) * t.sign, s_a = (L0 > 0) - (L0 < 0);
+        if (!dw::in_range(vt.hi)) return false;
+        Value p;
+        if (s_a == 0 || s_a == s_vt) {
+            p = {s_a == 0 ? vt : dw::add(a, vt), s_vt};
+        } else if (bool a_larger = a.hi > vt.hi; dw::apart(a, vt)) {
+            p = {a_larger ? dw::sub(a, vt) : dw::sub(vt, a), a_larger ? s_a : s_vt};
+        } else {
+            return false;
+        }
+        return dw::in_range(p.v.hi) && nearest(p, out);
+    }
+
+    bool round(const CGAL::Mpzf& X, double Y, const CGAL::Mpzf& Den, double& out) {
+        Value v;
+        return value(X, Y, Den, v) && nearest(v, out);
+    }
+
+    // The relative error of v against the exact value, to first order: each part within
+    // 2^-100 = 64 u^2 (Y exact; D half that through the square root), each operation as
+    // double_word.hpp bounds it. Y sqrt(D): 43.4 u^2. The sum form: 67 u^2, then 143 u^2 over
+    // Den. The difference of a term and at most half of it: (64 a + 43.4 b) / (a - b) <= 172.3
+    // u^2 for a = |X| >= 2b, <= 152 u^2 for b >= 2a, then 8 u^2 more, and 257 u^2 over Den.
+    // The conjugate form: 214 u^2. A point's coordinate L0 + v t: v t within 264 u^2, their sum
+    // 267 u^2, their difference (264 b) / (a - b) <= 528 u^2 for b = |v t| >= 2a, then 8 u^2
+    // more. All under 536 u^2 < 2^-96.9; budgeted: |value - v| <= 2^-94 |v|.
+    bool nearest(const Value& x, double& out) const {
+        int sign = x.sign;
+        dw::DoubleWord w = dw::two_sum(x.v.hi, x.v.lo); // c + r = v exactly, c = RN(v) > 0
+        double c = w.hi, r = w.lo;
+        // The half gap from x in [2^E, 2^(E+1)) (lead = 2^E) to its neighbour above (up) or
+        // below, for a format of `digits` bits; below a power of two the gap is half the one
+        // above. Every product here is by a power of two, in range: exact.
+        auto half_gap = [](double x, double lead, double half_ulp, bool up) {
+            return !up && x == lead ? lead * half_ulp * 0.5 : lead * half_ulp;
+        };
+        // |value - c| <= |r| + 2^-94 |v| < |r| + 2^(E-92): the value rounds to c when that is
+        // under the half gap on r's side (were the value on the other side, it would be within
+        // 2^(E-92) of c, under either half gap). The difference is exact.
+        if (target_ == Precision::binary64) {
+            double lead = dw::binade(c);
+            if (!(std::fabs(r) < half_gap(c, lead, 0x1p-53, r >= 0) - lead * 0x1p-92)) return false;
+            out = sign > 0 ? c : -c;
+            return true;
+        }
+        // A float f, normal, and s = RN((c - f) + r) (c - f is exact): |value - f| <=
+        // |s| (1 + 2^-52) + 2^-94 |v| < |s| + 2^(F-75) where |s| < 2^(F-24) and |v| < 2^(F+1).
+        // f is RN(c), or its neighbour towards the value where c lies at a float midpoint
+        // (rounding c is then not rounding the value).
+        float f = float(c);
+        for (int tries = 0;; ++tries) {
+            if (std::fpclassify(f) != FP_NORMAL) return false;
+            double lead = dw::binade(f), s = (c - double(f)) + r;
+            if (std::fabs(s) < half_gap(f, lead, 0x1p-24, s >= 0) - lead * 0x1p-75) break;
+            if (tries == 1) return false;
+            f = std::nextafter(f, s > 0 ? INFINITY : 0.0f);
+        }
+        out = sign > 0 ? double(f) : -double(f);
+        return true;
     }
 
   private:
@@ -284,47 +362,6 @@ class QuickRounder {
         out = dw::fast_two_sum(m, lo);
         return true;
     }
-
-    // The relative error of v against the exact value, to first order: each part within
-    // 2^-100 = 64 u^2 (Y exact; D half that through the square root), each operation as
-    // double_word.hpp bounds it. Y sqrt(D): 43.4 u^2. The sum form: 67 u^2, then 143 u^2 over
-    // Den. The difference of a term and at most half of it: (64 a + 43.4 b) / (a - b) <= 172.3
-    // u^2 for a = |X| >= 2b, <= 152 u^2 for b >= 2a, then 8 u^2 more, and 257 u^2 over Den.
-    // The conjugate form: 214 u^2. All under 258 u^2 < 2^-97.9; budgeted: |value - v| <=
-    // 2^-94 |v|.
-    bool nearest(dw::DoubleWord v, int sign, double& out) const {
-        dw::DoubleWord w = dw::two_sum(v.hi, v.lo); // c + r = v exactly, c = RN(v) > 0
-        double c = w.hi, r = w.lo;
-        // The half gap from x in [2^E, 2^(E+1)) (lead = 2^E) to its neighbour above (up) or
-        // below, for a format of `digits` bits; below a power of two the gap is half the one
-        // above. Every product here is by a power of two, in range: exact.
-        auto half_gap = [](double x, double lead, double half_ulp, bool up) {
-            return !up && x == lead ? lead * half_ulp * 0.5 : lead * half_ulp;
-        };
-        // |value - c| <= |r| + 2^-94 |v| < |r| + 2^(E-92): the value rounds to c when that is
-        // under the half gap on r's side (were the value on the other side, it would be within
-        // 2^(E-92) of c, under either half gap). The difference is exact.
-        if (target_ == Precision::binary64) {
-            double lead = dw::binade(c);
-            if (!(std::fabs(r) < half_gap(c, lead, 0x1p-53, r >= 0) - lead * 0x1p-92)) return false;
-            out = sign > 0 ? c : -c;
-            return true;
-        }
-        // A float f, normal, and s = RN((c - f) + r) (c - f is exact): |value - f| <=
-        // |s| (1 + 2^-52) + 2^-94 |v| < |s| + 2^(F-75) where |s| < 2^(F-24) and |v| < 2^(F+1).
-        // f is RN(c), or its neighbour towards the value where c lies at a float midpoint
-        // (rounding c is then not rounding the value).
-        float f = float(c);
-        for (int tries = 0;; ++tries) {
-            if (std::fpclassify(f) != FP_NORMAL) return false;
-            double lead = dw::binade(f), s = (c - double(f)) + r;
-            if (std::fabs(s) < half_gap(f, lead, 0x1p-24, s >= 0) - lead * 0x1p-75) break;
-            if (tries == 1) return false;
-            f = std::nextafter(f, s > 0 ? INFINITY : 0.0f);
-        }
-        out = sign > 0 ? double(f) : -double(f);
-        return true;
-    }
 };
 
 } // namespace filter
@@ -360,42 +397,60 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
     bool points = query.points && query.need != Need::any;       // a hit test computes no point
 
     // Round t and, if asked, each coordinate of L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den:
-    // value i is (X[i] + Y[i] sqrt(D)) / Den of its root, Y[i] (S or v S) a double.
+    // value i (k = i % per_root: t, then x, y, z) is (X + Y sqrt(D)) / Den of its root, Y (S or
+    // v S) a double, X formed only where the filter does not round the value from t's.
     constexpr std::size_t most = 4 * max_hits;
-    NT X[most];
-    double Y[most];
-    const NT* Den[most];
-    std::size_t n = 0;
-    for (int j = 0; j < c.count; ++j) {
-        const exact_form::SurdRoot<NT>& rt = c.roots[j];
-        X[n] = rt.N, Y[n] = rt.S, Den[n++] = &rt.Den;
-        if (!points) continue;
-        for (int k = 0; k < 3; ++k) {
-            NT L0(l.L0[k]), v(l.v[k]);
-            X[n] = NT(L0 * rt.Den + v * rt.N), Y[n] = l.v[k] * rt.S, Den[n++] = &rt.Den;
-        }
-    }
+    std::size_t per_root = points ? 4 : 1, n = std::size_t(c.count) * per_root;
+    auto parts = [&](std::size_t i, NT& X, double& Y) {
+        const exact_form::SurdRoot<NT>& rt = c.roots[i / per_root];
+        std::size_t k = i % per_root;
+        if (k == 0) return void((X = rt.N, Y = rt.S));
+        NT L0(l.L0[k - 1]), v(l.v[k - 1]);
+        X = NT(L0 * rt.Den + v * rt.N), Y = l.v[k - 1] * rt.S;
+    };
     double rounded[most];
     bool quick[most] = {}; // values the filter rounded
     std::size_t left = n;
     if constexpr (std::is_same_v<NT, CGAL::Mpzf>) {
         filter::QuickRounder quick_rounder(c.D, target);
+        for (int j = 0; j < c.count; ++j) {
+            const exact_form::SurdRoot<NT>& rt = c.roots[j];
+            std::size_t first = std::size_t(j) * per_root;
+            filter::QuickRounder::Value t;
+            bool has_t = quick_rounder.value(rt.N, rt.S, rt.Den, t);
+            quick[first] = has_t && quick_rounder.nearest(t, rounded[first]);
+            for (std::size_t k = 1; k < per_root; ++k) {
+                std::size_t i = first + k;
+                if (has_t && quick_rounder.point(l.L0[k - 1], l.v[k - 1], t, rounded[i])) {
+                    quick[i] = true;
+                    continue;
+                }
+                NT X;
+                double Y;
+                parts(i, X, Y);
+                quick[i] = quick_rounder.round(X, Y, rt.Den, rounded[i]);
+            }
+        }
         for (std::size_t i = 0; i < n; ++i)
-            if ((quick[i] = quick_rounder.round(X[i], Y[i], *Den[i], rounded[i]))) --left;
+            left -= quick[i];
         rounding_stats().by_filter += n - left;
     }
     if (left > 0) {
         SurdRounder& rd = rounder();
         rd.clear();
         to_dyadic(c.D, rd.D());
-        for (std::size_t i = 0; i < n; ++i)
-            if (!quick[i]) queue(rd, X[i], NT(Y[i]), *Den[i], c.D);
+        for (std::size_t i = 0; i < n; ++i) {
+            if (quick[i]) continue;
+            NT X;
+            double Y;
+            parts(i, X, Y);
+            queue(rd, X, NT(Y), c.roots[i / per_root].Den, c.D);
+        }
         rd.run(target);
         for (std::size_t i = 0, slot = 0; i < n; ++i)
             if (!quick[i]) rounded[i] = rd.result(slot++);
     }
     Result r;
-    std::size_t per_root = points ? 4 : 1;
     for (int j = 0; j < c.count; ++j) {
         Hit& h = r.hits[r.count++];
         h.kind = c.roots[j].kind;
