@@ -88,6 +88,9 @@ TEST_CASE("BigFloat differences that cancel whole low limbs are exact") {
         REQUIRE(sign(x - y - want) == 0);
         REQUIRE(sign(y - x + want) == 0);
         REQUIRE(sign(x - y) == sign(want));
+        // From zero: 0 - x is -x.
+        REQUIRE(sign(BigFloat() - x) == -sign(x));
+        REQUIRE(sign(BigFloat() - x + x) == 0);
     }
     // 3 2^64 + 5 - (4 2^64 + 5) = -2^64: every low bit cancels.
     BigFloat five(5.0), p64 = BigFloat::pow2(64);

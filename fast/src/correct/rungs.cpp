@@ -98,10 +98,12 @@ double value_of(Key k) {
 // an ulp of max (2^970 for doubles, 2^103 for floats).
 template <class Target>
 BigFloat midpoint_after(Key k) {
-    BigFloat beyond = BigFloat(double(Target::max)) +
-                      BigFloat::pow2(Binary64::exponent(double(Target::max)) - Target::precision);
-    if (k >= key_max<Target>) return beyond;
-    if (k < -key_max<Target>) return -beyond;
+    if (k >= key_max<Target> || k < -key_max<Target>) {
+        BigFloat beyond =
+            BigFloat(double(Target::max)) +
+            BigFloat::pow2(Binary64::exponent(double(Target::max)) - Target::precision);
+        return k > 0 ? beyond : -beyond;
+    }
     return (BigFloat(value_of<Target>(k)) + BigFloat(value_of<Target>(k + 1))).scaled(-1);
 }
 

@@ -83,20 +83,26 @@ LINEQUAD_LIMB_LOOP void BigFloat::normalize() {
 // In one pass: x, the operand of the smaller exponent, as it is; y shifted onto it as it is read;
 // their sum or difference limb by limb. A difference that borrows out of the top was y - x:
 // negated (two's complement) and given y's sign.
-LINEQUAD_LIMB_LOOP BigFloat operator+(const BigFloat& a, const BigFloat& b) {
-    if (a.sign_ == 0) return b;
-    if (b.sign_ == 0) return a;
-    const BigFloat& x = a.exp_ <= b.exp_ ? a : b;
-    const BigFloat& y = &x == &a ? b : a;
+LINEQUAD_LIMB_LOOP BigFloat BigFloat::sum(const BigFloat& a, const BigFloat& b, int b_sign) {
+    if (b_sign == 0) return a;
+    if (a.sign_ == 0) {
+        BigFloat r = b;
+        r.sign_ = b_sign;
+        return r;
+    }
+    bool a_lower = a.exp_ <= b.exp_;
+    const BigFloat& x = a_lower ? a : b;
+    const BigFloat& y = a_lower ? b : a;
+    int x_sign = a_lower ? a.sign_ : b_sign, y_sign = a_lower ? b_sign : a.sign_;
     unsigned long d = static_cast<unsigned long>(y.exp_ - x.exp_);
     Shifted ys{y.mag, d / 64, unsigned(d % 64)};
     std::size_t n = std::max(x.mag.size(), ys.size());
     BigFloat r;
     r.exp_ = x.exp_;
-    r.sign_ = x.sign_;
+    r.sign_ = x_sign;
     r.mag.resize(n + 1);
     std::uint64_t carry = 0; // or borrow
-    if (x.sign_ == y.sign_) {
+    if (x_sign == y_sign) {
         for (std::size_t i = 0; i < n; ++i) {
             std::uint64_t xi = i < x.mag.size() ? x.mag[i] : 0, s = xi + ys[i];
             std::uint64_t c1 = s < xi;
@@ -118,7 +124,7 @@ LINEQUAD_LIMB_LOOP BigFloat operator+(const BigFloat& a, const BigFloat& b) {
                 r.mag[i] = ~r.mag[i] + c;
                 c = c != 0 && r.mag[i] == 0;
             }
-            r.sign_ = y.sign_;
+            r.sign_ = y_sign;
         }
     }
     while (!r.mag.empty() && r.mag.back() == 0)

@@ -95,8 +95,8 @@ class BigFloat {
     explicit BigFloat(double x); // exact
     static BigFloat pow2(long e);
 
-    friend BigFloat operator+(const BigFloat& a, const BigFloat& b);
-    friend BigFloat operator-(const BigFloat& a, const BigFloat& b) { return a + (-b); }
+    friend BigFloat operator+(const BigFloat& a, const BigFloat& b) { return sum(a, b, b.sign_); }
+    friend BigFloat operator-(const BigFloat& a, const BigFloat& b) { return sum(a, b, -b.sign_); }
     friend BigFloat operator*(const BigFloat& a, const BigFloat& b);
     friend BigFloat operator-(BigFloat a) {
         a.sign_ = -a.sign_;
@@ -124,6 +124,8 @@ class BigFloat {
     Limbs mag;     // little-endian, odd (lowest bit set) unless zero
 
     void normalize();
+    // a + b with b's sign taken as b_sign: a difference without a negated copy of b.
+    static BigFloat sum(const BigFloat& a, const BigFloat& b, int b_sign);
 };
 
 } // namespace linequad
