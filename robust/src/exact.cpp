@@ -153,10 +153,23 @@ struct Verdict {
     exact_form::Classification<Interval> c;
 };
 
+// Interval_nt's enclosures need the processor to round upward when asked. One that ignores the
+// rounding mode (valgrind does, for SSE) would make them too narrow and the filter's decisions
+// wrong, so it is checked once, and without it every case takes the exact path.
+bool directed_rounding_works() {
+    static const bool works = [] {
+        CGAL::Protect_FPU_rounding<true> upward;
+        volatile double one = 1.0, tiny = 0x1p-60; // added at run time, in the upward mode
+        return one + tiny > 1.0;
+    }();
+    return works;
+}
+
 template <class ShapeT>
 Verdict decide(const ShapeT& shape, const Line& l, Need need) {
     Verdict v;
-    bool ok = moderate(l.L0) && moderate(l.v) && (!l.range.has_t0() || moderate(l.range.t0)) &&
+    bool ok = directed_rounding_works() && moderate(l.L0) && moderate(l.v) &&
+              (!l.range.has_t0() || moderate(l.range.t0)) &&
               (!l.range.has_t1() || moderate(l.range.t1));
     detail::for_each_field<ShapeT>([&](const auto& f) { ok = ok && moderate(shape.*f.member); });
     if (!ok) return v;
