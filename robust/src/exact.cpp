@@ -156,11 +156,14 @@ struct Verdict {
 // Interval_nt's enclosures need the processor to round upward when asked. One that ignores the
 // rounding mode (valgrind does, for SSE) would make them too narrow and the filter's decisions
 // wrong, so it is checked once, and without it every case takes the exact path.
+// The sum is taken by Interval_nt itself: a plain a + b may be moved out of the protected scope
+// by the compiler (the mode switch is no barrier to it), and was.
 bool directed_rounding_works() {
     static const bool works = [] {
         CGAL::Protect_FPU_rounding<true> upward;
-        volatile double one = 1.0, tiny = 0x1p-60; // added at run time, in the upward mode
-        return one + tiny > 1.0;
+        volatile double one = 1.0, tiny = 0x1p-60;
+        Interval sum = Interval(one) + Interval(tiny);
+        return sum.x.sup() > 1.0;
     }();
     return works;
 }
@@ -390,6 +393,7 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
     filter::Verdict verdict;
     if constexpr (std::is_same_v<NT, CGAL::Mpzf>) {
         verdict = filter::decide(shape, l, query.need);
+        rounding_stats().interval_decided += verdict.what != filter::Verdict::What::undecided;
         if (verdict.what == filter::Verdict::What::miss) {
             if (roots) *roots = exact_form::Classification<NT>{};
             return Result{};

@@ -42,6 +42,8 @@ const Solver& solver(Precision p = Precision::binary64);
 
 // How much precision the rounding needed, counted on this thread since the last reset.
 struct RoundingStats {
+    // Cases the oracle's interval filter classified (a miss, or its hits) without the exact path.
+    std::uint64_t interval_decided = 0;
     // Values rounded by the filter (double-word enclosures), before MPFR sees any.
     std::uint64_t by_filter = 0;
     // The rest, by MPFR:
