@@ -40,6 +40,7 @@ Result correct_solve(const Shape& s, const Line& l, Query q = {}) {
 
 TEST_CASE("BigFloat sums and products are exact over the whole double range") {
     std::mt19937_64 rng(11);
+    int led = 0; // values whose leading double-double was checked
     for (int i = 0; i < 3000; ++i) {
         double a = wide_double(rng), b = wide_double(rng), c = wide_double(rng),
                d = wide_double(rng);
@@ -71,7 +72,20 @@ TEST_CASE("BigFloat sums and products are exact over the whole double range") {
         CHECK(std::fabs(ap.m) >= 1);
         CHECK(std::fabs(ap.m) < 2);
         mpfr_clears(exact, approx, (mpfr_ptr) nullptr);
+        // The leading double-double: |x - hi - lo| <= err, and err <= 2^-104 |x| in range.
+        BigFloat::Leading lead = x.leading();
+        if (std::isinf(lead.err)) continue;
+        Q hi(lead.hi), lo(lead.lo), err(lead.err), bound(std::ldexp(1.0, -104)), gap, at_most;
+        mpq_sub(gap.q, r.q, hi.q);
+        mpq_sub(gap.q, gap.q, lo.q);
+        mpq_abs(gap.q, gap.q);
+        REQUIRE(mpq_cmp(gap.q, err.q) <= 0);
+        mpq_abs(at_most.q, r.q);
+        mpq_mul(at_most.q, at_most.q, bound.q);
+        CHECK(mpq_cmp(err.q, at_most.q) <= 0);
+        ++led;
     }
+    CHECK(led > 1000);
 }
 
 TEST_CASE("BigFloat differences that cancel whole low limbs are exact") {

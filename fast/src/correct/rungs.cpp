@@ -155,6 +155,7 @@ class ExactRounder {
     double run() const {
         int s = sden_ * exact_form::sign_surd(X_, sy_, Y2D_);
         if (s == 0) return 0.0;
+        if (std::optional<double> quick = proven()) return *quick;
         Key k = search(Target::ordinal(typename Target::Real(guess())));
         if (k > key_max<Target>) return INFINITY;
         if (k < -key_max<Target>) return -INFINITY;
@@ -171,6 +172,28 @@ class ExactRounder {
     int above_midpoint(Key k) const {
         BigFloat m = midpoint_after<Target>(k);
         return sden_ * exact_form::sign_surd(BigFloat(X_ - m * Den_), sy_, Y2D_);
+    }
+
+    // The value in bounded double-double, in a form without cancellation, where its bound proves
+    // the rounding: the search below is for values near a midpoint (ties among them) and beyond
+    // the normal range.
+    std::optional<double> proven() const {
+        BoundedDD x = bounded(X_), den = bounded(Den_), v;
+        if (sy_ == 0) {
+            v = x / den;
+        } else {
+            BoundedDD ysd = bounded(Y_) * sqrt(bounded(D_));
+            int sx = sign(X_);
+            v = sx == 0 || sx == sy_ ? (x + ysd) / den
+                                     : bounded(BigFloat(X_ * X_ - Y2D_)) / (den * (x - ysd));
+        }
+        return round_proven<Target>(v, 1.0);
+    }
+
+    static BoundedDD bounded(const BigFloat& b) {
+        BigFloat::Leading l = b.leading();
+        TwoTerm z = fast_two_sum(l.hi, l.lo);
+        return {z.hi, z.lo, l.err == 0 ? 0 : dd_detail::up(l.err)};
     }
 
     double guess() const {

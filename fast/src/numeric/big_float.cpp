@@ -166,4 +166,29 @@ BigFloat::Approx BigFloat::approx() const {
     return {sign_ * m, e};
 }
 
+// |x| = (t1 2^64 + t2 + rho) 2^F, t1's top bit set, 0 <= rho < 1 (rho > 0 when any bit lies
+// below t2). hi = RN(t1), within 2^10 of it; R = (t1 - hi) 2^64 + t2 (|R| < 2^75) and its
+// rounding lo = RN(R) are exact in 128-bit integers, and so is R - lo.
+BigFloat::Leading BigFloat::leading() const {
+    if (sign_ == 0) return {};
+    long n = long(mag.size());
+    auto limb = [&](long i) -> std::uint64_t { return i >= 0 && i < n ? mag[std::size_t(i)] : 0; };
+    unsigned lead = 63 - unsigned(__builtin_clzll(mag[std::size_t(n - 1)]));
+    unsigned sh = 63 - lead;
+    std::uint64_t t1 = limb(n - 1) << sh, t2 = limb(n - 2) << sh, below = limb(n - 3) << sh;
+    if (sh != 0) t1 |= limb(n - 2) >> (64 - sh), t2 |= limb(n - 3) >> (64 - sh);
+    bool rest = below != 0 || n >= 4; // normalized: the lowest limb is not zero
+    long F = exp_ + 64 * (n - 1) + long(lead) - 127;
+    if (F < -900 || F > 860) return {0, 0, INFINITY};
+    double hi = double(t1);
+    __int128 R =
+        (__int128(t1) - __int128(static_cast<unsigned __int128>(hi))) * (__int128(1) << 64) +
+        __int128(t2);
+    double lo = double(R);
+    __int128 off = R - __int128(lo);
+    double err = double(off < 0 ? -off : off) + (rest ? 1 : 0); // exact: at most 2^22 + 1
+    double s = sign_ < 0 ? -1 : 1;
+    return {s * std::ldexp(hi, int(F + 64)), s * std::ldexp(lo, int(F)), std::ldexp(err, int(F))};
+}
+
 } // namespace linequad

@@ -118,6 +118,14 @@ class BigFloat {
     };
     Approx approx() const;
 
+    // x = hi + lo within err (|x - hi - lo| <= err <= 2^-104 |x|), from its leading 128 bits:
+    // for a bounded double-double. err is infinite for an x whose parts would leave double's
+    // normal range.
+    struct Leading {
+        double hi = 0, lo = 0, err = 0;
+    };
+    Leading leading() const;
+
   private:
     int sign_ = 0;
     long exp_ = 0; // value = sign * mag * 2^exp
