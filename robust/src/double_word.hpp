@@ -8,14 +8,13 @@
 // in shared arithmetic could hide in both.
 //
 // Every operand here is positive (the forms add only terms of one sign, or subtract one at most
-// half the other), normalized
-// (|lo| <= u |hi|, u = 2^-53) and, as the caller checks, far from underflow and overflow
-// (|hi| in [2^-900, 2^900]): then each error-free transformation is exact, and each operation's
-// result is within the stated multiple of u^2 of the exact result of its operands. Each bound is
-// derived in its comment (first order in u, the rest absorbed by the rounding up of constants),
-// in the manner of Joldes, Muller and Popescu, "Tight and rigorous error bounds for basic
-// building blocks of double-word arithmetic" (ACM TOMS 44, 2017), whose own bounds for these
-// algorithms are tighter; the caller budgets far more than their sum.
+// half the other), normalized (|lo| <= u |hi|, u = 2^-53) and, as the caller checks, far from
+// underflow and overflow (|hi| in [2^-900, 2^900]): then each error-free transformation is
+// exact, and each operation's result is within the stated multiple of u^2 of the exact result of
+// its operands. Each bound is derived in its comment (first order in u, the rest absorbed by
+// rounding the constants up), for algorithms that follow, or simplify for positive operands,
+// those of Joldes, Muller and Popescu, "Tight and rigorous error bounds for basic building blocks
+// of double-word arithmetic" (ACM TOMS 44, 2017); the caller budgets far more than their sum.
 //
 // robust/ compiles with -ffp-contract=off (a fused a + b * c would break two_sum's exactness and
 // the bounds), and these run in round-to-nearest.
