@@ -150,7 +150,8 @@ class ExactRounder {
   public:
     ExactRounder(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den)
         : X_(X), Y_(Y), D_(D), Den_(Den), sden_(sign(Den)), sy_(sign(D) == 0 ? 0 : sign(Y)),
-          Y2D_(sy_ == 0 ? BigFloat() : Y * Y * D) {}
+          Y2D_(sy_ == 0 ? BigFloat() : Y * Y * D),
+          conjugate_(sy_ != 0 && sign(X) == -sy_ ? X * X - Y2D_ : BigFloat()) {}
 
     double run() const {
         int s = sden_ * exact_form::sign_surd(X_, sy_, Y2D_);
@@ -166,7 +167,9 @@ class ExactRounder {
   private:
     const BigFloat &X_, &Y_, &D_, &Den_;
     int sden_, sy_;
-    BigFloat Y2D_; // Y^2 D, the same for every comparison
+    BigFloat Y2D_;       // Y^2 D, the same for every comparison
+    BigFloat conjugate_; // X^2 - Y^2 D where X and Y sqrt(D) differ in sign: the form without
+                         // cancellation is conjugate_ / (Den (X - Y sqrt(D)))
 
     // sign(value - midpoint_after(k)): decreasing in k.
     int above_midpoint(Key k) const {
@@ -184,8 +187,7 @@ class ExactRounder {
         } else {
             BoundedDD ysd = bounded(Y_) * sqrt(bounded(D_));
             int sx = sign(X_);
-            v = sx == 0 || sx == sy_ ? (x + ysd) / den
-                                     : bounded(BigFloat(X_ * X_ - Y2D_)) / (den * (x - ysd));
+            v = sx == 0 || sx == sy_ ? (x + ysd) / den : bounded(conjugate_) / (den * (x - ysd));
         }
         return round_proven<Target>(v, 1.0);
     }
@@ -202,7 +204,7 @@ class ExactRounder {
         if (sy == 0) return (x / den).value();
         Approx ysd = y * d.sqrt();
         if (sx == 0 || sx == sy) return ((x + ysd) / den).value();
-        Approx conj = Approx::of(BigFloat(X_ * X_ - Y2D_)); // X^2 - Y^2 D
+        Approx conj = Approx::of(conjugate_);
         return (conj / (den * (x + Approx{-ysd.m, ysd.e}))).value();
     }
 
