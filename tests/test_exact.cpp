@@ -105,13 +105,15 @@ TEST_CASE("exact: the rounding filter's answers equal the unfiltered path's on e
     // error bound proves the rounding; Gmpq rounds every value by MPFR. Every family's cases in
     // both precisions, every query that rounds (t alone, and t with points), both ways taken.
     for (Precision p : {Precision::binary64, Precision::binary32}) {
-        std::uint64_t by_filter = 0, by_mpfr = 0;
+        std::uint64_t by_intervals = 0, by_filter = 0, by_mpfr = 0;
         std::size_t compared = 0;
         for_each_family_case(21, 20, p, [&](const Case& c) {
             for (Query q : {Query{}, Query{Need::nearest, false}}) {
                 const exact::RoundingStats& stats = exact::rounding_stats();
-                std::uint64_t filter0 = stats.by_filter, mpfr0 = stats.values;
+                std::uint64_t intervals0 = stats.by_intervals, filter0 = stats.by_filter,
+                              mpfr0 = stats.values;
                 Result a = exact::intersect(c.shape, c.line, q, p);
+                by_intervals += stats.by_intervals - intervals0;
                 by_filter += stats.by_filter - filter0, by_mpfr += stats.values - mpfr0;
                 Result b = exact::intersect_gmpq(c.shape, c.line, q, p);
                 INFO(format_case(c) << "\n" << describe(a) << "\n" << describe(b));
@@ -119,13 +121,41 @@ TEST_CASE("exact: the rounding filter's answers equal the unfiltered path's on e
                 ++compared;
             }
         });
-        // Both ways: almost every value by the filter; by MPFR those beyond its range (the
-        // scale family), zeros, ties and the ends of an interval on the surface.
+        // Every way: almost every value by the filter (a float, most often from the intervals
+        // alone); by MPFR those beyond its range (the scale family), zeros, ties and the ends of
+        // an interval on the surface.
         INFO((p == Precision::binary32 ? "binary32" : "binary64")
-             << ": " << by_filter << " by the filter, " << by_mpfr << " by MPFR");
-        CHECK(by_filter > 10000);
+             << ": " << by_intervals << " from the intervals, " << by_filter
+             << " by the double-word filter, " << by_mpfr << " by MPFR");
+        if (p == Precision::binary32) {
+            CHECK(by_intervals > 5000);
+            CHECK(by_filter > 1000);
+        } else {
+            CHECK(by_intervals == 0); // a double's cells are narrower than the intervals
+            CHECK(by_filter > 10000);
+        }
         CHECK(by_mpfr > 100);
         CHECK(compared > 5000);
+    }
+}
+
+TEST_CASE("exact: a float tie that the intervals hold exactly rounds to even", "[exact]") {
+    // A binary32 line along a capped cylinder's axis from z0 = -(1 + k 2^-23): it leaves by the
+    // top disc at t = 2 - z0 = 3 + k 2^-23, a double and (k odd) a float midpoint, and every
+    // interval on the way is exact, so the filter's enclosure of t is that one point. k = 1 lies
+    // between 3 (even) and 3 + 2^-22; k = 3 between 3 + 2^-22 and 3 + 2^-21 (even).
+    Cylinder c{{0, 0, 0}, {0, 0, 2}, 1, true, true};
+    for (int k : {1, 3}) {
+        double z0 = -(1 + k * 0x1p-23), even = k == 1 ? 3.0 : 3 + 0x1p-21;
+        Line l{{0.5, 0, z0}, {0, 0, 1}, Range::line};
+        std::uint64_t intervals0 = exact::rounding_stats().by_intervals;
+        Result a = exact::intersect(c, l, Query{}, Precision::binary32);
+        INFO("k " << k << "\n" << describe(a));
+        CHECK(exact::rounding_stats().by_intervals - intervals0 == 8); // two hits, 4 values each
+        REQUIRE(a.count == 2);
+        CHECK(a.hits[1].t == even);
+        CHECK(a.hits[1].p.z == 2.0);
+        CHECK(same(a, exact::intersect_gmpq(c, l, Query{}, Precision::binary32)));
     }
 }
 

@@ -379,6 +379,8 @@ void read_report(const Json& root, Report* r) {
     if (steps.size() != r->oracle_steps.size()) steps.fail("expected 8 counts");
     for (std::size_t i = 0; i < r->oracle_steps.size(); ++i)
         r->oracle_steps[i] = steps.item(i).count();
+    if (top.find("oracle_rounded_by_intervals"))
+        r->oracle_by_intervals = top.at("oracle_rounded_by_intervals").count();
     if (top.find("oracle_rounded_by_filter"))
         r->oracle_by_filter = top.at("oracle_rounded_by_filter").count();
 
@@ -457,6 +459,7 @@ std::string to_json(const Report& r) {
         head["external"] = ex;
     }
     head["oracle_rounding_steps"] = r.oracle_steps;
+    head["oracle_rounded_by_intervals"] = r.oracle_by_intervals;
     head["oracle_rounded_by_filter"] = r.oracle_by_filter;
     // One row and one curve per line, so that two reports diff line by line.
     std::string s = jsonl::dump(head);

@@ -245,7 +245,9 @@ std::string markdown(const Report& r) {
           "bound/err is how loose the bound is. A float solver (precision float) answers the "
           "same families posed in binary32 (every input a float) and is graded in float ulps "
           "against the oracle's answer rounded to float. ns/solve: median over "
-          "chunks of 256 cases, this run, this machine. batch is stable's batch path (its "
+          "chunks of "
+       << chunk_size
+       << " cases, this run, this machine. batch is stable's batch path (its "
           "results equal stable's bit for bit): graded on every case, one line per call; its "
           "ns is per line, each chunk's lines solved as one batch against four of the chunk's "
           "shapes.\n\n";
@@ -324,8 +326,10 @@ std::string markdown(const Report& r) {
             md << "  `" << replay(r, w, key.solver) << "`\n\n";
         }
     }
-    md << "## Oracle rounding\n\nValues rounded by the oracle's filter (double-word enclosures): "
-       << r.oracle_by_filter << ". The rest, by MPFR at 64, 128, 256, ... bits: ";
+    md << "## Oracle rounding\n\nFloats rounded from the oracle's interval filter alone: "
+       << r.oracle_by_intervals
+       << ". Values rounded by its double-word enclosures: " << r.oracle_by_filter
+       << ". The rest, by MPFR at 64, 128, 256, ... bits: ";
     for (int i = 0; i < 8; ++i)
         md << (i ? ", " : "") << r.oracle_steps[i];
     md << ".\n";

@@ -396,6 +396,7 @@ Report grade_results(const Options& o) {
     rep.status = Status::complete;
     const auto& steps = exact::rounding_stats().by_steps;
     std::copy(std::begin(steps), std::end(steps), rep.oracle_steps.begin());
+    rep.oracle_by_intervals = exact::rounding_stats().by_intervals;
     rep.oracle_by_filter = exact::rounding_stats().by_filter;
     saver.end(rep, o, start);
     return rep;
@@ -471,6 +472,7 @@ class ChunkGrader {
                 grade_external(*e, cases, family, shape, out);
         const auto& steps = exact::rounding_stats().by_steps;
         std::copy(std::begin(steps), std::end(steps), out.oracle_steps.begin());
+        out.oracle_by_intervals = exact::rounding_stats().by_intervals;
         out.oracle_by_filter = exact::rounding_stats().by_filter;
         return out;
     }
@@ -534,7 +536,6 @@ struct Chunk {
     std::uint64_t begin, end;
     Precision precision;
 };
-constexpr std::uint64_t chunk_size = 256;
 
 // Where chunks come from: the cases of chunk c, and the family and shape its rows are under.
 struct ChunkSource {
@@ -682,6 +683,7 @@ Report run(const Options& o, const std::vector<ExternalSolver>& external) {
                            const Group& grp = groups[c.source];
                            std::uint64_t first = c.source * o.cases_per_group;
                            std::vector<Case> out;
+                           out.reserve(c.end - c.begin);
                            for (std::uint64_t i = c.begin; i < c.end; ++i)
                                if ((first + i) % std::uint64_t(o.shards) == std::uint64_t(o.shard))
                                    out.push_back(make_case(grp.family, grp.shape, grp.range, o.seed,

@@ -152,8 +152,8 @@ bool finite_result(const Result& r) {
 // and |t v| (it is computed as L0 + t v): a coordinate that cancels to nearly zero would
 // otherwise report an enormous relative error that says nothing about the hit.
 std::uint64_t point_ulps(Vec3 got, Vec3 want, const Line& l, double t, Precision p) {
-    double scale = std::max({max_abs(want), max_abs(l.L0), std::fabs(t) * max_abs(l.v)});
     if (got == want) return 0; // equal infinities included
+    double scale = std::max({max_abs(want), max_abs(l.L0), std::fabs(t) * max_abs(l.v)});
     double err = max_abs(got - want);
     if (err == 0) return 0;
     if (!std::isfinite(err)) return std::numeric_limits<std::uint64_t>::max();
@@ -289,7 +289,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
                 if (curve) curve->t_error.add(u);
                 row.t_max = std::max(row.t_max, u);
                 row.t_sum += double(u);
-                row.t_bits_sum += std::log2(1.0 + double(u));
+                if (u > 0) row.t_bits_sum += std::log2(1.0 + double(u)); // log2(1) adds 0
                 ++row.graded_roots;
                 case_max = std::max(case_max, u);
                 std::uint64_t su = std::isinf(o) && g == o ? 0 : scene_ulps(c, g, o);
@@ -407,6 +407,7 @@ void Report::merge_statistics(const Report& o) {
         }
     for (int i = 0; i < 8; ++i)
         oracle_steps[i] += o.oracle_steps[i];
+    oracle_by_intervals += o.oracle_by_intervals;
     oracle_by_filter += o.oracle_by_filter;
 }
 

@@ -15,7 +15,10 @@
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
@@ -217,6 +220,75 @@ exact_form::Classification<NT> rebuilt(const Verdict& v, const exact_form::LineQ
     return c;
 }
 
+// The float nearest to x (ties to even), read from x's encoding: exact whatever the rounding
+// mode. False where that float would not be normal, or x is not.
+inline bool nearest_normal_float(double x, double& out) {
+    double a = std::fabs(x);
+    if (!(a >= double(FLT_MIN) && a <= double(FLT_MAX))) return false;
+    std::uint64_t bits;
+    std::memcpy(&bits, &a, sizeof bits);
+    // A float's significand is a double's top 23 of 52 bits: drop the low 29, ties to even. A
+    // carry out of the significand steps into the next binade, as rounding does.
+    constexpr int dropped = 52 - 23;
+    constexpr std::uint64_t half = std::uint64_t(1) << (dropped - 1);
+    std::uint64_t kept = bits >> dropped, rest = bits & (2 * half - 1);
+    kept += rest > half || (rest == half && (kept & 1));
+    bits = kept << dropped;
+    std::memcpy(&a, &bits, sizeof a);
+    if (!(a <= double(FLT_MAX))) return false;
+    out = x < 0 ? -a : a;
+    return true;
+}
+
+// A binary32 case's hits rounded straight from the filter's intervals: t = (N + S sqrt(D)) / Den
+// and each coordinate L0 + v t enclosed by interval arithmetic on the enclosures the filter
+// decided with. Rounding to nearest is monotonic, so where both ends of a value's enclosure round
+// to one float every real between them does, the exact value among them. A usual case's
+// enclosures are far narrower than a float's cells (2^-24 of the value), so most binary32 cases
+// never form the exact quadratic; they are wider than a double's, whose values take the
+// double-word way below. False, with nothing decided, for any value that does not round so.
+bool round_to_float(const Verdict& v, const Line& l, bool points, double* rounded) {
+    std::size_t per_root = points ? 4 : 1, n = std::size_t(v.c.count) * per_root;
+    Interval lo_hi[4 * max_hits];
+    {
+        CGAL::Protect_FPU_rounding<true> upward; // Interval_nt<false> needs it
+        Interval root;                           // sqrt(D), once
+        bool rooted = false;
+        for (int j = 0; j < v.c.count; ++j) {
+            const exact_form::SurdRoot<Interval>& rt = v.c.roots[j];
+            Interval num = rt.N;
+            if (rt.S != 0) {
+                if (!(v.c.D.x.inf() > 0)) return false;
+                if (!rooted) root = CGAL::sqrt(v.c.D.x), rooted = true;
+                num = rt.S > 0 ? num + root : num - root;
+            }
+            Interval t = num.x / rt.Den.x;
+            Interval* at = lo_hi + std::size_t(j) * per_root;
+            at[0] = t;
+            for (std::size_t k = 1; k < per_root; ++k)
+                at[k] = Interval(l.L0[k - 1]) + Interval(l.v[k - 1]) * t;
+        }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        std::size_t k = i % per_root;
+        if (k > 0 && l.v[k - 1] == 0) { // exactly L0, a float here; zero is +0
+            double L0 = l.L0[k - 1];
+            rounded[i] = L0 == 0 ? 0.0 : L0;
+            continue;
+        }
+        double lo = lo_hi[i].x.inf(), hi = lo_hi[i].x.sup(), a, b;
+        if (lo == 0 && hi == 0) { // exactly zero, which the oracle answers +0
+            rounded[i] = 0.0;
+            continue;
+        }
+        if (!(lo > 0 || hi < 0) || !nearest_normal_float(lo, a) || !nearest_normal_float(hi, b) ||
+            a != b)
+            return false;
+        rounded[i] = a;
+    }
+    return true;
+}
+
 // Correct rounding of (X + Y sqrt(D)) / Den from double-word enclosures of its parts
 // (double_word.hpp), where their error bound proves it; the SurdRounder (MPFR) takes the rest:
 // parts or answers far from double's normal range, zero answers, values the bound leaves too
@@ -382,6 +454,24 @@ class QuickRounder {
 
 } // namespace filter
 
+// The oracle's answer: the classified roots' kinds and parts, their values rounded (per root: t,
+// then x, y, z where points are asked).
+template <class NT>
+Result hits_of(const exact_form::Classification<NT>& c, const double* rounded, bool points) {
+    std::size_t per_root = points ? 4 : 1;
+    Result r;
+    for (int j = 0; j < c.count; ++j) {
+        Hit& h = r.hits[r.count++];
+        h.kind = c.roots[j].kind;
+        h.part = c.roots[j].part;
+        const double* at = rounded + j * per_root;
+        h.t = at[0];
+        h.p = points ? Vec3{at[1], at[2], at[3]} : Vec3{};
+        h.bound = std::numeric_limits<double>::quiet_NaN(), h.certain = false;
+    }
+    return r;
+}
+
 // roots, when given, receives the exact classification the answer was rounded from.
 template <class NT, class ShapeT>
 Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
@@ -400,6 +490,17 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
         }
     }
     bool decided = verdict.what == filter::Verdict::What::hits;
+    bool points = query.points && query.need != Need::any; // a hit test computes no point
+    constexpr std::size_t most = 4 * max_hits;
+    std::size_t per_root = points ? 4 : 1;
+    double rounded[most];
+    if constexpr (std::is_same_v<NT, CGAL::Mpzf>) {
+        if (decided && target == Precision::binary32 && !roots &&
+            filter::round_to_float(verdict, l, points, rounded)) {
+            rounding_stats().by_intervals += std::size_t(verdict.c.count) * per_root;
+            return hits_of(verdict.c, rounded, points);
+        }
+    }
     // The frame's orientation folds into the extent; the oracle decides it in NT itself (or the
     // filter did).
     using Traits = detail::ShapeTraits<ShapeT>;
@@ -411,13 +512,11 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
     if (roots) *roots = c;
     if (c.outcome == exact_form::Outcome::on_surface) return round_on_surface(c, target);
     if (c.outcome != exact_form::Outcome::hits) return Result{}; // exact: never undecided
-    bool points = query.points && query.need != Need::any;       // a hit test computes no point
 
     // Round t and, if asked, each coordinate of L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den:
     // value i (k = i % per_root: t, then x, y, z) is (X + Y sqrt(D)) / Den of its root, Y (S or
     // v S) a double, X formed only where the filter does not round the value from t's.
-    constexpr std::size_t most = 4 * max_hits;
-    std::size_t per_root = points ? 4 : 1, n = std::size_t(c.count) * per_root;
+    std::size_t n = std::size_t(c.count) * per_root;
     auto parts = [&](std::size_t i, NT& X, double& Y) {
         const exact_form::SurdRoot<NT>& rt = c.roots[i / per_root];
         std::size_t k = i % per_root;
@@ -425,7 +524,6 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
         NT L0(l.L0[k - 1]), v(l.v[k - 1]);
         X = NT(L0 * rt.Den + v * rt.N), Y = l.v[k - 1] * rt.S;
     };
-    double rounded[most];
     bool quick[most] = {}; // values the filter rounded
     std::size_t left = n;
     if constexpr (std::is_same_v<NT, CGAL::Mpzf>) {
@@ -467,17 +565,7 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
         for (std::size_t i = 0, slot = 0; i < n; ++i)
             if (!quick[i]) rounded[i] = rd.result(slot++);
     }
-    Result r;
-    for (int j = 0; j < c.count; ++j) {
-        Hit& h = r.hits[r.count++];
-        h.kind = c.roots[j].kind;
-        h.part = c.roots[j].part;
-        const double* at = rounded + j * per_root;
-        h.t = at[0];
-        h.p = points ? Vec3{at[1], at[2], at[3]} : Vec3{};
-        h.bound = std::numeric_limits<double>::quiet_NaN(), h.certain = false;
-    }
-    return r;
+    return hits_of(c, rounded, points);
 }
 
 // A scene hit's exact t: (N + S sqrt(D)) / Den, or minus infinity (a line along a surface from

@@ -184,10 +184,11 @@ struct Report {
     // Statistics.
     std::map<RowKey, Row> rows;
     std::map<CurveKey, std::map<int, CurvePoint>> curves;
-    // Oracle rounding: values its filter rounded from double-word enclosures (0 in a report from
-    // before it did), and the rest, resolved by MPFR at 64, 128, ... bits.
+    // Oracle rounding: floats its filter rounded from its intervals alone, values it rounded
+    // from double-word enclosures (each 0 in a report from before it did), and the rest,
+    // resolved by MPFR at 64, 128, ... bits.
     std::array<std::uint64_t, 8> oracle_steps{};
-    std::uint64_t oracle_by_filter = 0;
+    std::uint64_t oracle_by_intervals = 0, oracle_by_filter = 0;
 
     // Every case of the campaign graded: each shard present and complete.
     bool complete() const {
@@ -221,6 +222,10 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
 // The audit's name for stable's batch path (many lines against one shape): not a Solver, since
 // it takes lines in arrays. Graded like stable, whose results it equals bit for bit.
 inline constexpr const char* batch_name = "batch";
+// Cases graded as one unit: by one worker, into statistics of their own, timed together. Large
+// enough that merging a chunk's statistics (its rows' and curves' histograms) costs little
+// beside grading it, and that batch's packet is the benchmarks' 1024 lines.
+inline constexpr std::uint64_t chunk_size = 1024;
 
 struct Options {
     std::uint64_t seed = 1, cases_per_group = 100000;

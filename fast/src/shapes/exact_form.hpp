@@ -363,6 +363,10 @@ Classification<NT> classify(const LineQuadratic<NT>& q, const ParameterRange<NT>
                             Need need) {
     Classification<NT> c;
     c.outcome = Outcome::undecided;
+    // D is read (its sign) by every surd sign, even of a rational root (Y = 0); a number type
+    // whose default is uninitialised (Interval_nt, without CGAL's assertions) would otherwise
+    // leave that sign to chance where no root is irrational.
+    c.D = NT(0);
     bool closed = q.lo_capped || q.hi_capped;
     int sdz = 0;
     if (closed) {

@@ -44,6 +44,8 @@ const Solver& solver(Precision p = Precision::binary64);
 struct RoundingStats {
     // Cases the oracle's interval filter classified (a miss, or its hits) without the exact path.
     std::uint64_t interval_decided = 0;
+    // Binary32 values rounded from the interval filter's own enclosures (no exact quadratic).
+    std::uint64_t by_intervals = 0;
     // Values rounded by the filter (double-word enclosures), before MPFR sees any.
     std::uint64_t by_filter = 0;
     // The rest, by MPFR:
