@@ -103,12 +103,13 @@ TEST_CASE("exact: the rounding filter's answers equal the unfiltered path's on e
           "[exact]") {
     // The oracle (Mpzf) rounds each value from double-word enclosures of its parts where their
     // error bound proves the rounding; Gmpq rounds every value by MPFR. Every family's cases in
-    // both precisions, every query that rounds (t alone, and t with points), both ways taken.
+    // both precisions, every query that rounds (t with points, the nearest t, a hit test's t),
+    // every way taken.
     for (Precision p : {Precision::binary64, Precision::binary32}) {
         std::uint64_t by_intervals = 0, by_filter = 0, by_mpfr = 0;
         std::size_t compared = 0;
         for_each_family_case(21, 20, p, [&](const Case& c) {
-            for (Query q : {Query{}, Query{Need::nearest, false}}) {
+            for (Query q : {Query{}, Query{Need::nearest, false}, Query{Need::any, false}}) {
                 const exact::RoundingStats& stats = exact::rounding_stats();
                 std::uint64_t intervals0 = stats.by_intervals, filter0 = stats.by_filter,
                               mpfr0 = stats.values;

@@ -130,7 +130,10 @@ enum class Outcome : std::uint8_t { none, hits, on_surface, undecided };
 template <class NT>
 struct Classification {
     Outcome outcome = Outcome::none;
-    NT D;          // B^2 - A C0 (zero for a single rational root)
+    // B^2 - A C0 (zero for a single rational root, or none). Its sign is read by every surd
+    // sign, even of a rational root (Y = 0): a number type whose default is uninitialised
+    // (Interval_nt, without CGAL's assertions) would leave that sign to chance.
+    NT D = NT(0);
     int count = 0; // hits: roots[0..count) kept, by increasing t, as the query needs
     SurdRoot<NT> roots[max_hits];
     Fraction<NT> s0, s1; // on_surface: the interval of t
@@ -363,10 +366,6 @@ Classification<NT> classify(const LineQuadratic<NT>& q, const ParameterRange<NT>
                             Need need) {
     Classification<NT> c;
     c.outcome = Outcome::undecided;
-    // D is read (its sign) by every surd sign, even of a rational root (Y = 0); a number type
-    // whose default is uninitialised (Interval_nt, without CGAL's assertions) would otherwise
-    // leave that sign to chance where no root is irrational.
-    c.D = NT(0);
     bool closed = q.lo_capped || q.hi_capped;
     int sdz = 0;
     if (closed) {
