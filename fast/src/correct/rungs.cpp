@@ -149,14 +149,16 @@ template <class Target>
 class ExactRounder {
   public:
     ExactRounder(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den)
-        : X_(X), Y_(Y), D_(D), Den_(Den), sden_(sign(Den)), sy_(sign(D) == 0 ? 0 : sign(Y)),
-          Y2D_(sy_ == 0 ? BigFloat() : Y * Y * D),
-          conjugate_(sy_ != 0 && sign(X) == -sy_ ? X * X - Y2D_ : BigFloat()) {}
+        : X_(X), Y_(Y), D_(D), Den_(Den), sden_(sign(Den)), sy_(sign(D) == 0 ? 0 : sign(Y)) {}
 
     double run() const {
-        int s = sden_ * exact_form::sign_surd(X_, sy_, Y2D_);
+        // A rounding the bound proves settles the value's sign as well, so the exact sign (a
+        // comparison of squares) is formed only for the values it leaves open; a zero from the
+        // bound is checked there too (the oracle's +0 is for an exact zero only).
+        std::optional<double> quick = proven();
+        if (quick && *quick != 0) return *quick;
+        int s = sden_ * exact_form::sign_surd(X_, sy_, y2d());
         if (s == 0) return 0.0;
-        if (std::optional<double> quick = proven()) return *quick;
         Key k = search(Target::ordinal(typename Target::Real(guess())));
         if (k > key_max<Target>) return INFINITY;
         if (k < -key_max<Target>) return -INFINITY;
@@ -167,14 +169,24 @@ class ExactRounder {
   private:
     const BigFloat &X_, &Y_, &D_, &Den_;
     int sden_, sy_;
-    BigFloat Y2D_;       // Y^2 D, the same for every comparison
-    BigFloat conjugate_; // X^2 - Y^2 D where X and Y sqrt(D) differ in sign: the form without
-                         // cancellation is conjugate_ / (Den (X - Y sqrt(D)))
+    // Formed when first needed, as most values never need them: Y^2 D, the same for every
+    // comparison; and X^2 - Y^2 D where X and Y sqrt(D) differ in sign, where the form without
+    // cancellation is conjugate / (Den (X - Y sqrt(D))).
+    mutable std::optional<BigFloat> y2d_, conjugate_;
+
+    const BigFloat& y2d() const {
+        if (!y2d_) y2d_ = sy_ == 0 ? BigFloat() : Y_ * Y_ * D_;
+        return *y2d_;
+    }
+    const BigFloat& conjugate() const {
+        if (!conjugate_) conjugate_ = X_ * X_ - y2d();
+        return *conjugate_;
+    }
 
     // sign(value - midpoint_after(k)): decreasing in k.
     int above_midpoint(Key k) const {
         BigFloat m = midpoint_after<Target>(k);
-        return sden_ * exact_form::sign_surd(BigFloat(X_ - m * Den_), sy_, Y2D_);
+        return sden_ * exact_form::sign_surd(BigFloat(X_ - m * Den_), sy_, y2d());
     }
 
     // The value in bounded double-double, in a form without cancellation, where its bound proves
@@ -187,7 +199,7 @@ class ExactRounder {
         } else {
             BoundedDD ysd = bounded(Y_) * sqrt(bounded(D_));
             int sx = sign(X_);
-            v = sx == 0 || sx == sy_ ? (x + ysd) / den : bounded(conjugate_) / (den * (x - ysd));
+            v = sx == 0 || sx == sy_ ? (x + ysd) / den : bounded(conjugate()) / (den * (x - ysd));
         }
         return round_proven<Target>(v, 1.0);
     }
@@ -204,7 +216,7 @@ class ExactRounder {
         if (sy == 0) return (x / den).value();
         Approx ysd = y * d.sqrt();
         if (sx == 0 || sx == sy) return ((x + ysd) / den).value();
-        Approx conj = Approx::of(conjugate_);
+        Approx conj = Approx::of(conjugate());
         return (conj / (den * (x + Approx{-ysd.m, ysd.e}))).value();
     }
 
