@@ -1,5 +1,7 @@
 #include "numeric/big_float.hpp"
 
+#include "numeric/format.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -187,8 +189,11 @@ BigFloat::Leading BigFloat::leading() const {
     double lo = double(R);
     __int128 off = R - __int128(lo);
     double err = double(off < 0 ? -off : off) + (rest ? 1 : 0); // exact: at most 2^22 + 1
-    double s = sign_ < 0 ? -1 : 1;
-    return {s * std::ldexp(hi, int(F + 64)), s * std::ldexp(lo, int(F)), std::ldexp(err, int(F))};
+    // Scaled by powers of two that are normal doubles (F in [-900, 860]), into results that are
+    // normal too (hi in [2^63, 2^64], lo and err integers below 2^75): exact products, as ldexp
+    // would give, without its library call.
+    double s = sign_ < 0 ? -1 : 1, at_F = detail::Binary64::pow2(int(F));
+    return {s * (hi * detail::Binary64::pow2(int(F + 64))), s * (lo * at_F), err * at_F};
 }
 
 } // namespace linequad
