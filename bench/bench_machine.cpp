@@ -18,36 +18,25 @@ namespace {
 
 constexpr int chains = 12;
 
-__attribute__((target("avx2,fma"), noinline)) double fma_chains_avx2(std::int64_t rounds,
-                                                                     double seed) {
-    __m256d a[chains];
-    for (int i = 0; i < chains; ++i)
-        a[i] = _mm256_set1_pd(seed + i * 0x1p-30);
-    // a <- a m + c converges to c / (1 - m) = 2^-2: no overflow, no subnormal, however long.
-    const __m256d m = _mm256_set1_pd(1 - 0x1p-20), c = _mm256_set1_pd(0x1p-22);
-    for (std::int64_t k = 0; k < rounds; ++k)
-        for (int i = 0; i < chains; ++i)
-            a[i] = _mm256_fmadd_pd(a[i], m, c);
-    __m256d s = a[0];
-    for (int i = 1; i < chains; ++i)
-        s = _mm256_add_pd(s, a[i]);
-    return _mm256_cvtsd_f64(s);
-}
-
-__attribute__((target("avx512f"), noinline)) double fma_chains_avx512(std::int64_t rounds,
-                                                                      double seed) {
-    __m512d a[chains];
-    for (int i = 0; i < chains; ++i)
-        a[i] = _mm512_set1_pd(seed + i * 0x1p-30);
-    const __m512d m = _mm512_set1_pd(1 - 0x1p-20), c = _mm512_set1_pd(0x1p-22);
-    for (std::int64_t k = 0; k < rounds; ++k)
-        for (int i = 0; i < chains; ++i)
-            a[i] = _mm512_fmadd_pd(a[i], m, c);
-    __m512d s = a[0];
-    for (int i = 1; i < chains; ++i)
-        s = _mm512_add_pd(s, a[i]);
-    return _mm512_cvtsd_f64(s);
-}
+// The same loop on each instruction set, in its own intrinsics (prefix _mm256 or _mm512).
+// a <- a m + c converges to c / (1 - m) = 2^-2: no overflow, no subnormal, however long.
+#define LINEQUAD_FMA_CHAINS(name, isa, V, prefix)                                                  \
+    __attribute__((target(isa), noinline)) double name(std::int64_t rounds, double seed) {         \
+        V a[chains];                                                                               \
+        for (int i = 0; i < chains; ++i)                                                           \
+            a[i] = prefix##_set1_pd(seed + i * 0x1p-30);                                           \
+        const V m = prefix##_set1_pd(1 - 0x1p-20), c = prefix##_set1_pd(0x1p-22);                  \
+        for (std::int64_t k = 0; k < rounds; ++k)                                                  \
+            for (int i = 0; i < chains; ++i)                                                       \
+                a[i] = prefix##_fmadd_pd(a[i], m, c);                                              \
+        V s = a[0];                                                                                \
+        for (int i = 1; i < chains; ++i)                                                           \
+            s = prefix##_add_pd(s, a[i]);                                                          \
+        return prefix##_cvtsd_f64(s);                                                              \
+    }
+LINEQUAD_FMA_CHAINS(fma_chains_avx2, "avx2,fma", __m256d, _mm256)
+LINEQUAD_FMA_CHAINS(fma_chains_avx512, "avx512f", __m512d, _mm512)
+#undef LINEQUAD_FMA_CHAINS
 
 // items: double lanes of fused multiply-add per second (4 or 8 per instruction).
 template <int lanes>
