@@ -1,9 +1,9 @@
 // The machine's own ceiling for the batch kernels' AVX-512 over AVX2 ratio: independent fused
 // multiply-adds, as many per second as the CPU retires, on four lanes (AVX2) and on eight
-// (AVX-512F). The kernels are mostly such arithmetic, so where a 512-bit operation runs as two
-// 256-bit halves (one AVX-512 instruction per cycle where AVX2 issues two), this ratio is about
-// 1 and what AVX-512 gains over AVX2 in them comes from the work around the arithmetic: fewer
-// instructions for masks, blends and spills (32 registers, not 16).
+// (AVX-512F). The kernels do the same arithmetic per block on either width, so where a 512-bit
+// operation runs as two 256-bit halves (one AVX-512 instruction per cycle where AVX2 issues two)
+// this ratio is about 1, and the width buys them no arithmetic: what AVX-512 gains over AVX2
+// comes from the instructions around it (masks, blends, and spills: 32 registers, not 16).
 //
 // Twelve chains each: enough to hide an FMA's latency (4 cycles) on two pipes, few enough that
 // the 256-bit loop keeps them and its two constants in the 16 registers AVX2 has.
