@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config git
           libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev catch2 libbenchmark-dev
-          gnuplot-nox clang libclang-rt-14-dev
+          clang libclang-rt-14-dev
           nlohmann-json3-dev libcli11-dev
           # report.html (cmark-gfm), and the test that opens it in headless Chromium.
           libcmark-gfm-dev libcmark-gfm-extensions-dev chromium

@@ -228,7 +228,10 @@ TEST_CASE("seed32 and stable32 answer in floats, and stable32 classifies generic
             // What they refuse is beyond float's range (out_of_range), never a silent NaN.
             CHECK((r.ok() || r.error_code == ErrorCode::out_of_range));
             CHECK(answered_in_floats(r));
-            answered[k] += r.ok();
+            // far_origin's rays from 2^13 shape sizes and more put stable32's discriminant, a
+            // product of up to ten sizes, beyond float's range: it refuses them (out_of_range,
+            // checked above) where the textbook form answers anything.
+            if (c.family != "far_origin") answered[k] += r.ok();
             if (k == 1 && c.family == "generic") {
                 // Generic cases are well separated from tangency: the classification is the
                 // oracle's. Their condition numbers reach about 10^3 (stable's largest error

@@ -369,7 +369,8 @@ TEST_CASE("cli: audit and merge append to the history, which prints and plots a 
     CHECK_THAT(shown.out, Catch::Contains("| 1 | one |") && Catch::Contains("| 2 | two |") &&
                               Catch::Contains("another campaign"));
     Ran family = program("history h.db --solver correct --family near_tangent", dir);
-    CHECK_THAT(family.out, Catch::Contains("correct: near_tangent") && Catch::Contains("| two |"));
+    CHECK_THAT(family.out,
+               Catch::Contains("correct: near\\_tangent") && Catch::Contains("| two |"));
     Ran plotted = program("history h.db --solver stable --plot trend.svg", dir);
     CHECK(plotted.status == 0);
     CHECK_THAT(slurp(dir / "trend.svg"), Catch::Contains("<svg"));

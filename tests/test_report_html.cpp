@@ -25,14 +25,24 @@ bool has(const std::string& text, const std::string& part) {
 } // namespace
 
 TEST_CASE("report.html: tables, and figures inlined as base64 data", "[html]") {
-    std::string md = "# t\n\n| a | b |\n|---|---:|\n| x | 1 |\n\n![p](p.svg)\n\n![q](q.png)\n";
+    std::string md = "# t\n\n| a | b |\n|---|---:|\n| x | 1 |\n\n![p](p.svg)\n\n![q](q-1.svg)\n";
     // "foo" and "fo": base64's full group and its one-byte padding (RFC 4648's test vectors).
-    std::string html = page(md, {{"p.svg", "foo"}, {"q.png", "fo"}});
+    std::string html = page(md, {{"p.svg", "foo"}, {"q-1.svg", "fo"}});
     CHECK(has(html, "<table>"));
     CHECK(has(html, "<td align=\"right\">1</td>"));
     CHECK(has(html, "src=\"data:image/svg+xml;base64,Zm9v\""));
-    CHECK(has(html, "src=\"data:image/png;base64,Zm8=\""));
+    CHECK(has(html, "src=\"data:image/svg+xml;base64,Zm8=\""));
     CHECK(has(html, "Content-Security-Policy"));
+}
+
+TEST_CASE("report.html: only the report's own figures, by plain names, are inlined", "[html]") {
+    // A path, a hidden file, another type or a scheme is never read, whatever figure() would say.
+    for (const char* name :
+         {"../x.svg", "/etc/x.svg", ".x.svg", "x.png", "file:x.svg", "a b.svg"}) {
+        std::string html = page(std::string("![x](") + name + ")\n", {{name, "foo"}});
+        INFO(name);
+        CHECK_FALSE(has(html, "base64,Zm9v"));
+    }
 }
 
 TEST_CASE("report.html: a figure not drawn is named in its place", "[html]") {

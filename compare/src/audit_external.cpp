@@ -1,13 +1,22 @@
 // Solvers from outside linequad: posing a case the way a library takes it, the exact reference
-// for what it answers, a guard against its crashes, and plugins loaded through the C ABI.
+// for what it answers under its conventions, in-process calls guarded (crashes caught, the
+// floating-point environment checked and put back), and plugins loaded into a worker process.
 #include "linequad/audit_solver.hpp"
 
-#include "linequad/audit_plugin.h"
+#include "linequad/batch.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/exact.hpp"
 
-#include <dlfcn.h>
+#include "numeric/fp_environment.hpp"
+#include "plugin_worker.hpp"
+#include "process.hpp"
+#include "shapes/all.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <csetjmp>
 #include <csignal>
@@ -24,6 +33,8 @@ const char* answers_name(Answers a) {
         return "nearest hit";
     case Answers::first_entry:
         return "first entry";
+    case Answers::first_exit:
+        return "first exit";
     }
     return "?";
 }
@@ -36,6 +47,20 @@ const char* parametrisation_name(Parametrisation p) {
         return "distance along v/|v|";
     case Parametrisation::segment:
         return "fraction of from-to";
+    }
+    return "?";
+}
+
+const char* start_inside_name(StartInside s) {
+    switch (s) {
+    case StartInside::as_answers:
+        return "as it answers";
+    case StartInside::no_hit:
+        return "no hit";
+    case StartInside::at_t0:
+        return "a hit at t0";
+    case StartInside::at_zero:
+        return "a hit at 0";
     }
     return "?";
 }
@@ -130,33 +155,66 @@ std::optional<Result> guarded(const ShapeCallable<S>& f, const S& s, const Line&
     return r;
 }
 
+// The callable an in-process solver has for shape S (a missing shape here is a compile error).
+template <class S>
+const ShapeCallable<S>& callable_for(const ExternalSolver& e) {
+    if constexpr (std::is_same_v<S, Cylinder>)
+        return e.cylinder;
+    else if constexpr (std::is_same_v<S, EllipticCylinder>)
+        return e.elliptic_cylinder;
+    else if constexpr (std::is_same_v<S, EllipticCone>)
+        return e.elliptic_cone;
+    else if constexpr (std::is_same_v<S, Frustum>)
+        return e.frustum;
+    else
+        static_assert(sizeof(S) == 0, "ExternalSolver has no callable for this shape");
+}
+
 } // namespace
 
 bool ExternalSolver::takes(const Shape& s) const {
+    if (worker) return (worker_shapes >> s.index()) & 1u;
     return std::visit(
-        [&](const auto& x) -> bool {
-            using S = std::decay_t<decltype(x)>;
-            if constexpr (std::is_same_v<S, Cylinder>) return bool(cylinder);
-            if constexpr (std::is_same_v<S, EllipticCylinder>) return bool(elliptic_cylinder);
-            if constexpr (std::is_same_v<S, EllipticCone>) return bool(elliptic_cone);
-            if constexpr (std::is_same_v<S, Frustum>) return bool(frustum);
-        },
-        s);
+        [&](const auto& x) { return bool(callable_for<std::decay_t<decltype(x)>>(*this)); }, s);
 }
 
-std::optional<Result> ExternalSolver::operator()(const Shape& s, const Line& l) const {
-    return std::visit(
+ExternalAnswer ExternalSolver::answer(const Shape& s, const Line& l) const {
+    if (worker) {
+        Case c;
+        c.shape = s, c.line = l, c.precision = precision;
+        std::vector<ExternalAnswer> out;
+        if (!answer_all({c}, out, nullptr) || out.empty()) return {};
+        return out[0];
+    }
+    // In process: the call may change the floating-point environment; it is put back, and noted.
+    numeric::FpState before = numeric::fp_state();
+    ExternalAnswer a;
+    a.result = std::visit(
         [&](const auto& x) -> std::optional<Result> {
-            using S = std::decay_t<decltype(x)>;
-            const ShapeCallable<S>* f = nullptr;
-            if constexpr (std::is_same_v<S, Cylinder>) f = &cylinder;
-            if constexpr (std::is_same_v<S, EllipticCylinder>) f = &elliptic_cylinder;
-            if constexpr (std::is_same_v<S, EllipticCone>) f = &elliptic_cone;
-            if constexpr (std::is_same_v<S, Frustum>) f = &frustum;
-            if (!*f) return std::nullopt;
-            return guarded(*f, x, l);
+            const auto& f = callable_for<std::decay_t<decltype(x)>>(*this);
+            if (!f) return std::nullopt;
+            return guarded(f, x, l);
         },
         s);
+    numeric::FpState after = numeric::fp_state();
+    if (after != before) {
+        a.environment = interned(numeric::fp_change(before, after));
+        numeric::set_fp_state(before);
+    }
+    return a;
+}
+
+bool ExternalSolver::answer_all(const std::vector<Case>& posed, std::vector<ExternalAnswer>& out,
+                                double* ns) const {
+    if (worker) return worker->answer(worker_index, posed, out, ns);
+    out.resize(posed.size());
+    CrashGuard guard; // installed once for all of them, outside the timing
+    auto t0 = std::chrono::steady_clock::now();
+    for (std::size_t j = 0; j < posed.size(); ++j)
+        out[j] = answer(posed[j].shape, posed[j].line);
+    auto t1 = std::chrono::steady_clock::now();
+    if (ns) *ns = std::chrono::duration<double, std::nano>(t1 - t0).count();
+    return true;
 }
 
 // ---- posing
@@ -212,14 +270,18 @@ bool pose_unit_direction(Line& l, Precision p) {
 
 } // namespace
 
-std::optional<Case> posed_for(const ExternalSolver& s, const Case& c) {
+std::optional<Case> posed_for(const ExternalSolver& s, const Case& c, std::string* why) {
+    auto refuse = [&](const char* reason) -> std::optional<Case> {
+        if (why) *why = reason;
+        return std::nullopt;
+    };
     Case out = c;
     switch (s.surface) {
     case Surface::as_posed:
         break;
     case Surface::closed: {
         bool finite = std::visit([](const auto& x) { return x.finite; }, out.shape);
-        if (!finite) return std::nullopt;
+        if (!finite) return refuse("a closed solid cannot be made of an infinite shape");
         std::visit([](auto& x) { x.caps = true; }, out.shape);
         break;
     }
@@ -236,10 +298,13 @@ std::optional<Case> posed_for(const ExternalSolver& s, const Case& c) {
     case Parametrisation::line:
         break;
     case Parametrisation::unit_direction:
-        if (!pose_unit_direction(out.line, c.precision)) return std::nullopt;
+        if (!pose_unit_direction(out.line, c.precision))
+            return refuse("the range's ends overflow as distances");
         break;
     case Parametrisation::segment:
-        if (!pose_segment(out.line, c.precision)) return std::nullopt;
+        if (!pose_segment(out.line, c.precision))
+            return refuse(
+                "a segment needs a finite range whose ends and difference the format holds");
         break;
     }
     return out;
@@ -269,6 +334,54 @@ bool inside_before(const Case& c) {
     return (crossings(b) - crossings(a)) % 2 != 0;
 }
 
+// Where the range starts against the solid, decided exactly: strictly inside, on its surface, or
+// outside (or no start: an unbounded range).
+enum class Start { outside, inside, on_surface };
+Start start_of(const Case& c) {
+    if (!c.line.range.has_t0()) return Start::outside;
+    Line at = c.line;
+    at.range = {c.line.range.t0, c.line.range.t0};
+    Result a = exact::intersect(c.shape, at, {Need::all, false}, c.precision);
+    if (a.ok() && (a.count > 0 || a.on_surface)) return Start::on_surface;
+    return inside_before(c) ? Start::inside : Start::outside;
+}
+
+// Whether the posed shape bounds a solid: closed by its discs, or not finite.
+bool solid(const Shape& s) {
+    return std::visit([](const auto& x) { return x.caps || !x.finite; }, s);
+}
+
+// a + b (doubles whose sum is wanted in the format p) rounded once to p. In double, fl(a + b) is
+// that. In float, fl(a + b) in double rounds to the float the exact sum rounds to unless it lands
+// exactly on a midpoint between two floats (they are doubles), where the sum's rounding error
+// decides.
+double sum_rounded(double a, double b, Precision p) {
+    double s = a + b;
+    if (p == Precision::binary64 || !std::isfinite(s))
+        return p == Precision::binary64 ? s : float(s);
+    double bb = s - a, e = (a - (s - bb)) + (b - bb); // TwoSum: s + e = a + b exactly
+    float f = float(s);
+    if (e == 0 || double(f) == s) return f;
+    float other = std::nextafter(f, double(f) < s ? INFINITY : -INFINITY);
+    bool midpoint = (double(f) + double(other)) * 0.5 == s;
+    if (!midpoint) return f;
+    float up = std::max(f, other), down = std::min(f, other);
+    return e > 0 ? up : down;
+}
+
+// The hit a start-inside convention makes: at t (t0, or 0), its point L(t) rounded once.
+Result hit_at(const Case& c, double t) {
+    auto at = [&](int k) {
+        return c.precision == Precision::binary64
+                   ? std::fma(t, c.line.v[k], c.line.L0[k])
+                   : sum_rounded(c.line.L0[k], t * c.line.v[k], c.precision); // t v exact
+    };
+    Vec3 p{at(0), at(1), at(2)};
+    Result r;
+    r.hits[r.count++] = Hit{t, p, NAN, HitKind::cross, Part::lateral, false};
+    return r;
+}
+
 } // namespace
 
 Result reference_for(Answers a, const Case& posed) {
@@ -276,147 +389,146 @@ Result reference_for(Answers a, const Case& posed) {
         return exact::intersect(posed.shape, posed.line, {Need::nearest, true}, posed.precision);
     Result all = exact::intersect(posed.shape, posed.line, {Need::all, true}, posed.precision);
     if (a == Answers::all || !all.ok() || all.on_surface) return all;
-    // The first hit met from outside: a crossing into the solid, or a touch from outside.
     bool inside = inside_before(posed);
     Result first = all;
     first.count = 0;
     for (int i = 0; i < all.count; ++i) {
-        if (!inside) {
-            first.hits[first.count++] = all.hits[i];
-            break;
+        if (a == Answers::first_entry) {
+            // The first hit met from outside: a crossing into the solid, or a touch from outside.
+            if (!inside) {
+                first.hits[first.count++] = all.hits[i];
+                break;
+            }
+            if (all.hits[i].kind == HitKind::cross) inside = false;
+        } else if (all.hits[i].kind == HitKind::cross) {
+            // The first crossing out of the solid.
+            if (inside) {
+                first.hits[first.count++] = all.hits[i];
+                break;
+            }
+            inside = true;
         }
-        if (all.hits[i].kind == HitKind::cross) inside = false;
     }
     return first;
 }
 
+Reference reference_for(const ExternalSolver& s, const Case& posed) {
+    Reference ref;
+    bool inside_convention = s.inside != StartInside::as_answers && solid(posed.shape);
+    if (s.answers == Answers::first_exit) {
+        if (!solid(posed.shape)) {
+            ref.unrepresented = "first exit: an open surface bounds no solid";
+            return ref;
+        }
+        if (start_of(posed) == Start::outside) {
+            ref.unrepresented = "first exit: the range does not start inside the solid";
+            return ref;
+        }
+    } else if (inside_convention) {
+        Start start = start_of(posed);
+        bool applies = start == Start::inside ||
+                       (start == Start::on_surface && s.inside != StartInside::no_hit);
+        if (applies) {
+            ref.kinds = ref.parts = false; // a start inside is no point of the surface
+            if (s.inside == StartInside::no_hit) ref.result = Result{};
+            if (s.inside == StartInside::at_t0) ref.result = hit_at(posed, posed.line.range.t0);
+            if (s.inside == StartInside::at_zero) ref.result = hit_at(posed, 0);
+            return ref;
+        }
+    }
+    ref.result = reference_for(s.answers, posed);
+    if (s.contact_as_point && ref.result.ok() && ref.result.on_surface) {
+        const Result& r = ref.result;
+        if (std::isinf(r.s0)) {
+            ref.unrepresented = "a contact from -infinity has no first point";
+            return ref;
+        }
+        // The contact's first point: its t is the oracle's, its point not computed (the exact
+        // start of a contact is a surd; the library's point there is not graded).
+        Result first;
+        first.hits[first.count++] = Hit{r.s0, {}, NAN, HitKind::tangent, r.surface_part, false};
+        ref.result = first;
+        ref.kinds = ref.points = false;
+    }
+    return ref;
+}
+
+std::string reference_label(const ExternalSolver& s) {
+    if (s.answers == Answers::all && s.inside == StartInside::as_answers && !s.contact_as_point)
+        return "exact";
+    std::string label = std::string("exact, ") + answers_name(s.answers);
+    if (s.inside != StartInside::as_answers)
+        label += std::string(", start inside: ") + start_inside_name(s.inside);
+    if (s.contact_as_point) label += ", contact: first point";
+    return label;
+}
+
+Error input_problem(const ExternalSolver& s, const Case& posed) {
+    if (s.precision != Precision::binary32) return {};
+    return std::visit([&](const auto& x) { return detail::binary32_culprit(x, posed.line); },
+                      posed.shape);
+}
+
+std::vector<std::string> replay_lines(const std::string& name, const Solver* own,
+                                      const ExternalSolver* theirs, const Case& c) {
+    Result reference = exact::intersect(c.shape, c.line, {}, c.precision);
+    if (own)
+        return {format_result(c.id, name, (*own)(c.shape, c.line)),
+                format_result(c.id, "exact", reference)};
+    if (!theirs) { // the batch path, one line per call as the audit grades it
+        double x = c.line.L0.x, y = c.line.L0.y, z = c.line.L0.z;
+        double vx = c.line.v.x, vy = c.line.v.y, vz = c.line.v.z;
+        Result got;
+        std::visit(
+            [&](const auto& s) {
+                stable::intersect(s, LineArrays{&x, &y, &z, &vx, &vy, &vz, 1, c.line.range},
+                                  Query{}, &got);
+            },
+            c.shape);
+        return {format_result(c.id, name, got), format_result(c.id, "exact", reference)};
+    }
+    const ExternalSolver& e = *theirs;
+    auto unrepresented = [&](const std::string& why) {
+        return std::vector<std::string>{
+            format_failure(c.id, name, "unrepresented",
+                           why.empty() ? "the solver cannot represent this case" : why)};
+    };
+    if (!e.takes(c.shape)) return unrepresented("the solver takes no such shape");
+    ExternalAnswer a = e.answer(c.shape, c.line);
+    if (!a.result) return unrepresented(a.unrepresented);
+    Reference ref = reference_for(e, c);
+    if (!ref.unrepresented.empty()) return unrepresented(ref.unrepresented);
+    std::string label = reference_label(e);
+    Carries what{e.points && ref.points, e.kinds && ref.kinds, e.parts && ref.parts};
+    return {format_result(c.id, name, *a.result, what),
+            format_result(c.id, label, ref.result, label == "exact" ? Carries{} : what)};
+}
+
 // ---- plugins
 
-namespace {
-
-lq_shape to_c(const Shape& s) {
-    lq_shape out{};
-    auto put = [&](int at, Vec3 v) {
-        for (int k = 0; k < 3; ++k)
-            out.p[at + k] = v[k];
-    };
-    std::visit(
-        [&](const auto& x) {
-            using S = std::decay_t<decltype(x)>;
-            out.finite = x.finite, out.caps = x.caps, out.nappes = 1;
-            if constexpr (std::is_same_v<S, Cylinder>)
-                out.kind = LQ_CYLINDER, put(0, x.C), put(3, x.H), out.p[6] = x.r;
-            if constexpr (std::is_same_v<S, EllipticCylinder>)
-                out.kind = LQ_ELLIPTIC_CYLINDER, put(0, x.C), put(3, x.a), put(6, x.b), put(9, x.c);
-            if constexpr (std::is_same_v<S, EllipticCone>)
-                out.kind = LQ_ELLIPTIC_CONE, put(0, x.C), put(3, x.H), put(6, x.a), put(9, x.b),
-                out.nappes = x.nappes;
-            if constexpr (std::is_same_v<S, Frustum>)
-                out.kind = LQ_FRUSTUM, put(0, x.C0), out.p[3] = x.r0, put(4, x.C1), out.p[7] = x.r1;
-        },
-        s);
-    return out;
-}
-
-ErrorCode code_named(const std::string& name) {
-    for (int c = int(ErrorCode::not_a_number); c < int(ErrorCode::foreign); ++c)
-        if (name == code_name(ErrorCode(c))) return ErrorCode(c);
-    return ErrorCode::foreign;
-}
-
-// The plugin's answer as a Result; one that breaks the ABI's rules is the solver's own error,
-// named for what is wrong with it.
-std::optional<Result> from_c(const lq_answer& a, int rc) {
-    auto own = [](const char* why) { return Result::failure(ErrorCode::foreign, why); };
-    if (rc != 0) return own("the plugin's solve returned nonzero");
-    switch (a.status) {
-    case LQ_UNREPRESENTED:
-        return std::nullopt;
-    case LQ_REFUSED: {
-        std::string name(a.error, strnlen(a.error, sizeof a.error));
-        if (name.empty()) name = "refused without a name";
-        ErrorCode code = code_named(name);
-        return Result::failure(code, code == ErrorCode::foreign ? interned(name) : "plugin");
-    }
-    case LQ_ON_SURFACE: {
-        Result r;
-        r.on_surface = true, r.s0 = a.s0, r.s1 = a.s1;
-        if (a.surface_part < 0 || a.surface_part > 2) return own("a surface part out of range");
-        r.surface_part = Part(a.surface_part);
-        return r;
-    }
-    case LQ_HITS: {
-        if (a.count < 0 || a.count > max_hits) return own("a hit count out of range");
-        Result r;
-        for (int i = 0; i < a.count; ++i) {
-            const lq_hit& h = a.hits[i];
-            if (h.kind < 0 || h.kind > 1 || h.part < 0 || h.part > 2)
-                return own("a hit kind or part out of range");
-            r.hits[r.count++] =
-                Hit{h.t, {h.p[0], h.p[1], h.p[2]}, NAN, HitKind(h.kind), Part(h.part), false};
-        }
-        return r;
-    }
-    }
-    return own("an answer status out of range");
-}
-
-template <class S>
-ShapeCallable<S> plugin_callable(const lq_solver& s, int kind) {
-    if (!(s.shapes & (1u << kind))) return {};
-    return [&s](const S& shape, const Line& l) -> std::optional<Result> {
-        lq_shape cs = to_c(shape);
-        lq_line cl{{l.L0.x, l.L0.y, l.L0.z}, {l.v.x, l.v.y, l.v.z}, l.range.t0, l.range.t1};
-        lq_answer a{};
-        int rc = s.solve(s.self, &cs, &cl, &a);
-        return from_c(a, rc);
-    };
-}
-
-} // namespace
-
-std::vector<ExternalSolver> load_plugin(const std::string& path) {
-    auto fail = [&](const std::string& why) { return std::runtime_error(path + ": " + why); };
-    // Kept loaded for the life of the program: the solvers point into it.
-    void* lib = dlopen(path.find('/') == std::string::npos ? ("./" + path).c_str() : path.c_str(),
-                       RTLD_NOW | RTLD_LOCAL);
-    if (!lib) throw fail(std::string("cannot load it: ") + dlerror());
-    auto entry = reinterpret_cast<lq_plugin_entry>(dlsym(lib, "linequad_audit_plugin"));
-    if (!entry) throw fail("exports no linequad_audit_plugin (see linequad/audit_plugin.h)");
-    const lq_solver* solvers = nullptr;
-    int n = entry(LQ_ABI, &solvers);
-    if (n < 0) throw fail("does not speak the plugin ABI " + std::to_string(LQ_ABI));
-    if (n == 0 || !solvers) throw fail("offers no solver");
+std::vector<ExternalSolver> load_plugin(const std::string& path, const PluginOptions& o) {
+    // Kept as an absolute path: the report's replay commands work from any directory.
+    std::string where = process::absolute(path);
+    if (::access(where.c_str(), R_OK) != 0)
+        throw std::runtime_error(path + ": cannot load it: " + std::strerror(errno));
+    auto worker = std::make_shared<PluginWorker>(where, o);
     std::vector<ExternalSolver> out;
-    for (int i = 0; i < n; ++i) {
-        const lq_solver& s = solvers[i];
-        std::string which = "solver " + std::to_string(i);
-        if (!s.name || !*s.name) throw fail(which + " has no name");
-        which = "solver '" + std::string(s.name) + "'";
-        if (s.precision != 64 && s.precision != 32)
-            throw fail(which + ": precision must be 64 or 32, not " + std::to_string(s.precision));
-        if (s.answers < LQ_ALL || s.answers > LQ_FIRST_ENTRY)
-            throw fail(which + ": answers out of range");
-        if (s.parametrisation < LQ_LINE || s.parametrisation > LQ_SEGMENT)
-            throw fail(which + ": parametrisation out of range");
-        if (s.surface < LQ_AS_POSED || s.surface > LQ_INFINITE)
-            throw fail(which + ": surface out of range");
-        if (!s.solve) throw fail(which + " has no solve function");
-        if (!(s.shapes & 15u)) throw fail(which + " takes no shape");
+    for (std::size_t i = 0; i < worker->solvers().size(); ++i) {
+        const DeclaredSolver& d = worker->solvers()[i];
         ExternalSolver e;
-        e.name = s.name;
-        e.precision = s.precision == 32 ? Precision::binary32 : Precision::binary64;
-        e.answers = Answers(s.answers);
-        e.parametrisation = Parametrisation(s.parametrisation);
-        e.surface = Surface(s.surface);
-        e.points = s.carries & LQ_POINTS, e.kinds = s.carries & LQ_KINDS;
-        e.parts = s.carries & LQ_PARTS;
-        e.mapping = s.mapping ? s.mapping : "";
-        e.plugin = path;
-        e.cylinder = plugin_callable<Cylinder>(s, LQ_CYLINDER);
-        e.elliptic_cylinder = plugin_callable<EllipticCylinder>(s, LQ_ELLIPTIC_CYLINDER);
-        e.elliptic_cone = plugin_callable<EllipticCone>(s, LQ_ELLIPTIC_CONE);
-        e.frustum = plugin_callable<Frustum>(s, LQ_FRUSTUM);
+        e.name = d.name;
+        e.precision = d.precision;
+        e.answers = d.answers;
+        e.parametrisation = d.parametrisation;
+        e.surface = d.surface;
+        e.inside = d.inside;
+        e.contact_as_point = d.contact_as_point;
+        e.points = d.points, e.kinds = d.kinds, e.parts = d.parts;
+        e.mapping = d.mapping;
+        e.plugin = where;
+        e.worker = worker;
+        e.worker_index = int(i);
+        e.worker_shapes = d.shapes;
         out.push_back(std::move(e));
     }
     return out;

@@ -73,7 +73,9 @@ OrderedJson row_json(const RowKey& key, const Row& r) {
         {"scene_ulps",
          {{"max", r.s_max}, {"p99", r.s_quantile(0.99)}, {"histogram", pairs(r.s_error.count)}}},
         {"unrepresented", r.unrepresented},
+        {"unrepresented_why", r.unrepresented_why},
         {"foreign_refusals", r.foreign},
+        {"environment_changes", r.environment},
         {"ns_per_solve", {{"median", r.ns.median()}, {"histogram", pairs(r.ns.count)}}},
         {"certified",
          {{"uncertain", r.uncertain},
@@ -265,6 +267,23 @@ Row read_row(const Node& n) {
         check_max(sc.at("max"), r.s_max, r.s_error, scene);
     }
     if (n.find("unrepresented")) r.unrepresented = n.at("unrepresented").count();
+    // Counts by name: each name once, no zero count, at most `most` in all.
+    auto counts = [&](const char* field, std::map<std::string, std::uint64_t>& out,
+                      std::uint64_t most) {
+        if (!n.find(field)) return;
+        Node f = n.at(field);
+        if (!f.v.is_object()) f.fail("expected an object of counts by name");
+        std::uint64_t total = 0;
+        for (auto it = f.v.begin(); it != f.v.end(); ++it) {
+            Node x{*it, &f, it.key().c_str()};
+            std::uint64_t k = x.count(most);
+            if (k == 0) x.fail("a zero count is not written");
+            out[it.key()] = k;
+            total += k;
+        }
+        if (total > most) f.fail("counts more than " + std::to_string(most));
+    };
+    counts("unrepresented_why", r.unrepresented_why, r.unrepresented);
     if (n.find("foreign_refusals")) {
         Node f = n.at("foreign_refusals");
         if (!f.v.is_object()) f.fail("expected an object of counts by name");
@@ -278,6 +297,7 @@ Row read_row(const Node& n) {
         }
         if (total > r.mismatches[refused]) f.fail("counts more than the refused mismatches");
     }
+    counts("environment_changes", r.environment, r.cases + r.unrepresented);
     read_pairs(n.at("ns_per_solve").at("histogram"), r.ns.count);
     Node c = n.at("certified");
     r.uncertain = c.at("uncertain").count(r.cases);
@@ -343,6 +363,15 @@ void read_report(const Json& root, Report* r) {
             e.surface = x.at("surface").text();
             e.mapping = x.at("mapping").text();
             e.plugin = x.at("plugin").text();
+            if (x.find("inside")) e.inside = x.at("inside").text();
+            if (x.find("contact")) e.contact = x.at("contact").text();
+            if (x.find("batch")) e.batch = x.at("batch").flag();
+            if (x.find("load_environment")) e.load_environment = x.at("load_environment").text();
+            if (x.find("output")) {
+                e.output = x.at("output").text();
+                e.output_bytes = x.at("output_bytes").count();
+            }
+            if (x.find("restarts")) e.restarts = x.at("restarts").count();
             if (r->external.count(name)) x.at("solver").fail("'" + name + "' appears twice");
             r->external[name] = e;
         }
@@ -449,13 +478,22 @@ std::string to_json(const Report& r) {
     if (r.grades_results()) head["results_file"] = r.results_file;
     if (!r.external.empty()) {
         OrderedJson ex = OrderedJson::array();
-        for (const auto& [name, e] : r.external)
-            ex.push_back({{"solver", name},
-                          {"answers", e.answers},
-                          {"parametrisation", e.parametrisation},
-                          {"surface", e.surface},
-                          {"mapping", e.mapping},
-                          {"plugin", e.plugin}});
+        for (const auto& [name, e] : r.external) {
+            OrderedJson x = {{"solver", name},
+                             {"answers", e.answers},
+                             {"parametrisation", e.parametrisation},
+                             {"surface", e.surface},
+                             {"mapping", e.mapping},
+                             {"plugin", e.plugin}};
+            // What only some solvers have is written only where it is.
+            if (!e.inside.empty()) x["inside"] = e.inside;
+            if (!e.contact.empty()) x["contact"] = e.contact;
+            if (e.batch) x["batch"] = true;
+            if (!e.load_environment.empty()) x["load_environment"] = e.load_environment;
+            if (e.output_bytes) x["output"] = e.output, x["output_bytes"] = e.output_bytes;
+            if (e.restarts) x["restarts"] = e.restarts;
+            ex.push_back(x);
+        }
         head["external"] = ex;
     }
     head["oracle_rounding_steps"] = r.oracle_steps;

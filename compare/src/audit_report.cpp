@@ -1,8 +1,10 @@
-// report.md (for people), the gnuplot figures, and the output directory that holds them beside
+// report.md (for people), the SVG figures, and the output directory that holds them beside
 // report.json.
 #include "linequad/audit.hpp"
 
+#include "escape.hpp"
 #include "jsonl.hpp"
+#include "svg_plot.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -39,18 +41,15 @@ std::string fmt_ulps(std::uint64_t u) {
     return u == UINT64_MAX ? "inf" : fmt(double(u));
 }
 
-// The shell command that replays a case: the solver and the oracle side by side (a plugin's
-// solver with its plugin loaded; an external solver's case is the one it was posed).
+// The command that replays a worst case: the case as the solver saw it (for a solver from
+// outside, the posed case: replay does not pose it again), its answer and the reference its grade
+// used, as `linequad replay` prints them. Every word is quoted for the shell.
 std::string replay(const Report& r, const Worst& w, const std::string& solver) {
-    std::string quoted;
-    for (char c : w.case_line())
-        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    // `solve` takes one line at a time; batch's results are stable's, bit for bit.
-    std::string scalar = solver == batch_name ? "stable" : solver;
     std::string plugin;
     if (auto it = r.external.find(solver); it != r.external.end() && !it->second.plugin.empty())
-        plugin = " --plugin " + it->second.plugin;
-    return "echo '" + quoted + "' | linequad solve" + plugin + " --solver " + scalar + ",exact";
+        plugin = " --plugin " + escape::shell_word(it->second.plugin);
+    return "echo " + escape::shell_word(w.case_line()) + " | linequad replay" + plugin +
+           " --solver " + escape::shell_word(solver);
 }
 
 // A point error where the answers carry points; a time where one was measured.
@@ -109,13 +108,13 @@ void write_by_family(std::ostream& md, const Report& r, const std::vector<std::s
                      bool scene) {
     md << "| family |";
     for (const std::string& s : columns)
-        md << " " << s << " |";
+        md << " " << escape::markdown_text(s) << " |";
     md << "\n|---|";
     for (std::size_t i = 0; i < columns.size(); ++i)
         md << "---:|";
     md << "\n";
     for (const std::string& family : r.families) {
-        md << "| " << family << " |";
+        md << "| " << escape::markdown_text(family) << " |";
         for (const std::string& name : columns) {
             Row t = family_total(r, family, name);
             if (t.cases == 0) {
@@ -150,9 +149,10 @@ void write_rungs(std::ostream& md, const Report& r) {
         std::uint64_t nw = row.rungs[std::size_t(Rung::newton)];
         std::uint64_t dd = row.rungs[std::size_t(Rung::double_double)];
         std::uint64_t ex = row.rungs[std::size_t(Rung::exact)], all = nw + dd + ex;
-        md << "| " << key.first << " | " << key.second << " | " << row.cases << " | " << nw << " | "
-           << dd << " | " << ex << " | " << fmt(all ? 100.0 * double(ex) / double(all) : 0) << " | "
-           << fmt(row.ns.median()) << " |\n";
+        md << "| " << escape::markdown_text(key.first) << " | " << key.second << " | " << row.cases
+           << " | " << nw << " | " << dd << " | " << ex << " | "
+           << fmt(all ? 100.0 * double(ex) / double(all) : 0) << " | " << fmt(row.ns.median())
+           << " |\n";
     }
     Row certified = r.total("certified");
     if (certified.bounded_roots)
@@ -193,18 +193,71 @@ void write_external_by_family(std::ostream& md, const Report& r) {
 } // namespace
 
 namespace {
-// How each external solver was handed its cases.
+// How each external solver was handed its cases, its conventions, and what it did besides
+// answering: what it wrote, how loading it changed the floating-point environment, how often its
+// worker was started again.
 void write_external(std::ostream& md, const Report& r) {
     if (r.external.empty()) return;
+    using escape::markdown_text;
     md << "## Solvers from outside linequad\n\nEach is graded on the case as it was posed to it, "
-          "against the exact reference for what it answers (every hit, the nearest, or the first "
-          "entry into the solid).\n\n| solver | answers | t | surfaces | mapping |\n"
-          "|---|---|---|---|---|\n";
+          "against the exact reference for what it answers (every hit, the nearest, the first "
+          "entry into the solid or the first exit from it) and for the conventions it declares. "
+          "A plugin runs in a worker process of its own: its crashes, exits, exceptions and "
+          "timeouts are refusals of its own (by kind, below), and nothing it does reaches "
+          "linequad's answers.\n\n"
+          "| solver | answers | t | surfaces | start inside | contact | mapping |\n"
+          "|---|---|---|---|---|---|---|\n";
     for (const auto& [name, e] : r.external)
-        md << "| " << name << (e.plugin.empty() ? "" : " (`" + e.plugin + "`)") << " | "
-           << e.answers << " | " << e.parametrisation << " | " << e.surface << " | " << e.mapping
-           << " |\n";
+        md << "| " << markdown_text(name)
+           << (e.plugin.empty() ? "" : " (" + markdown_text(e.plugin) + ")")
+           << (e.batch ? ", batch entry" : "") << " | " << markdown_text(e.answers) << " | "
+           << markdown_text(e.parametrisation) << " | " << markdown_text(e.surface) << " | "
+           << (e.inside.empty() ? "-" : markdown_text(e.inside)) << " | "
+           << (e.contact.empty() ? "interval" : markdown_text(e.contact)) << " | "
+           << markdown_text(e.mapping) << " |\n";
     md << "\n";
+    for (const auto& [name, e] : r.external) {
+        if (!e.load_environment.empty())
+            md << "- " << markdown_text(name) << ": loading its plugin changed the floating-point "
+               << "environment (" << markdown_text(e.load_environment)
+               << "); every call starts from that environment.\n";
+        if (e.restarts)
+            md << "- " << markdown_text(name) << ": " << e.restarts
+               << " of its calls crashed, exited or timed out, ending its worker process, which "
+                  "was started again for the next call.\n";
+        if (e.output_bytes) {
+            md << "- " << markdown_text(name) << " wrote " << e.output_bytes
+               << " bytes on its standard output and error (kept apart from linequad's); its "
+                  "first lines:\n\n";
+            std::vector<std::string> lines;
+            std::string line;
+            for (char c : e.output)
+                if (c == '\n')
+                    lines.push_back(line), line.clear();
+                else
+                    line += c;
+            if (!line.empty()) lines.push_back(line);
+            md << escape::markdown_block(lines, "  ") << "\n";
+        }
+    }
+    md << "\n";
+}
+
+// What a row's solver did besides its answers, for the "by kind" column: each name escaped.
+std::string notes_of(const Row& row) {
+    std::string kinds;
+    auto add = [&](const std::string& s) { kinds += (kinds.empty() ? "" : ", ") + s; };
+    for (int m = 0; m < mismatch_kinds; ++m)
+        if (row.mismatches[m]) add(std::string(mismatch_name(m)) + " " + num(row.mismatches[m]));
+    // The solver's own refusals, by its names for them (crashes, exits, timeouts among them).
+    for (const auto& [name, n] : row.foreign)
+        add("'" + escape::markdown_text(name) + "' " + num(n));
+    for (const auto& [why, n] : row.unrepresented_why)
+        add("unrepresented, " + escape::markdown_text(why) + " " + num(n));
+    for (const auto& [how, n] : row.environment)
+        add("changed the floating-point environment (" + escape::markdown_text(how) + ") " +
+            num(n));
+    return kinds;
 }
 } // namespace
 
@@ -212,23 +265,25 @@ std::string markdown(const Report& r) {
     std::ostringstream md;
     md << "# linequad accuracy audit\n\n";
     md << "| | |\n|---|---|\n";
-    md << "| command | `" << r.command << "` |\n| commit | " << r.commit << " |\n| date | "
-       << r.date << " |\n";
-    md << "| machine | " << r.machine << " |\n| compiler | " << r.compiler << " |\n";
-    md << "| fast/ flags | `" << r.flags << "` |\n";
+    using escape::markdown_text;
+    md << "| command | " << markdown_text(r.command) << " |\n| commit | " << markdown_text(r.commit)
+       << " |\n| date | " << markdown_text(r.date) << " |\n";
+    md << "| machine | " << markdown_text(r.machine) << " |\n| compiler | "
+       << markdown_text(r.compiler) << " |\n";
+    md << "| fast/ flags | " << markdown_text(r.flags) << " |\n";
     if (r.from_cases_file())
-        md << "| cases | `" << r.cases_file << "` (" << r.cases_count << " cases) |\n";
+        md << "| cases | " << markdown_text(r.cases_file) << " (" << r.cases_count << " cases) |\n";
     else
         md << "| seed | " << r.seed << " |\n| cases per family, shape and range | "
            << r.cases_per_group << " |\n";
     md << "| shapes | ";
     for (const std::string& s : r.shapes)
-        md << s << (&s == &r.shapes.back() ? "" : ", ");
-    md << " (frames: " << r.frames << ") |\n";
+        md << markdown_text(s) << (&s == &r.shapes.back() ? "" : ", ");
+    md << " (frames: " << markdown_text(r.frames) << ") |\n";
     if (r.grades_results())
-        md << "| graded | the answers in `" << r.results_file << "` (not timed) |\n";
-    md << "| linequad | " << r.version << " |\n| shards | " << r.shards << " |\n| complete | "
-       << status_line(r) << " |\n";
+        md << "| graded | the answers in " << markdown_text(r.results_file) << " (not timed) |\n";
+    md << "| linequad | " << markdown_text(r.version) << " |\n| shards | " << r.shards
+       << " |\n| complete | " << status_line(r) << " |\n";
     md << "| run time | " << fmt(r.seconds) << " s |\n\n";
     md << "Errors are distances to the exact oracle's correctly rounded value, in units in the "
           "last "
@@ -265,8 +320,8 @@ std::string markdown(const Report& r) {
     for (const std::string& s : r.solvers) {
         Row t = r.total(s), generic = family_total(r, "generic", s);
         timed = timed || generic.timed();
-        md << "| " << s << " | " << precision_of(t) << " | " << t.cases << " | " << t.unrepresented
-           << " | " << t.cases_mismatched << " | "
+        md << "| " << markdown_text(s) << " | " << precision_of(t) << " | " << t.cases << " | "
+           << t.unrepresented << " | " << t.cases_mismatched << " | "
            << (t.bounded_roots || t.uncertain ? num(t.uncertain) : "-") << " | "
            << (t.bounded_roots ? num(t.bound_violations) + " of " + num(t.bounded_roots) : "-")
            << " | " << fmt_ulps(t.t_max) << " | " << fmt(t.t_quantile(0.99)) << " | "
@@ -283,16 +338,10 @@ std::string markdown(const Report& r) {
           "point max | ns/solve |\n";
     md << "|---|---|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& [key, row] : r.rows) {
-        std::string kinds;
-        for (int m = 0; m < mismatch_kinds; ++m)
-            if (row.mismatches[m])
-                kinds += (kinds.empty() ? "" : ", ") + std::string(mismatch_name(m)) + " " +
-                         num(row.mismatches[m]);
-        // The solver's own refusals, by its names for them (crashes among them).
-        for (const auto& [name, n] : row.foreign)
-            kinds += (kinds.empty() ? "" : ", ") + ("'" + name + "' ") + num(n);
-        md << "| " << key.family << " | " << key.shape << " | " << key.solver << " | " << row.cases
-           << " | " << row.unrepresented << " | " << row.cases_mismatched << " | " << kinds << " | "
+        std::string kinds = notes_of(row);
+        md << "| " << markdown_text(key.family) << " | " << markdown_text(key.shape) << " | "
+           << markdown_text(key.solver) << " | " << row.cases << " | " << row.unrepresented << " | "
+           << row.cases_mismatched << " | " << kinds << " | "
            << (row.bounded_roots || row.uncertain ? num(row.uncertain) : "-") << " | "
            << (row.bounded_roots ? num(row.bound_violations) : "-") << " | "
            << (row.bounded_roots ? fmt(row.tightness.quantile(0.5)) : "-") << " | "
@@ -307,23 +356,30 @@ std::string markdown(const Report& r) {
     write_rungs(md, r);
 
     md << "\n## Error against difficulty\n\n";
+    bool scale = false, far = false;
     for (const std::string& f : r.families)
         for (const auto& [key, points] : r.curves)
             if (key.family == f && f != "generic") { // write_plots() draws these
-                md << "![" << f << "](difficulty_" << f << ".svg)\n\n";
+                scale = scale || f == "scale", far = far || f == "far_origin";
+                md << "![" << markdown_text(f) << "](" << difficulty_figure(f) << ")\n\n";
                 break;
             }
+    if (scale && far)
+        md << "Error against distance: the shape's size and distance from the world origin "
+              "(scale) beside the ray origin's distance from the shape (far_origin).\n\n"
+              "![distance](distance.svg)\n\n";
 
-    md << "## Worst cases\n\nEach replays with the command under it.\n\n";
+    md << "## Worst cases\n\nEach replays with the command under it: the case as the solver saw "
+          "it, its answer and the reference its grade used, as above.\n\n";
     for (const auto& [key, row] : r.rows) {
         if (row.worst.empty()) continue;
-        md << "### " << key.name() << "\n\n";
+        md << "### " << markdown_text(key.name()) << "\n\n";
         for (const Worst& w : row.worst) {
             md << (w.mismatch ? "- **mismatch**" : "- t error " + fmt_ulps(w.ulps) + " ulps")
                << "\n\n";
-            md << "  ```\n  " << w.case_line() << "\n  " << w.solver_line() << "\n  "
-               << w.oracle_line() << "\n  ```\n\n";
-            md << "  `" << replay(r, w, key.solver) << "`\n\n";
+            md << escape::markdown_block({w.case_line(), w.solver_line(), w.oracle_line()}, "  ")
+               << "\n";
+            md << "  " << escape::markdown_code(replay(r, w, key.solver)) << "\n\n";
         }
     }
     md << "## Oracle rounding\n\nFloats rounded from the oracle's interval filter alone: "
@@ -336,83 +392,84 @@ std::string markdown(const Report& r) {
     return md.str();
 }
 
-bool write_plots(const Report& r, const std::string& dir) {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
-        std::fprintf(stderr,
-                     "linequad: gnuplot not found: no plots (apt-get install gnuplot-nox)\n");
-        return false;
-    }
-    std::ostringstream gp;
-    auto both_terminals = [&](const std::string& name, const std::string& body) {
-        gp << "set terminal svg size 800,500 dynamic noenhanced font 'sans,11'\nset output '" << dir
-           << "/" << name << ".svg'\n"
-           << body << "set terminal pngcairo size 800,500 noenhanced font 'sans,10'\nset output '"
-           << dir << "/" << name << ".png'\nreplot\nunset output\n";
-    };
-    // Pareto: median ns per solve on generic cases against max and p99 t error over all families.
-    {
-        std::ostringstream dat;
-        dat << "# solver ns_generic max_ulps p99_ulps\n";
-        // Only solvers timed on generic cases: an answer read from a file has no time.
-        int points = 0;
-        for (const std::string& s : r.solvers) {
-            Row t = r.total(s), generic = family_total(r, "generic", s);
-            if (!generic.timed()) continue;
-            ++points;
-            dat << s << " " << generic.ns.median() << " " << 1 + double(t.t_max) << " "
-                << 1 + t.t_quantile(0.99) << "\n";
-        }
-        jsonl::write_file(dir + "/pareto.dat", dat.str());
-        if (points)
-            both_terminals(
-                "pareto",
-                "set title 'run time against error (every family)'\nset xlabel "
-                "'ns per solve, median, generic cases'\n"
-                "set ylabel '1 + t error in ulps of its precision (the *32 solvers: float)'\n"
-                "set logscale y\nset grid\nset "
-                "key outside bottom center horizontal\n"
-                "set offsets graph 0.15, graph 0.15, graph 0.1, graph 0.1\n"
-                "plot '" +
-                    dir +
-                    "/pareto.dat' using 2:3:1 with labels offset 0,1 notitle, "
-                    "'' using 2:3 with points pt 7 ps 1.5 title 'max', '' using "
-                    "2:4 with points pt 5 ps 1.5 title 'p99'\n");
-    }
-    // Error against difficulty, one figure per family, one curve per solver.
-    std::map<std::string, std::vector<std::string>> families;
+std::string difficulty_figure(const std::string& family) {
+    return "difficulty_" + escape::file_name(family) + ".svg";
+}
+
+namespace {
+
+// One family's error and misclassification against its difficulty k, a pair of curves per
+// solver in one colour: the largest t error (left, logarithmic) and the fraction misclassified
+// (right, dashed).
+plot::Chart difficulty_chart(const Report& r, const std::string& family, const std::string& x) {
+    plot::Chart c;
+    c.title = family + ": error and misclassification against k";
+    c.x_label = x;
+    c.y_label = "1 + max t error (ulps)";
+    c.y2_label = "fraction of cases misclassified";
+    c.log_y = true;
+    int color = 0;
     for (const auto& [key, points] : r.curves) {
-        if (key.family == "generic") continue;
-        std::ostringstream dat;
-        dat << "# k cases mismatched_fraction 1+max_ulps\n";
-        for (const auto& [k, p] : points)
-            dat << k << " " << p.cases << " "
-                << (p.cases ? double(p.mismatched) / double(p.cases) : 0) << " "
-                << 1 + double(p.t_max) << "\n";
-        jsonl::write_file(dir + "/difficulty_" + key.family + "_" + key.solver + ".dat", dat.str());
-        families[key.family].push_back(key.solver);
-    }
-    for (const auto& [family, solvers] : families) {
-        std::string plot = "set title '" + family +
-                           ": error and misclassification against k'\n"
-                           "set xlabel 'k (difficulty 2^-k)'\nset ylabel '1 + max t error "
-                           "(ulps)'\nset logscale y\n"
-                           "set y2label 'fraction of cases misclassified'\nset y2range [0:1]\nset "
-                           "y2tics\nset ytics nomirror\n"
-                           "set grid\nset key outside right\nplot ";
-        for (std::size_t i = 0; i < solvers.size(); ++i) {
-            std::string f = "'" + dir + "/difficulty_" + family + "_" + solvers[i] + ".dat'";
-            plot += (i ? ", " : "") + f + " using 1:4 with linespoints lw 2 title '" + solvers[i] +
-                    " max error', " + f + " using 1:3 axes x1y2 with lines dt 2 title '" +
-                    solvers[i] + " misclassified'";
+        if (key.family != family) continue;
+        plot::Series error, wrong;
+        error.name = key.solver + " max error", wrong.name = key.solver + " misclassified";
+        wrong.right = wrong.dashed = true, wrong.markers = false;
+        error.color = wrong.color = color++;
+        for (const auto& [k, p] : points) {
+            error.points.emplace_back(k, 1 + double(p.t_max));
+            wrong.points.emplace_back(k, p.cases ? double(p.mismatched) / double(p.cases) : 0);
         }
-        both_terminals("difficulty_" + family, plot + "\n");
+        c.series.push_back(error);
+        c.series.push_back(wrong);
     }
-    jsonl::write_file(dir + "/plots.gp", gp.str());
-    std::string cmd = "gnuplot '" + dir + "/plots.gp' 2>&1";
-    if (std::system(cmd.c_str()) != 0) {
-        std::fprintf(stderr, "linequad: gnuplot failed on %s/plots.gp\n", dir.c_str());
-        return false;
+    return c;
+}
+
+} // namespace
+
+bool write_plots(const Report& r, const std::string& dir) {
+    // Pareto: median ns per solve on generic cases against max and p99 t error over all families;
+    // only solvers timed on generic cases (an answer read from a file has no time).
+    plot::Chart pareto;
+    pareto.title = "run time against error (every family)";
+    pareto.x_label = "ns per solve, median, generic cases";
+    pareto.y_label = "1 + t error in ulps of its precision (the *32 solvers: float)";
+    pareto.log_y = true;
+    plot::Series max, p99;
+    max.name = "max", p99.name = "p99";
+    max.lines = p99.lines = false;
+    p99.square = true;
+    for (const std::string& s : r.solvers) {
+        Row t = r.total(s), generic = family_total(r, "generic", s);
+        if (!generic.timed()) continue;
+        double ns = generic.ns.median();
+        max.points.emplace_back(ns, 1 + double(t.t_max));
+        p99.points.emplace_back(ns, 1 + t.t_quantile(0.99));
+        pareto.labels.push_back({ns, 1 + double(t.t_max), s});
     }
+    pareto.series = {max, p99};
+    if (!max.points.empty()) jsonl::write_file(dir + "/pareto.svg", plot::svg({pareto}));
+    // Error against difficulty, one figure per family.
+    std::vector<std::string> families;
+    for (const auto& [key, points] : r.curves)
+        if (key.family != "generic" &&
+            std::find(families.begin(), families.end(), key.family) == families.end())
+            families.push_back(key.family);
+    for (const std::string& f : families)
+        jsonl::write_file(dir + "/" + difficulty_figure(f),
+                          plot::svg({difficulty_chart(r, f, "k (difficulty 2^-k)")}));
+    // Distance: the shape from the world origin beside the ray's origin from the shape.
+    auto has = [&](const char* f) {
+        return std::find(families.begin(), families.end(), f) != families.end();
+    };
+    if (has("scale") && has("far_origin"))
+        jsonl::write_file(
+            dir + "/distance.svg",
+            plot::svg({difficulty_chart(r, "scale",
+                                        "k: the scene scaled by 2^+-k, or the shape 2^min(k,50) "
+                                        "from the origin"),
+                       difficulty_chart(r, "far_origin",
+                                        "k: the ray's origin 2^k shape sizes from the shape")}));
     return true;
 }
 
@@ -427,7 +484,8 @@ bool earlier_figure(const std::string& name) {
     };
     bool figure = ends(".svg") || ends(".png") || ends(".dat");
     return name == "plots.gp" || name == "report.html" ||
-           (figure && (name.rfind("pareto.", 0) == 0 || name.rfind("difficulty_", 0) == 0));
+           (figure && (name.rfind("pareto.", 0) == 0 || name.rfind("difficulty_", 0) == 0 ||
+                       name.rfind("distance.", 0) == 0));
 }
 
 } // namespace

@@ -11,6 +11,9 @@
 
 #include "jsonl.hpp"
 #include "ordered_pool.hpp"
+#include "plugin_worker.hpp"
+#include "process.hpp"
+#include "stop.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -29,21 +32,28 @@
 namespace linequad::audit {
 
 namespace {
+std::atomic<bool> stop_flag{false};
+} // namespace
+
+bool stop_requested() {
+    return stop_flag.load(std::memory_order_relaxed);
+}
+
+namespace {
 
 constexpr Range ranges[] = {Range::line, Range::ray, Range::segment};
 // How much work a kill -9 may cost: a running audit saves its report this often.
 constexpr double save_every_seconds = 2;
 
-std::atomic<bool> stop_requested{false};
 extern "C" void on_signal(int) {
-    stop_requested = true;
+    stop_flag = true;
 }
 
 // SIGINT and SIGTERM end the campaign early (with its report saved) while it runs.
 class StopOnSignal {
   public:
     StopOnSignal() {
-        stop_requested = false;
+        stop_flag = false;
         old_int_ = std::signal(SIGINT, on_signal);
         old_term_ = std::signal(SIGTERM, on_signal);
     }
@@ -57,14 +67,12 @@ class StopOnSignal {
     void (*old_term_)(int);
 };
 
-std::string run_command(const char* cmd) {
-    std::string out;
-    if (FILE* p = popen(cmd, "r")) {
-        char buf[256];
-        while (std::fgets(buf, sizeof buf, p))
-            out += buf;
-        pclose(p);
-    }
+// What git prints of the working tree, or "" (no git, not a repository).
+std::string git(const std::vector<std::string>& args) {
+    std::vector<std::string> argv = {"git"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    process::Exit e = process::run(argv);
+    std::string out = e.ok() ? e.output : "";
     while (!out.empty() && (out.back() == '\n' || out.back() == '\r'))
         out.pop_back();
     return out;
@@ -94,10 +102,9 @@ void fill_provenance(Report& r, const Options& o) {
     r.compiler = b.compiler;
     r.flags = b.fast_flags;
     r.version = b.version;
-    r.commit = run_command("git rev-parse --short HEAD 2>/dev/null");
+    r.commit = git({"rev-parse", "--short", "HEAD"});
     if (r.commit.empty()) r.commit = "unknown";
-    if (!run_command("git status --porcelain --untracked-files=no 2>/dev/null").empty())
-        r.commit += "+dirty";
+    if (!git({"status", "--porcelain", "--untracked-files=no"}).empty()) r.commit += "+dirty";
     char date[64];
     std::time_t now = std::time(nullptr);
     std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
@@ -204,8 +211,26 @@ Solvers solvers_of(const Options& o, const std::vector<ExternalSolver>& external
 }
 
 Report::External describe(const ExternalSolver& e) {
-    return {answers_name(e.answers), parametrisation_name(e.parametrisation),
-            surface_name(e.surface), e.mapping, e.plugin};
+    Report::External x;
+    x.answers = answers_name(e.answers);
+    x.parametrisation = parametrisation_name(e.parametrisation);
+    x.surface = surface_name(e.surface);
+    x.mapping = e.mapping;
+    x.plugin = e.plugin;
+    if (e.inside != StartInside::as_answers) x.inside = start_inside_name(e.inside);
+    if (e.contact_as_point) x.contact = "first point";
+    return x;
+}
+
+// What a plugin's worker saw while the run went on: its output, its restarts.
+void note_worker(Report::External& x, const ExternalSolver& e) {
+    if (!e.worker) return;
+    const DeclaredSolver& d = e.worker->solvers().at(std::size_t(e.worker_index));
+    x.batch = d.batch;
+    x.load_environment = e.worker->load_environment();
+    x.output = e.worker->output(e.worker_index);
+    x.output_bytes = e.worker->output_bytes(e.worker_index);
+    x.restarts = std::uint64_t(e.worker->restarts(e.worker_index));
 }
 
 bool batch_wanted(const Options& o) {
@@ -387,8 +412,9 @@ Report grade_results(const Options& o) {
                 // What `linequad solve` writes for a case an external solver cannot take.
                 ++row.unrepresented;
             } else {
-                grade(c, solver, a->second.result.result, oracle, row,
-                      &rep.curves[{family, solver}][c.k], Grading{a->second.result.has_points});
+                const ParsedResult& pr = a->second.result;
+                grade(c, solver, pr.result, oracle, row, &rep.curves[{family, solver}][c.k],
+                      Grading{pr.has_points, pr.has_kinds, pr.has_parts});
             }
         }
         saver.maybe_save(rep, start);
@@ -478,46 +504,60 @@ class ChunkGrader {
     }
 
   private:
-    // The library's cases are posed its way, and its reference solved for what it saw.
+    // The library's cases are posed its way, and its reference solved for what it saw (under
+    // its declared conventions).
     void grade_external(const ExternalSolver& e, const std::vector<Case>& cases,
                         const std::string& family, const std::string& shape, Report& out) {
         Row& row = out.rows[{family, shape, e.name}];
+        auto unrepresented = [&](const std::string& why) {
+            ++row.unrepresented;
+            if (!why.empty()) ++row.unrepresented_why[why];
+        };
         posed_.clear();
         from_.clear();
+        std::string why;
         for (std::size_t i = 0; i < cases.size(); ++i)
-            if (std::optional<Case> p = posed_for(e, cases[i])) {
+            if (std::optional<Case> p = posed_for(e, cases[i], &why)) {
                 posed_.push_back(std::move(*p));
                 from_.push_back(i);
             } else {
-                ++row.unrepresented;
+                unrepresented(why);
             }
         if (posed_.empty()) return;
-        answers_.resize(posed_.size());
+        double ns = 0;
         {
             // Another library's thread safety is not known (nor declared by the plugin ABI), and
-            // the crash guard's handlers are the process's: one thread calls them at a time.
+            // a plugin's worker answers one request at a time: one thread calls them at a time.
             static std::mutex one_at_a_time;
             std::lock_guard<std::mutex> lock(one_at_a_time);
-            CrashGuard guard; // installed once for the chunk, outside the timing
-            auto t0 = std::chrono::steady_clock::now();
-            for (std::size_t j = 0; j < posed_.size(); ++j)
-                answers_[j] = e(posed_[j].shape, posed_[j].line);
-            auto t1 = std::chrono::steady_clock::now();
-            row.ns.add(std::chrono::duration<double, std::nano>(t1 - t0).count() /
-                       double(posed_.size()));
+            // A stop request while the library answers: none of its answers here are graded.
+            if (!e.answer_all(posed_, answers_, &ns)) return;
         }
+        if (ns > 0) row.ns.add(ns / double(posed_.size()));
         // The oracle's answer stands when the library saw the case as it is and answers all.
         bool as_is = e.answers == Answers::all && e.surface == Surface::as_posed &&
-                     e.parametrisation == Parametrisation::line;
+                     e.parametrisation == Parametrisation::line &&
+                     e.inside == StartInside::as_answers && !e.contact_as_point;
+        std::string label = reference_label(e);
         auto& curve = out.curves[{family, e.name}];
-        Grading what{e.points, e.kinds, e.parts};
         for (std::size_t j = 0; j < posed_.size(); ++j) {
-            if (!answers_[j]) {
-                ++row.unrepresented;
+            const ExternalAnswer& a = answers_[j];
+            if (*a.environment) ++row.environment[a.environment];
+            if (!a.result) {
+                unrepresented(a.unrepresented);
                 continue;
             }
-            Result ref = as_is ? oracle_[from_[j]] : reference_for(e.answers, posed_[j]);
-            grade(posed_[j], e.name, *answers_[j], ref, row, &curve[posed_[j].k], what);
+            Reference ref;
+            if (as_is)
+                ref.result = oracle_[from_[j]];
+            else
+                ref = reference_for(e, posed_[j]);
+            if (!ref.unrepresented.empty()) {
+                unrepresented(ref.unrepresented);
+                continue;
+            }
+            Grading what{e.points && ref.points, e.kinds && ref.kinds, e.parts && ref.parts};
+            grade(posed_[j], e.name, *a.result, ref.result, row, &curve[posed_[j].k], what, label);
         }
     }
 
@@ -526,7 +566,7 @@ class ChunkGrader {
     std::vector<Result> oracle_, got_;
     std::vector<Case> posed_;
     std::vector<std::size_t> from_;
-    std::vector<std::optional<Result>> answers_;
+    std::vector<ExternalAnswer> answers_;
 };
 
 // A chunk of a run: cases [begin, end) of one source of cases (a campaign's group, a cases
@@ -581,9 +621,12 @@ void grade_chunks(const Options& o, const Solvers& solvers, bool batch,
             progress.advance(g.cases);
             saver.maybe_save(rep, start);
         },
-        [] { return bool(stop_requested); });
-    rep.status = stop_requested ? Status::stopped : Status::complete;
-    if (stop_requested) std::fprintf(stderr, "\naudit: stopped early; writing what was measured\n");
+        [] { return stop_requested(); });
+    for (const ExternalSolver* e : solvers.external)
+        note_worker(rep.external[e->name], *e);
+    rep.status = stop_requested() ? Status::stopped : Status::complete;
+    if (stop_requested())
+        std::fprintf(stderr, "\naudit: stopped early; writing what was measured\n");
     saver.end(rep, o, start);
 }
 

@@ -93,9 +93,9 @@ const char* mismatch_name(int m) {
 
 struct Worst::Graded {
     Case c;
-    std::string solver;
+    std::string solver, reference;
     Result got, oracle;
-    bool points;
+    Carries carries;
 };
 
 Worst::Worst(std::string case_line, std::string solver_line, std::string oracle_line)
@@ -103,15 +103,19 @@ Worst::Worst(std::string case_line, std::string solver_line, std::string oracle_
       oracle_line_(std::move(oracle_line)) {}
 
 Worst::Worst(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
-             bool points)
-    : graded_(std::make_shared<const Graded>(Graded{c, solver, got, oracle, points})) {}
+             Carries carries, std::string_view reference)
+    : graded_(std::make_shared<const Graded>(
+          Graded{c, solver, std::string(reference), got, oracle, carries})) {}
 
 void Worst::write_lines() const {
     if (!graded_) return;
     const Graded& g = *graded_;
     case_line_ = format_case(g.c);
-    solver_line_ = format_result(g.c.id, g.solver, g.got, g.points);
-    oracle_line_ = format_result(g.c.id, "exact", g.oracle);
+    // Both as graded: the solver's answer with what it carries, the reference with what of it was
+    // graded (a convention's hit has no kind or part of its own).
+    solver_line_ = format_result(g.c.id, g.solver, g.got, g.carries);
+    oracle_line_ = format_result(g.c.id, g.reference, g.oracle,
+                                 g.reference == "exact" ? Carries{} : g.carries);
     graded_.reset();
 }
 const std::string& Worst::case_line() const {
@@ -213,8 +217,12 @@ void Row::merge(const Row& o) {
     cases += o.cases, graded_roots += o.graded_roots, graded_coords += o.graded_coords;
     s_error.merge(o.s_error), s_max = std::max(s_max, o.s_max);
     unrepresented += o.unrepresented;
+    for (const auto& [name, n] : o.unrepresented_why)
+        unrepresented_why[name] += n;
     for (const auto& [name, n] : o.foreign)
         foreign[name] += n;
+    for (const auto& [name, n] : o.environment)
+        environment[name] += n;
     binary32_cases += o.binary32_cases;
     for (int m = 0; m < mismatch_kinds; ++m)
         mismatches[m] += o.mismatches[m];
@@ -234,7 +242,7 @@ void Row::merge(const Row& o) {
 }
 
 void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
-           Row& row, CurvePoint* curve, const Grading& what) {
+           Row& row, CurvePoint* curve, const Grading& what, std::string_view reference) {
     bool flags[mismatch_kinds] = {};
     bool points = what.points;
     ++row.cases;
@@ -331,7 +339,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
         curve->t_max = std::max(curve->t_max, case_max);
     }
     if (qualifies(row.worst, mismatch, case_max)) {
-        Worst w(c, solver, got, oracle, points);
+        Worst w(c, solver, got, oracle, what, reference);
         w.mismatch = mismatch, w.ulps = case_max;
         keep(row.worst, std::move(w));
     }

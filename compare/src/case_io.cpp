@@ -401,7 +401,7 @@ std::string format_case(const Case& c) {
 }
 
 std::string format_result(const std::string& id, std::string_view solver, const Result& r,
-                          bool points) {
+                          Carries carries) {
     // A refusal of another library's own is written under its own name, as it was read.
     if (!r.ok())
         return format_failure(id, solver,
@@ -412,10 +412,11 @@ std::string format_result(const std::string& id, std::string_view solver, const 
     for (int i = 0; i < r.count; ++i) {
         const Hit& h = r.hits[i];
         if (i) out += ",";
-        out += "{\"t\":\"" + hex(h.t) + "\",\"kind\":\"";
-        out += h.kind == HitKind::tangent ? "tangent\"" : "cross\"";
-        out += ",\"part\":\"" + std::string(part_name(h.part)) + "\"";
-        if (points) put_field(out, "p", h.p);
+        out += "{\"t\":\"" + hex(h.t) + "\"";
+        if (carries.kinds)
+            out += h.kind == HitKind::tangent ? ",\"kind\":\"tangent\"" : ",\"kind\":\"cross\"";
+        if (carries.parts) out += ",\"part\":\"" + std::string(part_name(h.part)) + "\"";
+        if (carries.points) put_field(out, "p", h.p);
         if (!std::isnan(h.bound)) {
             put_field(out, "bound", h.bound);
             out += h.certain ? ",\"certain\":true" : ",\"certain\":false";
@@ -430,7 +431,8 @@ std::string format_result(const std::string& id, std::string_view solver, const 
             return std::isinf(t) ? std::string("null") : "\"" + hex(t) + "\"";
         };
         out += "[" + end(r.s0) + "," + end(r.s1) + "]";
-        out += ",\"surface_part\":\"" + std::string(part_name(r.surface_part)) + "\"";
+        if (carries.parts)
+            out += ",\"surface_part\":\"" + std::string(part_name(r.surface_part)) + "\"";
     }
     if (r.certainty != Certainty::unknown)
         out += r.certainty == Certainty::certain ? ",\"certain\":true" : ",\"certain\":false";
@@ -530,12 +532,17 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
                   false};
         if (!h.is_object() || !hr.number("t", &out.t))
             return r.fail("hits", "each hit needs t, a number");
-        const Json* kind = hr.find("kind");
-        if (!kind || !kind->is_string() || (*kind != "cross" && *kind != "tangent"))
-            return r.fail("hits", "kind must be cross or tangent");
-        out.kind = *kind == "tangent" ? HitKind::tangent : HitKind::cross;
-        if (const Json* part = hr.find("part"); part && !read_part(*part, &out.part))
-            return r.fail("hits", "part must be lateral, base or top");
+        if (const Json* kind = hr.find("kind")) {
+            if (!kind->is_string() || (*kind != "cross" && *kind != "tangent"))
+                return r.fail("hits", "kind must be cross or tangent");
+            out.kind = *kind == "tangent" ? HitKind::tangent : HitKind::cross;
+            pr->has_kinds = true;
+        }
+        if (const Json* part = hr.find("part")) {
+            if (!read_part(*part, &out.part))
+                return r.fail("hits", "part must be lateral, base or top");
+            pr->has_parts = true;
+        }
         if (hr.find("p")) {
             if (!hr.vec("p", &out.p)) return r.fail("hits", "p must be 3 numbers");
             pr->has_points = true;
@@ -559,9 +566,11 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
         }
         pr->result.on_surface = true;
         pr->result.s0 = e[0], pr->result.s1 = e[1];
-        if (const Json* part = r.find("surface_part");
-            part && !read_part(*part, &pr->result.surface_part))
-            return r.fail("surface_part", "expected lateral, base or top");
+        if (const Json* part = r.find("surface_part")) {
+            if (!read_part(*part, &pr->result.surface_part))
+                return r.fail("surface_part", "expected lateral, base or top");
+            pr->has_parts = true;
+        }
     } else if (on && !on->is_null()) {
         return r.fail("on_surface", "expected null or [t0, t1]");
     }

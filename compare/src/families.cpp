@@ -19,9 +19,9 @@ namespace linequad {
 namespace {
 
 const char* const names[family_count] = {
-    "generic",          "near_tangent", "axis_parallel", "apex", "generator",
-    "degenerate_frame", "scale",        "extent_edge",   "rim",  "cap_plane",
-    "cap_axis",         "inside_start", "two_nappes"};
+    "generic",          "near_tangent", "axis_parallel", "apex",      "generator",
+    "degenerate_frame", "scale",        "extent_edge",   "rim",       "cap_plane",
+    "cap_axis",         "inside_start", "two_nappes",    "far_origin"};
 const char* const frame_names[3] = {"any", "circular", "axis"};
 
 // A frame: origin, a, b, c, and the shape's profile in it: points O + x a + y b + z c, the
@@ -584,6 +584,47 @@ Case two_nappes(Rng& r, int k, Frames frames) {
     return c;
 }
 
+template <class S>
+Case far_origin(Rng& r, int k, Frames frames, Precision p) {
+    Frame f = frame_for<S>(r, false, frames);
+    // The shape's size, which the ray's origin is 2^k of away: its frame's longest axis.
+    double size = std::max({norm(f.a), norm(f.b), norm(f.c)});
+    double z = z_inside(r, f), rho = radius_at(f, z);
+    double theta = r.real(0, 2 * M_PI), cs = std::cos(theta), sn = std::sin(theta);
+    Vec3 target, d;
+    switch (r.integer(0, 2)) {
+    case 0: { // aimed through the shape, from any direction
+        target = world(f, r.real(-0.7, 0.7) * rho, r.real(-0.7, 0.7) * rho, z);
+        d = r.vec(1);
+        break;
+    }
+    default: { // along the surface's tangent plane: 2^-m of the radius inside, or just past it
+        bool past = r.coin();
+        double side = past ? 1 + r.real(0.001, 0.1) : 1 - std::ldexp(1.0, -r.integer(1, 30));
+        target = world(f, side * rho * cs, side * rho * sn, z);
+        d = world_vec(f, -sn, cs, 0) +
+            r.real(-1, 1) * world_vec(f, slope(f) * cs, slope(f) * sn, 1);
+        break;
+    }
+    }
+    while (norm(d) == 0)
+        d = r.vec(1);
+    Vec3 from = target - (std::ldexp(size, k) / norm(d)) * d;
+    // Half of the cases: the whole scene moved far from the world origin too (within float's
+    // reach for a float case), by 2^j shape sizes, j from 10 to k.
+    if (r.coin()) {
+        int j = r.integer(10, std::max(10, std::min(k, p == Precision::binary32 ? 20 : 40)));
+        Vec3 far = std::ldexp(size, j) * r.vec(1);
+        f.O = f.O + far, target = target + far, from = from + far;
+    }
+    Case c;
+    c.shape = shape_from<S>(f, r.integer(0, 3) != 0);
+    // The shape at t = 2/3 of the segment: a segment (0 <= t <= 1) reaches past it.
+    c.line = {from, 1.5 * (target - from)};
+    c.k = k;
+    return c;
+}
+
 // The family's difficulty for case `index`: 2^-k offsets up to 2^-60 in double, 2^-24 in float
 // (beyond, a float offset is lost in the rounding of the case); the scale family's 2^+-k within
 // each format's range; the rim's k in ulps of the case's own format.
@@ -602,6 +643,8 @@ int difficulty(Family fam, std::uint64_t index, Precision p) {
         return single ? 14 + int(index % 11) : 40 + int(index % 14);
     case Family::rim:
         return int(index % 17);
+    case Family::far_origin: // the ray's origin 2^k shape sizes away
+        return 10 + int(index % (single ? 15 : 31));
     default:
         return int(index % std::uint64_t(steps));
     }
@@ -642,6 +685,8 @@ Case make(Family fam, Rng& r, int k, Frames frames, Precision p) {
         return inside_start<S>(r, k, frames);
     case Family::two_nappes:
         return two_nappes<S>(r, k, frames);
+    case Family::far_origin:
+        return far_origin<S>(r, k, frames, p);
     }
     return {};
 }

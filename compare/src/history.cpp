@@ -3,10 +3,13 @@
 // for (shards of one campaign may finish together).
 #include "history.hpp"
 
+#include "escape.hpp"
 #include "jsonl.hpp"
+#include "svg_plot.hpp"
 
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -315,8 +318,10 @@ std::string against(const HistoryPoint& before, const HistoryPoint& now) {
 std::string trend_markdown(const std::vector<HistoryPoint>& points, const std::string& solver,
                            const std::string& family, const std::string& shape) {
     std::ostringstream md;
-    md << "## " << solver << ": " << (family == "*" ? "every family" : family) << ", "
-       << (shape == "*" ? "every shape" : shape) << "\n\n";
+    using escape::markdown_text;
+    md << "## " << markdown_text(solver) << ": "
+       << (family == "*" ? "every family" : markdown_text(family)) << ", "
+       << (shape == "*" ? "every shape" : markdown_text(shape)) << "\n\n";
     if (points.empty()) {
         md << "No run recorded.\n";
         return md.str();
@@ -325,57 +330,40 @@ std::string trend_markdown(const std::vector<HistoryPoint>& points, const std::s
           "the run before |\n|---:|---|---|---:|---:|---:|---:|---:|---:|---|\n";
     for (std::size_t i = 0; i < points.size(); ++i) {
         const HistoryPoint& p = points[i];
-        md << "| " << i + 1 << " | " << p.commit << (p.complete ? "" : " (incomplete)") << " | "
-           << p.date << " | " << p.cases << " | " << p.mismatched << " | " << real(p.t_max) << " | "
-           << real(p.t_p99) << " | " << real(p.t_p50) << " | "
-           << (p.ns_median > 0 ? real(p.ns_median) : "-") << " | "
-           << (i ? against(points[i - 1], p) : "") << " |\n";
+        // A commit's text is the user's (--commit): one table row whatever it holds.
+        md << "| " << i + 1 << " | " << markdown_text(p.commit)
+           << (p.complete ? "" : " (incomplete)") << " | " << markdown_text(p.date) << " | "
+           << p.cases << " | " << p.mismatched << " | " << real(p.t_max) << " | " << real(p.t_p99)
+           << " | " << real(p.t_p50) << " | " << (p.ns_median > 0 ? real(p.ns_median) : "-")
+           << " | " << (i ? against(points[i - 1], p) : "") << " |\n";
     }
     return md.str();
 }
 
 bool plot_trend(const std::vector<HistoryPoint>& points, const std::string& title,
                 const std::string& svg_path) {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
-        std::fprintf(stderr,
-                     "linequad: gnuplot not found: no plot (apt-get install gnuplot-nox)\n");
-        return false;
-    }
-    if (svg_path.find('\'') != std::string::npos)
-        throw std::runtime_error(svg_path + ": gnuplot cannot take a path with a quote");
-    std::ostringstream dat;
-    dat << "# run commit 1+t_max 1+t_p99 mismatched_fraction\n";
+    plot::Chart c;
+    c.title = title;
+    c.x_label = "run (commit)";
+    c.y_label = "1 + t error (ulps)";
+    c.y2_label = "fraction misclassified";
+    c.log_y = true;
+    plot::Series max, p99, wrong;
+    max.name = "t max", p99.name = "t p99", wrong.name = "misclassified";
+    wrong.right = wrong.dashed = true;
+    double most = 0;
     for (std::size_t i = 0; i < points.size(); ++i) {
         const HistoryPoint& p = points[i];
-        // gnuplot leaves out the NaN of an infinite maximum.
-        dat << i + 1 << " \"" << p.commit << "\" "
-            << (std::isinf(p.t_max) ? std::string("NaN") : real(1 + p.t_max)) << " "
-            << real(1 + p.t_p99) << " " << (p.cases ? double(p.mismatched) / double(p.cases) : 0.0)
-            << "\n";
+        double x = double(i + 1), rate = p.cases ? double(p.mismatched) / double(p.cases) : 0.0;
+        max.points.emplace_back(x, 1 + p.t_max); // an infinite maximum is left out
+        p99.points.emplace_back(x, 1 + p.t_p99);
+        wrong.points.emplace_back(x, rate);
+        most = std::max(most, rate);
+        c.x_names.emplace_back(x, p.commit);
     }
-    std::string data = svg_path + ".dat";
-    jsonl::write_file(data, dat.str());
-    std::string quoted_title;
-    for (char c : title)
-        if (c != '\'' && c != '\\') quoted_title += c;
-    std::ostringstream gp;
-    gp << "set terminal svg size 800,500 dynamic noenhanced font 'sans,11'\nset output '"
-       << svg_path << "'\nset title '" << quoted_title
-       << "'\nset xlabel 'run (commit)'\nset ylabel '1 + t error (ulps)'\nset logscale y\n"
-          "set y2label 'fraction misclassified'\nset y2range [0:*]\nset y2tics\nset ytics "
-          "nomirror\nset xtics rotate by -30\nset grid\nset key outside bottom center "
-          "horizontal\nset offsets 0.5, 0.5, 0, 0\nplot '"
-       << data
-       << "' using 1:3:xtic(2) with linespoints lw 2 title 't max', '' using 1:4 with "
-          "linespoints lw 2 title 't p99', '' using 1:5 axes x1y2 with linespoints dt 2 "
-          "title 'misclassified'\nunset output\n";
-    std::string script = svg_path + ".gp";
-    jsonl::write_file(script, gp.str());
-    std::string cmd = "gnuplot '" + script + "' 2>&1";
-    if (std::system(cmd.c_str()) != 0) {
-        std::fprintf(stderr, "linequad: gnuplot failed on %s\n", script.c_str());
-        return false;
-    }
+    c.y2_max = most > 0 ? std::min(1.0, most * 1.1) : 1;
+    c.series = {max, p99, wrong};
+    jsonl::write_file(svg_path, plot::svg({c}));
     return true;
 }
 

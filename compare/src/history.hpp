@@ -52,9 +52,8 @@ class History {
 std::string trend_markdown(const std::vector<HistoryPoint>& points, const std::string& solver,
                            const std::string& family, const std::string& shape);
 
-// The trend as an SVG figure through gnuplot (t max and p99 in ulps, misclassified fraction on
-// the second axis, one point per run labelled by commit). Returns false, saying why on stderr,
-// when gnuplot is missing or fails.
+// The trend as an SVG figure (t max and p99 in ulps, misclassified fraction on the second axis,
+// one point per run labelled by commit). Throws if it cannot write the file.
 bool plot_trend(const std::vector<HistoryPoint>& points, const std::string& title,
                 const std::string& svg_path);
 

@@ -14,6 +14,8 @@
 #include "history.hpp"
 #include "jsonl.hpp"
 #include "peers/peers.hpp"
+#include "plugin_worker.hpp"
+#include "process.hpp"
 #include "report_html.hpp"
 
 #include <CLI/CLI.hpp>
@@ -65,6 +67,22 @@ std::uint64_t to_whole(const std::string& text) {
     return x;
 }
 
+// A finite number in (0, hi], or why not (CLI11's own checks let "nan" through).
+std::string positive_number(const std::string& text, double hi) {
+    char* end = nullptr;
+    double x = std::strtod(text.c_str(), &end);
+    bool ok =
+        !text.empty() && end == text.c_str() + text.size() && std::isfinite(x) && x > 0 && x <= hi;
+    return ok ? ""
+              : "expected a number above 0 and at most " + std::to_string(int(hi)) + ", not '" +
+                    text + "'";
+}
+
+CLI::Validator PositiveNumber(double hi) {
+    return CLI::Validator([=](const std::string& t) { return positive_number(t, hi); },
+                          "0<X<=" + std::to_string(int(hi)));
+}
+
 // "K/N": shard K of N.
 std::string shard_error(const std::string& text, int* k, int* n) {
     std::size_t slash = text.find('/');
@@ -80,10 +98,14 @@ std::string shard_error(const std::string& text, int* k, int* n) {
 
 // The solvers from outside linequad this run knows: the peer libraries built in, then those of
 // the plugins given (--plugin), loaded once.
-std::vector<audit::ExternalSolver> external_solvers(const std::vector<std::string>& plugins) {
+std::vector<audit::ExternalSolver> external_solvers(const std::vector<std::string>& plugins,
+                                                    double timeout_seconds) {
     std::vector<audit::ExternalSolver> out = peers::solvers();
+    audit::PluginOptions po;
+    po.program = process::self(); // the worker is this program in another mode
+    po.timeout_seconds = timeout_seconds;
     for (const std::string& path : plugins)
-        for (audit::ExternalSolver& e : audit::load_plugin(path)) {
+        for (audit::ExternalSolver& e : audit::load_plugin(path, po)) {
             for (const audit::ExternalSolver& x : out)
                 if (x.name == e.name)
                     throw std::invalid_argument(path + ": solver '" + e.name +
@@ -152,27 +174,52 @@ int fail(const std::string& msg) {
 
 struct SolveArgs {
     std::string solvers = "stable", need = "all", file = "-", max_line_bytes = "1048576";
+    std::string solver_timeout = "5";
     std::vector<std::string> plugins;
     bool no_points = false;
 };
 
-// One of linequad's solvers, or one from outside posed its way (the case it sees may differ from
-// the line given: see audit::posed_for).
+// One of linequad's solvers, or one from outside posed its way, as the audit poses it (the case
+// it sees may differ from the line given: see audit::posed_for), with only what it declares.
 struct NamedSolver {
     const Solver* own = nullptr;
     const audit::ExternalSolver* external = nullptr;
     std::string name() const { return own ? std::string(own->name) : external->name; }
     std::string answer_line(const Case& c, Query q) const {
         if (own) return format_result(c.id, own->name, answer(*own, c, q), q.points);
-        std::optional<Case> posed = audit::posed_for(*external, c);
-        std::optional<Result> r;
-        if (posed) r = (*external)(posed->shape, posed->line);
-        if (!r)
-            return format_failure(c.id, external->name, "unrepresented",
-                                  "the solver cannot represent this case");
-        return format_result(c.id, external->name, *r, q.points && external->points);
+        const audit::ExternalSolver& e = *external;
+        auto unrepresented = [&](const std::string& why) {
+            return format_failure(c.id, e.name, "unrepresented",
+                                  why.empty() ? "the solver cannot represent this case" : why);
+        };
+        if (!e.takes(c.shape)) return unrepresented("the solver takes no such shape");
+        Carries carries{q.points && e.points, e.kinds, e.parts};
+        // A float solver is handed floats: a case that is not is refused, naming its field.
+        if (Error bad = audit::input_problem(e, c); !bad.ok())
+            return format_result(c.id, e.name, Result::failure(bad), carries);
+        std::string why;
+        std::optional<Case> posed = audit::posed_for(e, c, &why);
+        if (!posed) return unrepresented(why);
+        audit::ExternalAnswer a = e.answer(posed->shape, posed->line);
+        if (*a.environment)
+            std::fprintf(stderr,
+                         "linequad: %s left the floating-point environment changed (%s); "
+                         "it was put back\n",
+                         e.name.c_str(), a.environment);
+        if (!a.result) return unrepresented(a.unrepresented);
+        return format_result(c.id, e.name, *a.result, carries);
     }
 };
+
+// What the plugins' solvers wrote on their standard output and error, on linequad's standard
+// error (never mixed into its results), a few lines each.
+void report_plugin_output(const std::vector<audit::ExternalSolver>& ext) {
+    for (const audit::ExternalSolver& e : ext)
+        if (e.worker && e.worker->output_bytes(e.worker_index))
+            std::fprintf(stderr, "linequad: %s wrote %llu bytes of its own; the first lines:\n%s\n",
+                         e.name.c_str(), (unsigned long long)e.worker->output_bytes(e.worker_index),
+                         e.worker->output(e.worker_index).c_str());
+}
 
 // The scene a file has open: its shapes, and the scenes built from them when its first line
 // arrives, one per solver that answers scenes.
@@ -215,7 +262,8 @@ std::string scene_answer_line(const std::string& solver, OpenScene& open, const 
 }
 
 int run_solve(const SolveArgs& a) {
-    std::vector<audit::ExternalSolver> ext = external_solvers(a.plugins);
+    std::vector<audit::ExternalSolver> ext =
+        external_solvers(a.plugins, std::strtod(a.solver_timeout.c_str(), nullptr));
     std::vector<NamedSolver> solvers;
     bool every_solver = a.solvers == "all";
     if (every_solver) {
@@ -312,6 +360,54 @@ int run_solve(const SolveArgs& a) {
         }
     }
     out.finish();
+    report_plugin_output(ext);
+    return errors ? 1 : 0;
+}
+
+// ---- replay
+
+struct ReplayArgs {
+    std::string solver, file = "-", solver_timeout = "5";
+    std::vector<std::string> plugins;
+};
+
+// Each case as a solver saw it in an audit (a worst case's first line): the solver's answer and
+// the reference its grade used, as the report's worst cases show them. Nothing is posed again.
+int run_replay(const ReplayArgs& a) {
+    std::vector<audit::ExternalSolver> ext =
+        external_solvers(a.plugins, std::strtod(a.solver_timeout.c_str(), nullptr));
+    const Solver* own = find_solver(a.solver);
+    const audit::ExternalSolver* theirs = find_external(ext, a.solver);
+    bool batch = a.solver == audit::batch_name;
+    if (!own && !theirs && !batch)
+        return fail("--solver: no solver named '" + a.solver + "' (see: linequad solvers)");
+    jsonl::LineReader in(a.file, jsonl::default_max_line_bytes);
+    jsonl::Output out;
+    std::string line, why;
+    long errors = 0;
+    for (;;) {
+        auto status = in.next(&line);
+        if (status == jsonl::LineReader::Status::end) break;
+        if (status == jsonl::LineReader::Status::error) throw std::runtime_error(in.error());
+        if (status == jsonl::LineReader::Status::too_long) {
+            ++errors;
+            std::fprintf(
+                stderr, "linequad: %s\n",
+                jsonl::too_long_message(in.number(), jsonl::default_max_line_bytes).c_str());
+            continue;
+        }
+        if (jsonl::blank(line)) continue;
+        Case c;
+        if (!parse_case(line, &c, &why)) {
+            ++errors;
+            std::fprintf(stderr, "linequad: line %ld: %s\n", in.number(), why.c_str());
+            continue;
+        }
+        for (const std::string& l : audit::replay_lines(a.solver, own, theirs, c))
+            out.line(l);
+    }
+    out.finish();
+    report_plugin_output(ext);
     return errors ? 1 : 0;
 }
 
@@ -322,6 +418,7 @@ struct CampaignArgs {
     std::string cases_file, results_file, max_line_bytes = "1048576", families, solvers;
     std::string shapes, frames = "any", precision = "binary64", threads = "0";
     std::vector<std::string> plugins;
+    std::string solver_timeout = "5";
     bool no_plots = false, check = false;
     std::string history, commit; // the history database to append to, and under which commit
 
@@ -395,7 +492,8 @@ void add_campaign_options(CLI::App* app, CampaignArgs& a) {
 int run_audit(const CampaignArgs& a, const std::string& command) {
     audit::Options o = a.options();
     o.command = command;
-    std::vector<audit::ExternalSolver> ext = external_solvers(a.plugins);
+    std::vector<audit::ExternalSolver> ext =
+        external_solvers(a.plugins, std::strtod(a.solver_timeout.c_str(), nullptr));
     for (const std::string& name : o.solvers)
         if (std::string why = solver_error(name, true, ext); !why.empty())
             return fail("--solvers: " + why);
@@ -655,6 +753,11 @@ int main_checked(int argc, char** argv) {
                   "a shared library of solvers (the C ABI of linequad/audit_plugin.h)")
         ->type_name("LIB.so")
         ->check(CLI::ExistingFile);
+    s->add_option("--solver-timeout", solve.solver_timeout,
+                  "seconds a plugin's call may take before it is stopped and answered as timed out")
+        ->type_name("S")
+        ->check(PositiveNumber(3600))
+        ->capture_default_str();
     s->add_option("--need", solve.need, "what to find: any, nearest or all")
         ->type_name("WHAT")
         ->check(CLI::IsMember({"any", "nearest", "all"}))
@@ -681,6 +784,11 @@ int main_checked(int argc, char** argv) {
                   "audit the solvers of a shared library (the C ABI of linequad/audit_plugin.h)")
         ->type_name("LIB.so")
         ->check(CLI::ExistingFile);
+    a->add_option("--solver-timeout", audit_args.solver_timeout,
+                  "seconds a plugin's call may take before it is stopped and counted as timed out")
+        ->type_name("S")
+        ->check(PositiveNumber(3600))
+        ->capture_default_str();
     a->add_option("--out", audit_args.out, "the report's directory")
         ->type_name("DIR")
         ->capture_default_str();
@@ -690,7 +798,7 @@ int main_checked(int argc, char** argv) {
         ->type_name("N")
         ->check(WholeNumber(0, 1024))
         ->capture_default_str();
-    a->add_flag("--no-plots", audit_args.no_plots, "no gnuplot figures");
+    a->add_flag("--no-plots", audit_args.no_plots, "no figures");
     add_history_options(a, audit_args.history, audit_args.commit);
     a->add_flag("--check", audit_args.check,
                 "exit 1 if a solver breaks a claim the README makes for it");
@@ -862,6 +970,31 @@ int main_checked(int argc, char** argv) {
     sc->add_option("--out", scene_args.out, "write the report here (default: standard output)")
         ->type_name("FILE.md");
 
+    ReplayArgs replay;
+    CLI::App* rp = app.add_subcommand(
+        "replay", "Replay cases as a solver saw them in an audit (a report's worst cases): the "
+                  "solver's answer and the reference its grade used, one line each per case. "
+                  "Nothing is posed again.");
+    rp->add_option("--solver", replay.solver, "the solver (linequad's, a peer's or a plugin's)")
+        ->type_name("S")
+        ->required();
+    rp->add_option("--plugin", replay.plugins,
+                   "a shared library of solvers (the C ABI of linequad/audit_plugin.h)")
+        ->type_name("LIB.so")
+        ->check(CLI::ExistingFile);
+    rp->add_option("--solver-timeout", replay.solver_timeout, "seconds a plugin's call may take")
+        ->type_name("S")
+        ->check(PositiveNumber(3600))
+        ->capture_default_str();
+    rp->add_option("file", replay.file, "the cases (- or nothing: standard input)")
+        ->type_name("FILE");
+
+    // The worker that runs a plugin's solvers for the process that started it (not for people).
+    std::string worker_plugin;
+    CLI::App* worker = app.add_subcommand("plugin-worker", "");
+    worker->group("");
+    worker->add_option("plugin", worker_plugin)->required();
+
     CLI::App* list = app.add_subcommand("solvers", "List the solver names.");
     CLI::App* v = app.add_subcommand("version", "Version, compiler and floating-point flags.");
 
@@ -884,7 +1017,9 @@ int main_checked(int argc, char** argv) {
     std::string command = joined(argc, argv);
     if (version || v->parsed()) return run_version();
     if (list->parsed()) return run_solvers();
+    if (worker->parsed()) return audit::plugin_worker_main(worker_plugin);
     if (s->parsed()) return run_solve(solve);
+    if (rp->parsed()) return run_replay(replay);
     if (a->parsed()) return run_audit(audit_args, command);
     if (c->parsed()) return run_cases(cases_args);
     if (m->parsed()) return run_merge(inputs, merge_out, command, merge_history, merge_commit);

@@ -7,13 +7,17 @@
 #include <cmark-gfm-core-extensions.h>
 #include <cmark-gfm.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <vector>
 
 namespace linequad::audit {
@@ -42,16 +46,18 @@ std::string base64(const std::string& bytes) {
     return out;
 }
 
-// A figure the report names by its file name beside it (no path, no scheme).
+// A figure the report names by its file name beside it: letters, digits and _ . - only (no path,
+// no scheme, no hidden file), ending .svg.
 const char* media_type(const std::string& name) {
     auto ends = [&](const char* e) {
         std::size_t n = std::strlen(e);
         return name.size() > n && name.compare(name.size() - n, n, e) == 0;
     };
-    if (name.find('/') != std::string::npos || name.find(':') != std::string::npos) return nullptr;
-    if (ends(".svg")) return "image/svg+xml";
-    if (ends(".png")) return "image/png";
-    return nullptr;
+    if (name.empty() || name[0] == '.' || name.size() > 200) return nullptr;
+    for (char c : name)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-'))
+            return nullptr;
+    return ends(".svg") ? "image/svg+xml" : nullptr;
 }
 
 struct Document {
@@ -162,7 +168,7 @@ document.querySelectorAll("table").forEach(table => {
   makeSortable(table);
 });
 document.querySelectorAll("p > code").forEach(code => {
-  if (/^echo '.*\| linequad solve /.test(code.textContent)) addCopyButton(code);
+  if (/^echo '.*' \| linequad replay /.test(code.textContent)) addCopyButton(code);
 });
 </script>
 </body>
@@ -217,8 +223,7 @@ report_html(const std::string& markdown,
         cmark_node* note = cmark_node_new(CMARK_NODE_EMPH);
         cmark_node* text = cmark_node_new(CMARK_NODE_TEXT);
         cmark_node_set_literal(text, ("figure " + std::string(url ? url : "") +
-                                      " not drawn (run the audit with gnuplot and without "
-                                      "--no-plots)")
+                                      " not drawn (run the audit without --no-plots)")
                                          .c_str());
         cmark_node_append_child(note, text);
         cmark_node_replace(image, note);
@@ -237,15 +242,36 @@ report_html(const std::string& markdown,
     return page;
 }
 
+// A file of the report's own: a regular file in its directory, opened without following a
+// symbolic link (a link there could point at any file, whose bytes would then be put in the
+// page), at most 32 MiB.
+std::optional<std::string> read_own_file(const std::string& dir, const std::string& name) {
+    int fd = ::open((dir + "/" + name).c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0) return std::nullopt;
+    struct stat st {};
+    std::optional<std::string> out;
+    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size <= (32 << 20)) {
+        std::string bytes(std::size_t(st.st_size), '\0');
+        std::size_t got = 0;
+        while (got < bytes.size()) {
+            ssize_t n = ::read(fd, bytes.data() + got, bytes.size() - got);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) break;
+            got += std::size_t(n);
+        }
+        if (got == bytes.size()) out = std::move(bytes);
+    }
+    ::close(fd);
+    return out;
+}
+
 void write_report_html(const std::string& dir) {
-    std::string markdown = jsonl::read_file(dir + "/report.md");
-    auto figure = [&](const std::string& name) -> std::optional<std::string> {
-        std::string path = dir + "/" + name;
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
-        return jsonl::read_file(path);
-    };
-    jsonl::write_file(dir + "/report.html", report_html(markdown, figure));
+    std::optional<std::string> markdown = read_own_file(dir, "report.md");
+    if (!markdown)
+        throw std::runtime_error(dir + "/report.md: not a report's own file (missing, a link, "
+                                       "or larger than 32 MiB)");
+    auto figure = [&](const std::string& name) { return read_own_file(dir, name); };
+    jsonl::write_file(dir + "/report.html", report_html(*markdown, figure));
 }
 
 } // namespace linequad::audit

@@ -54,16 +54,10 @@ static int solve(void* self, const lq_shape* s, const lq_line* l, lq_answer* out
 }
 
 static const lq_solver solvers[] = {{
-    "textbook",
-    64,
-    LQ_NEAREST,
-    LQ_LINE,
-    LQ_AS_POSED,
-    LQ_POINTS,
-    1u << LQ_CYLINDER,
-    "the school formula on a normalised axis; open finite cylinders only",
-    solve,
-    NULL,
+    "textbook", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, LQ_POINTS, 1u << LQ_CYLINDER,
+    "the school formula on a normalised axis; open finite cylinders only", solve, NULL,
+    LQ_INSIDE_AS_ANSWERS,      /* a ray that starts inside finds the wall it leaves through */
+    LQ_CONTACT_INTERVAL, NULL, /* no batch entry */
 }};
 
 int linequad_audit_plugin(int abi, const lq_solver** out) {

@@ -4,6 +4,7 @@
 #include "linequad/exact.hpp"
 
 #include "double_word.hpp"
+#include "numeric/fp_environment.hpp"
 #include "rounding.hpp"
 #include "shapes/all.hpp"
 #include "solve/finish.hpp"
@@ -645,6 +646,8 @@ void shape_hits(const ShapeT& shape, std::uint32_t index, const Line& l, bool po
 } // namespace
 
 void intersect(const std::vector<Shape>& shapes, const Line& line, Query query, SceneAnswer& out) {
+    numeric::StandardEnvironmentT<true>
+        standard; // the caller's rounding mode or FTZ must not reach here
     out.hits.clear();
     out.error = {}, out.error_shape = no_shape, out.exact_comparisons = 0;
     out.shapes_solved = std::uint32_t(shapes.size());
@@ -686,15 +689,18 @@ void intersect(const std::vector<Shape>& shapes, const Line& line, Query query, 
 
 template <class S, if_solvable<S>>
 Result intersect(const S& shape, const Line& l, Query q, Precision p) {
+    numeric::StandardEnvironmentT<true> standard;
     if constexpr (detail::is_prepared<S>::value)
         return solve<CGAL::Mpzf>(shape.shape(), l, q, p);
     else
         return solve<CGAL::Mpzf>(shape, l, q, p);
 }
 Result intersect(const Shape& s, const Line& l, Query q, Precision p) {
+    numeric::StandardEnvironmentT<true> standard;
     return std::visit([&](const auto& shape) { return solve<CGAL::Mpzf>(shape, l, q, p); }, s);
 }
 Result intersect_gmpq(const Shape& s, const Line& l, Query q, Precision p) {
+    numeric::StandardEnvironmentT<true> standard;
     return std::visit([&](const auto& shape) { return solve<CGAL::Gmpq>(shape, l, q, p); }, s);
 }
 

@@ -72,8 +72,10 @@ class Worst {
     // As a report holds it.
     Worst(std::string case_line, std::string solver_line, std::string oracle_line);
     // As grading meets it.
+    // reference: how the reference line names itself ("exact", or for a solver from outside that
+    // answers otherwise, "exact, nearest hit" ...).
     Worst(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
-          bool points);
+          Carries carries, std::string_view reference = "exact");
     const std::string& case_line() const;
     const std::string& solver_line() const;
     const std::string& oracle_line() const;
@@ -102,9 +104,15 @@ struct Row {
     // Cases the solver could not be posed or could not represent (an external library's shapes
     // and semantics): not graded, not in `cases`.
     std::uint64_t unrepresented = 0;
-    // Refusals of the solver's own (ErrorCode::foreign: another library's errors, crashes
-    // included), by name; each is also a refused mismatch.
+    // Of those, the ones with a reason (the library's own words, or why a case cannot be posed
+    // its way), by reason.
+    std::map<std::string, std::uint64_t> unrepresented_why;
+    // Refusals of the solver's own (ErrorCode::foreign: another library's errors, and its crashes,
+    // exits, exceptions and timeouts), by name; each is also a refused mismatch.
     std::map<std::string, std::uint64_t> foreign;
+    // Calls that left the floating-point environment changed (put back before the next call), by
+    // how; their answers are graded as given.
+    std::map<std::string, std::uint64_t> environment;
     double t_sum = 0, t_bits_sum = 0; // for the mean in ulps and in bits (Herbie)
     TimeHistogram ns;
     // Certified results: classifications the solver called uncertain (not counted as
@@ -178,6 +186,12 @@ struct Report {
     // Solvers from outside linequad, by name: what they answer and how a case is handed over.
     struct External {
         std::string answers, parametrisation, surface, mapping, plugin;
+        std::string inside, contact;    // its conventions (empty: none)
+        bool batch = false;             // a plugin's batch entry answered it
+        std::string load_environment;   // how loading the plugin changed the environment
+        std::string output;             // the first lines it wrote on stdout or stderr
+        std::uint64_t output_bytes = 0; // how much it wrote in all
+        std::uint64_t restarts = 0;     // workers started again after a crash, exit or hang
     };
     std::map<std::string, External> external;
     Status status = Status::complete;
@@ -208,16 +222,15 @@ struct Report {
 // the difference; empty when it can.
 std::string unmergeable(const Report& a, const Report& b);
 
-// What a solver's answers carry, and so are graded on: hit points, tangent-or-cross kinds, the
-// part of each hit (a solver from outside linequad may report none of them).
-struct Grading {
-    bool points = true, kinds = true, parts = true;
-};
+// What a solver's answers carry, and so are graded on (linequad/case_io.hpp).
+using Grading = Carries;
 
 // Grades one solver result against the oracle's for one case, into a row and a curve point,
 // in ulps of the case's precision (the oracle's answer rounded to it).
+// `reference` names the reference in the row's worst cases (see Worst).
 void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
-           Row& row, CurvePoint* curve, const Grading& what = {});
+           Row& row, CurvePoint* curve, const Grading& what = {},
+           std::string_view reference = "exact");
 
 // The audit's name for stable's batch path (many lines against one shape): not a Solver, since
 // it takes lines in arrays. Graded like stable, whose results it equals bit for bit.
@@ -299,9 +312,11 @@ bool from_json(std::string_view text, Report* r, std::string* why);
 bool read_json(const std::string& path, Report* r, std::string* why); // why names the file too
 void write_json(const Report& r, const std::string& path);            // atomic; throws
 std::string markdown(const Report& r);
-// gnuplot: SVG and PNG beside the report. Returns false (and says why on stderr) if it could
-// not plot; throws if it cannot write its files.
+// The figures beside the report, as SVG: pareto.svg, difficulty_<family>.svg (the family's name
+// made a file name: difficulty_figure) and distance.svg. Returns whether it drew; throws if it
+// cannot write its files.
 bool write_plots(const Report& r, const std::string& dir);
+std::string difficulty_figure(const std::string& family);
 
 // An output directory held by one run: locked (a second run into it is refused, naming the
 // lock), marked as in progress before anything is computed, and saved atomically: report.json,

@@ -3,10 +3,18 @@
  *     int linequad_audit_plugin(int abi, const lq_solver** solvers);
  *
  * is audited with `linequad audit --plugin libmine.so --solvers mine,...` without rebuilding
- * linequad. It is called once with LQ_ABI; it sets *solvers to an array of solvers that lives
- * as long as the library is loaded and returns their number, or returns -1 when it does not
- * speak this ABI. Plain C, so that any language with a C FFI can be audited; the doubles are
- * exactly those of the case (a binary32 solver gets floats held in doubles). */
+ * linequad. It is called with LQ_ABI (2) and, if it returns -1, with 1 (the first ABI, whose
+ * solvers end at `self`: lq_solver_v1); it sets *solvers to an array of solvers that lives as
+ * long as the library is loaded and returns their number, or returns -1 when it does not speak
+ * that ABI. Plain C, so that any language with a C FFI can be audited; the doubles are exactly
+ * those of the posed case (a binary32 solver gets floats held in doubles).
+ *
+ * The library runs in a worker process of its own (`linequad plugin-worker`), never in the
+ * process that holds the exact reference and the report: a crash, an exit, an uncaught C++
+ * exception, a call that does not return within --solver-timeout, output on stdout or stderr,
+ * or a changed floating-point environment is counted against the case (or reported beside it)
+ * and the run goes on. Before every call the environment is put back to the one the library
+ * had once loaded. */
 #ifndef LINEQUAD_AUDIT_PLUGIN_H
 #define LINEQUAD_AUDIT_PLUGIN_H
 
@@ -14,7 +22,7 @@
 extern "C" {
 #endif
 
-#define LQ_ABI 1
+#define LQ_ABI 2
 
 /* Shapes, as in linequad/shapes.hpp. */
 enum lq_shape_kind {
@@ -45,7 +53,8 @@ enum lq_status {
     LQ_HITS = 0,          /* count hits (0 to 4), in order of t */
     LQ_ON_SURFACE = 1,    /* the line lies on the surface for s0 <= t <= s1 */
     LQ_REFUSED = 2,       /* the input is refused; error names why */
-    LQ_UNREPRESENTED = 3, /* the library cannot represent this case: not graded, counted */
+    LQ_UNREPRESENTED = 3, /* the library cannot represent this case: not graded, counted (by the
+                             reason in error, if it gives one) */
 };
 typedef struct {
     int status, count;
@@ -54,18 +63,39 @@ typedef struct {
     int surface_part;
     /* For LQ_REFUSED: a linequad error code name ("zero_direction", "bad_radius", ...; see
      * linequad::code_name) if one fits, else the library's own words (graded as a refusal the
-     * oracle does not make). */
+     * oracle does not make). For LQ_UNREPRESENTED: why, if the library says (counted by it). */
     char error[64];
 } lq_answer;
 
-enum lq_answers { LQ_ALL = 0, LQ_NEAREST = 1, LQ_FIRST_ENTRY = 2 };
+/* What a solver answers of a line and a shape. */
+enum lq_answers {
+    LQ_ALL = 0,         /* every hit in the range, in order of t */
+    LQ_NEAREST = 1,     /* the hit with the smallest t in the range */
+    LQ_FIRST_ENTRY = 2, /* the first hit where the line enters the closed solid (a physics ray
+                           test: a solid the line starts in is ignored until it is left) */
+    LQ_FIRST_EXIT = 3   /* ABI 2: the first point where the line leaves the closed solid
+                           (Geant4's DistanceToOut); asked only of lines that start inside it */
+};
 enum lq_parametrisation { LQ_LINE = 0, LQ_UNIT_DIRECTION = 1, LQ_SEGMENT = 2 };
 enum lq_surface { LQ_AS_POSED = 0, LQ_CLOSED = 1, LQ_INFINITE = 2 };
 enum lq_carries { LQ_POINTS = 1, LQ_KINDS = 2, LQ_PARTS = 4 };
+/* ABI 2: what a nearest or first-entry solver answers when the range starts inside the closed
+ * solid. */
+enum lq_inside {
+    LQ_INSIDE_AS_ANSWERS = 0, /* nothing special: the nearest hit, or the first entry */
+    LQ_INSIDE_NO_HIT = 1,     /* no hit when the start is strictly inside */
+    LQ_INSIDE_T0 = 2,         /* a hit at the range's start t0 (Geometric Tools' Ray3 queries) */
+    LQ_INSIDE_ZERO = 3        /* a hit at t = 0 (Jolt's fraction 0, PhysX's initial overlap) */
+};
+/* ABI 2: how a line lying on the surface over an interval is answered. */
+enum lq_contact {
+    LQ_CONTACT_INTERVAL = 0,   /* LQ_ON_SURFACE with the interval */
+    LQ_CONTACT_FIRST_POINT = 1 /* one hit at the interval's first point in the range */
+};
 
 typedef struct {
-    const char* name;
-    int precision; /* 64: binary64, 32: binary32 */
+    const char* name; /* letters, digits and _ . + - (at most 64): it names files and rows */
+    int precision;    /* 64: binary64, 32: binary32 */
     int answers, parametrisation, surface;
     int carries;         /* lq_carries, or-ed */
     unsigned shapes;     /* bit k set: takes shape kind k */
@@ -73,7 +103,28 @@ typedef struct {
     /* Fills *out; returns 0, or nonzero when it could not answer at all (graded as a refusal). */
     int (*solve)(void* self, const lq_shape* shape, const lq_line* line, lq_answer* out);
     void* self;
+    /* ABI 2 from here. */
+    int inside;  /* lq_inside */
+    int contact; /* lq_contact */
+    /* Optional (NULL: none): n cases in one call, as a packet or SIMD solver takes them; fills
+     * out[0..n). Returns 0, or nonzero when it could not answer (the cases are then asked one at
+     * a time through solve, as they are when this call crashes or times out). */
+    int (*solve_batch)(void* self, int n, const lq_shape* shapes, const lq_line* lines,
+                       lq_answer* out);
 } lq_solver;
+
+/* The solvers of ABI 1: lq_solver without the fields of ABI 2 (what a plugin built against the
+ * first header returns when asked for ABI 1). */
+typedef struct {
+    const char* name;
+    int precision;
+    int answers, parametrisation, surface;
+    int carries;
+    unsigned shapes;
+    const char* mapping;
+    int (*solve)(void* self, const lq_shape* shape, const lq_line* line, lq_answer* out);
+    void* self;
+} lq_solver_v1;
 
 typedef int (*lq_plugin_entry)(int abi, const lq_solver** solvers);
 

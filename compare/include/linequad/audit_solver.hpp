@@ -18,6 +18,7 @@
 #include "linequad/audit.hpp"
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,16 @@ enum class Answers : std::uint8_t {
     nearest,     // the hit with the smallest t in the range, or none (a ray caster's closest hit)
     first_entry, // the first hit where the line is outside the closed solid just before it (a
                  // physics ray test: a solid the line starts in is ignored until it is left)
+    first_exit,  // the first crossing where the line leaves the closed solid (Geant4's and
+                 // VecGeom's DistanceToOut); asked only of lines that start inside the solid
+};
+
+// What a nearest or first-entry solver answers when its range starts inside the closed solid.
+enum class StartInside : std::uint8_t {
+    as_answers, // nothing special: the nearest hit, or the first entry, as Answers says
+    no_hit,     // no hit when the start is strictly inside the solid
+    at_t0,      // one hit at the range's start t0 (Geometric Tools' Ray3 queries)
+    at_zero,    // one hit at t = 0 (Jolt's fraction 0, PhysX's initial overlap)
 };
 
 // How the solver is handed the line, and what its t means.
@@ -52,40 +63,72 @@ enum class Surface : std::uint8_t {
 const char* answers_name(Answers a);
 const char* parametrisation_name(Parametrisation p);
 const char* surface_name(Surface s);
+const char* start_inside_name(StartInside s);
 
 template <class S>
 using ShapeCallable = std::function<std::optional<Result>(const S&, const Line&)>;
+
+// One answer of a solver from outside, with what the audit notes beside it. The texts are
+// stable strings (interned), so that an answer copies as plain data: the audit handles millions.
+struct ExternalAnswer {
+    std::optional<Result> result;   // nullopt: the library cannot represent the case (not graded)
+    const char* unrepresented = ""; // why not, in the library's words, if it says
+    const char* environment = "";   // how the call left the floating-point environment, if changed
+};
+
+class PluginWorker; // a plugin's solvers in a worker process (plugin_worker.hpp)
 
 // A solver from outside linequad. Each callable gets the posed case and returns the solver's
 // answer as a linequad::Result (hits in order of t), or nullopt where the library cannot represent
 // the case (counted as unrepresented, never graded); an empty callable: the library has no such
 // shape. Refusals are Result::failure with the ErrorCode that fits (a library's own error that
-// fits none is graded as a refusal the oracle does not make: ErrorCode::out_of_range).
+// fits none is graded as a refusal the oracle does not make: ErrorCode::foreign).
+//
+// Its callables run in linequad's process, for speed; the floating-point environment is checked
+// after every call and put back (a solver that changes it is reported as such). A plugin's
+// solvers (load_plugin) run in a worker process instead.
 struct ExternalSolver {
     std::string name;
     Precision precision = Precision::binary64; // binary32: posed float cases, graded in floats
     Answers answers = Answers::all;
     Parametrisation parametrisation = Parametrisation::line;
     Surface surface = Surface::as_posed;
+    // Conventions the library keeps (graded as it means them, not as inaccuracy): what it answers
+    // when the range starts inside the solid, and whether a line lying on the surface is answered
+    // by one hit at the contact interval's first point in the range.
+    StartInside inside = StartInside::as_answers;
+    bool contact_as_point = false;
     // What its answers carry: hit points, tangent-or-cross kinds, the part (lateral or a disc)
     // of each hit. What it does not carry is not graded.
     bool points = true, kinds = true, parts = true;
     std::string mapping; // for the report: how a case is handed over, what cannot be represented
-    std::string plugin;  // the shared library it came from, if any (for replay commands)
+    std::string plugin;  // the shared library it came from (an absolute path), if any
     ShapeCallable<Cylinder> cylinder;
     ShapeCallable<EllipticCylinder> elliptic_cylinder;
     ShapeCallable<EllipticCone> elliptic_cone;
     ShapeCallable<Frustum> frustum;
+    // A plugin's solver: its worker process and its index there; the callables are then empty.
+    std::shared_ptr<PluginWorker> worker;
+    int worker_index = -1;
+    unsigned worker_shapes = 0; // bit k: takes the shape of index k in linequad::Shape
 
-    // Whether it has a callable for this shape.
+    // Whether it takes this shape.
     bool takes(const Shape& s) const;
-    // Calls the shape's callable; nullopt when there is none or the case cannot be represented.
-    // A crash or abort inside the callable (a signal) is caught: the answer is then a failure
-    // named "crashed", counted apart.
-    std::optional<Result> operator()(const Shape& s, const Line& l) const;
+    // One posed case: the answer and what was noted of the call. A crash or abort inside an
+    // in-process callable (a signal) is caught: the answer is then a failure named "crashed".
+    ExternalAnswer answer(const Shape& s, const Line& l) const;
+    // Many posed cases, in order (a plugin's in one round trip to its worker, timed there).
+    // Returns false when a stop request ended it: the answers are then incomplete. *ns: the time
+    // of the calls alone, in ns.
+    bool answer_all(const std::vector<Case>& posed, std::vector<ExternalAnswer>& out,
+                    double* ns) const;
+    // The answer alone (nullopt where the case cannot be represented).
+    std::optional<Result> operator()(const Shape& s, const Line& l) const {
+        return answer(s, l).result;
+    }
 };
 
-// While one lives, a crash or abort inside an external solver's call is caught (signal
+// While one lives, a crash or abort inside an in-process external solver's call is caught (signal
 // handlers for SIGSEGV, SIGBUS, SIGFPE, SIGILL and SIGABRT, the previous ones restored after).
 // Every call holds one; a caller making many calls holds one across them, so that the handlers
 // are installed once rather than per call (which would weigh on the timings).
@@ -98,19 +141,60 @@ class CrashGuard {
 };
 
 // The case as this solver sees it (see Surface and Parametrisation); nullopt when it cannot be
-// posed (a segment solver given an unbounded range, a closed solid asked of an infinite shape).
-std::optional<Case> posed_for(const ExternalSolver& s, const Case& c);
+// posed (a segment solver given an unbounded range, a closed solid asked of an infinite shape),
+// with *why saying so.
+std::optional<Case> posed_for(const ExternalSolver& s, const Case& c, std::string* why = nullptr);
 
-// The exact reference for what the solver answers on a posed case: every hit, the nearest, or
-// the first entry into the solid.
+// The exact reference for what a solver answers on a posed case, under its declared answers and
+// conventions: every hit, the nearest, the first entry into the solid or the first exit from it,
+// a hit at the start of a range that starts inside, a contact interval as its first point.
+struct Reference {
+    Result result;
+    std::string unrepresented; // the case is not asked of such a solver: why (not graded)
+    // A hit the conventions make (a start inside, a contact's first point) has no kind, and no
+    // part or (for a contact) no point to grade: what of the solver's answer is graded.
+    bool kinds = true, parts = true, points = true;
+};
+Reference reference_for(const ExternalSolver& s, const Case& posed);
+// How the reference names itself in a report's worst cases and a replay: "exact" where it is the
+// oracle's answer to the posed case, else what it is ("exact, nearest hit, start inside: a hit
+// at 0", ...).
+std::string reference_label(const ExternalSolver& s);
+// The reference without conventions (kept for callers of the first API).
 Result reference_for(Answers a, const Case& posed);
+
+// What a solver from outside cannot be handed: a value that is not a float, for a binary32
+// solver (not_binary32, naming it); none otherwise.
+Error input_problem(const ExternalSolver& s, const Case& posed);
+
+// A graded case replayed: the two lines a report's worst case shows for it, the solver's answer
+// as graded and the reference its grade used, for linequad's solver `own`, its batch path (name
+// batch_name), or a solver from outside `theirs`, on the case as that solver saw it (not posed
+// again).
+std::vector<std::string> replay_lines(const std::string& name, const Solver* own,
+                                      const ExternalSolver* theirs, const Case& c);
 
 // Runs a campaign (or grades a cases file) with these solvers beside linequad's own: each one
 // named in o.solvers (an empty o.solvers: linequad's own and all of these).
 Report run(const Options& o, const std::vector<ExternalSolver>& external);
 
-// Loads the solvers of a plugin (a shared library with the C ABI of linequad/audit_plugin.h);
-// throws std::runtime_error naming the file and what is wrong.
-std::vector<ExternalSolver> load_plugin(const std::string& path);
+// Where a plugin's worker process comes from, and how long a call may take.
+struct PluginOptions {
+    // The linequad program, which runs the worker (`linequad plugin-worker LIB`). Empty: the
+    // LINEQUAD_PROGRAM environment variable, else this program when it is linequad, else the
+    // installed linequad.
+    std::string program;
+    double timeout_seconds = 5; // per call (a batch entry's call included)
+};
+
+// Loads the solvers of a plugin (a shared library with the C ABI of linequad/audit_plugin.h) in a
+// worker process; throws std::runtime_error naming the file and what is wrong (it does not load,
+// exports no entry, speaks no ABI linequad knows, declares a solver badly, ...).
+std::vector<ExternalSolver> load_plugin(const std::string& path, const PluginOptions& o = {});
+
+// The worker's side: loads the plugin and answers requests on descriptors 3 (requests), 4
+// (replies) and 5 (shared memory) until its parent goes away. What `linequad plugin-worker LIB`
+// runs; returns the process's exit status.
+int plugin_worker_main(const std::string& path);
 
 } // namespace linequad::audit

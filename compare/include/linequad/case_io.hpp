@@ -39,10 +39,21 @@ std::string hex(double x); // "0x1.8p+1", "-0x0p+0", "inf", "nan"
 bool parse_case(std::string_view line, Case* c, std::string* why);
 std::string format_case(const Case& c);
 
-// A result line: {"id", "solver", "hits": [{"t", "kind", "p"}], "on_surface": null|[t0, t1]}
-// or {"id", "solver", "error", "code"}. An unbounded end of on_surface is null.
+// What a solver's answers carry, and so what is written and graded of them: hit points,
+// tangent-or-cross kinds, the part of each hit (a solver from outside linequad may give none).
+struct Carries {
+    bool points = true, kinds = true, parts = true;
+};
+
+// A result line: {"id", "solver", "hits": [{"t", "kind", "part", "p"}], "on_surface":
+// null|[t0, t1]} or {"id", "solver", "error", "code"}. An unbounded end of on_surface is null.
+// A hit's kind, part and point are written where the answer carries them.
 std::string format_result(const std::string& id, std::string_view solver, const Result& r,
-                          bool points = true);
+                          Carries carries);
+inline std::string format_result(const std::string& id, std::string_view solver, const Result& r,
+                                 bool points = true) {
+    return format_result(id, solver, r, Carries{points, true, true});
+}
 std::string format_failure(const std::string& id, std::string_view solver, std::string_view code,
                            std::string_view message);
 
@@ -55,7 +66,8 @@ struct ParsedResult {
     bool has_id = false;    // set once the id is read, even if the rest is malformed
     Result result;
     bool has_points = false;
-    std::string error_code, error_message; // set when the line reports an error
+    bool has_kinds = false, has_parts = false; // some hit (or the interval) names them
+    std::string error_code, error_message;     // set when the line reports an error
 };
 bool parse_result(std::string_view line, ParsedResult* r, std::string* why);
 

@@ -28,9 +28,13 @@ enum class Family {
     inside_start, // from a point inside the solid, on its surface, or 2^-k outside it
     two_nappes,   // cone, two nappes (closed or not): across the apex, 2^-k from it, and lines
                   // through both solids (four hits)
+    // Every shape again:
+    far_origin, // the line's origin 2^k shape sizes from the shape (k = 10..40; 10..24 in float),
+                // aimed through it, near tangency or just past it; the shape at the world origin
+                // or itself far out (what a renderer's or a physics engine's long rays meet)
 };
 
-constexpr int family_count = 13;
+constexpr int family_count = 14;
 
 // The frames shapes are built on: any (the elliptic shapes' frames oblique and sheared), circular
 // (a, b orthogonal to the axis and of one length: a circular cross-section) or axis (circular,

@@ -4,6 +4,7 @@
 #include "linequad/scene.hpp"
 
 #include "linequad/solvers.hpp"
+#include "numeric/fp_environment.hpp"
 #include "scene/bounds.hpp"
 #include "scene/exact_order.hpp"
 #include "shapes/traits.hpp"
@@ -677,6 +678,7 @@ void refine_ties(const std::vector<PreparedShape>& shapes, const Line& line, boo
 } // namespace
 
 void Scene::intersect(const Line& line, Query query, SceneAnswer& out) const {
+    numeric::StandardEnvironment standard;
     const Impl& m = *impl_;
     out.hits.clear();
     out.error = {}, out.error_shape = no_shape, out.shapes_solved = 0, out.exact_comparisons = 0;

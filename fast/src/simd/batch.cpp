@@ -187,16 +187,19 @@ void correct_batch(const S& shape, const LineArrays& lines, Query q, Result* out
 template <class S, if_solvable<S>>
 void correct::intersect(const S& shape, const LineArrays& lines, Query q, Result* out,
                         Lanes lanes) {
+    numeric::StandardEnvironment standard;
     correct_batch(shape, lines, q, out, lanes);
 }
 
 template <class S, if_solvable<S>>
 void stable::intersect(const S& shape, const LineArrays& lines, Query q, Result* out, Lanes lanes) {
+    numeric::StandardEnvironment standard;
     solve_batch(shape, lines, q, out, lanes);
 }
 template <class S, if_solvable<S>>
 void stable32::intersect(const S& shape, const LineArrays32& lines, Query q, Result* out,
                          Lanes lanes) {
+    numeric::StandardEnvironment standard;
     solve_batch(shape, lines, q, out, lanes);
 }
 

@@ -2,6 +2,7 @@
 // a prepared shape (both instantiated for every shape) and the variant.
 #pragma once
 
+#include "numeric/fp_environment.hpp"
 #include "shapes/all.hpp"
 
 #include "linequad/solvers.hpp"
@@ -14,6 +15,7 @@
     namespace linequad::ns {                                                                       \
     template <class S, if_solvable<S>>                                                             \
     Result intersect(const S& shape, const Line& line, Query query) {                              \
+        numeric::StandardEnvironment standard;                                                     \
         return detail::Solver::solve(detail::source(shape), line, query);                          \
     }                                                                                              \
     Result intersect(const Shape& shape, const Line& line, Query query) {                          \

@@ -10,6 +10,7 @@
 
 #include "numeric/big_float.hpp"
 #include "numeric/bounded_dd.hpp"
+#include "numeric/fp_environment.hpp"
 #include "shapes/all.hpp"
 
 #include <cmath>
@@ -253,6 +254,7 @@ Vec3 outward_normal(const detail::AsPrepared<S>& src, const Hit& hit) {
 
 template <class S>
 Vec3 normal(const Prepared<S>& shape, const Hit& hit) {
+    numeric::StandardEnvironment standard;
     return outward_normal(detail::AsPrepared<S>(shape), hit);
 }
 
@@ -262,6 +264,7 @@ Vec3 normal(const Shape& shape, const Hit& hit) {
 
 template <class S>
 SpawnedRay spawn_ray(const Prepared<S>& shape, const Hit& hit, Vec3 direction) {
+    numeric::StandardEnvironment standard;
     return spawn(detail::AsPrepared<S>(shape), hit, direction);
 }
 
