@@ -326,6 +326,29 @@ TEST_CASE("worker: a library that answers as it declares grades with no mismatch
     CHECK(r.external.at("contact_point").contact == "first point");
 }
 
+TEST_CASE("worker: a packet solver is audited through its batch entry", "[worker][cli]") {
+    fs::path dir = scratch("worker_packet");
+    Ran ran = program(std::string("audit --plugin '") + LINEQUAD_CONVENTIONS_PLUGIN +
+                          "' --solvers correct,packet,packet_crashes --families "
+                          "generic,near_tangent,rim --cases 100 --no-plots --out out",
+                      dir);
+    REQUIRE(ran.status == 0);
+    audit::Report r = read_report(dir / "out");
+    CHECK(r.external.at("packet").batch);
+    CHECK(r.external.at("packet").batch_fallbacks == 0);
+    // Its packets crash: each is asked again one case at a time, and no case is charged.
+    CHECK(r.external.at("packet_crashes").batch_fallbacks > 0);
+    CHECK(r.external.at("packet_crashes").restarts == 0);
+    for (const char* s : {"packet", "packet_crashes"}) {
+        INFO(s);
+        audit::Row t = r.total(s);
+        CHECK(t.cases == r.total("correct").cases);
+        CHECK(t.cases_mismatched == 0);
+        CHECK(t.t_max == 0);
+        CHECK(t.foreign.empty());
+    }
+}
+
 TEST_CASE("worker: the first plugin ABI still loads, and a badly named solver is refused by name",
           "[worker][cli]") {
     fs::path dir = scratch("worker_abi");

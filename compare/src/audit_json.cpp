@@ -372,6 +372,7 @@ void read_report(const Json& root, Report* r) {
                 e.output_bytes = x.at("output_bytes").count();
             }
             if (x.find("restarts")) e.restarts = x.at("restarts").count();
+            if (x.find("batch_fallbacks")) e.batch_fallbacks = x.at("batch_fallbacks").count();
             if (r->external.count(name)) x.at("solver").fail("'" + name + "' appears twice");
             r->external[name] = e;
         }
@@ -492,6 +493,7 @@ std::string to_json(const Report& r) {
             if (!e.load_environment.empty()) x["load_environment"] = e.load_environment;
             if (e.output_bytes) x["output"] = e.output, x["output_bytes"] = e.output_bytes;
             if (e.restarts) x["restarts"] = e.restarts;
+            if (e.batch_fallbacks) x["batch_fallbacks"] = e.batch_fallbacks;
             ex.push_back(x);
         }
         head["external"] = ex;

@@ -225,6 +225,10 @@ void write_external(std::ostream& md, const Report& r) {
             md << "- " << markdown_text(name) << ": " << e.restarts
                << " of its calls crashed, exited or timed out, ending its worker process, which "
                   "was started again for the next call.\n";
+        if (e.batch_fallbacks)
+            md << "- " << markdown_text(name) << ": " << e.batch_fallbacks
+               << " calls of its batch entry failed (declined, crashed, exited or timed out); "
+                  "their cases were asked again one at a time.\n";
         if (e.output_bytes) {
             md << "- " << markdown_text(name) << " wrote " << e.output_bytes
                << " bytes on its standard output and error (kept apart from linequad's); its "

@@ -231,6 +231,7 @@ void note_worker(Report::External& x, const ExternalSolver& e) {
     x.output = e.worker->output(e.worker_index);
     x.output_bytes = e.worker->output_bytes(e.worker_index);
     x.restarts = std::uint64_t(e.worker->restarts(e.worker_index));
+    x.batch_fallbacks = std::uint64_t(e.worker->batch_fallbacks(e.worker_index));
 }
 
 bool batch_wanted(const Options& o) {

@@ -500,10 +500,11 @@ struct PluginWorker::Impl {
     std::string solvers_text; // the hello's solvers, to check a restarted worker against
     std::string load_environment;
     FpState loaded{};
-    std::vector<Written> written; // per solver
-    int writing = -1;             // the solver whose request is in flight (-1: loading)
-    std::string broken;           // why no worker can be started any more
-    std::vector<int> restarts;    // per solver: workers it ended (a crash, an exit, a hang)
+    std::vector<Written> written;     // per solver
+    int writing = -1;                 // the solver whose request is in flight (-1: loading)
+    std::string broken;               // why no worker can be started any more
+    std::vector<int> restarts;        // per solver: workers it ended (a crash, an exit, a hang)
+    std::vector<int> batch_fallbacks; // per solver: packets asked again one case at a time
 
     pid_t pid = -1;
     // One socket both ways (requests, replies; a send never raises SIGPIPE), and the pipe of the
@@ -762,6 +763,7 @@ struct PluginWorker::Impl {
             }
             written.assign(solvers.size(), load_output);
             restarts.assign(solvers.size(), 0);
+            batch_fallbacks.assign(solvers.size(), 0);
         } catch (const jsonl::Json::exception& e) {
             return std::string("the worker's hello is malformed: ") + e.what();
         }
@@ -942,6 +944,7 @@ struct PluginWorker::Impl {
                 }
                 flight[0] = flight[1], --in_flight;
                 if (w.reply.status == batch_declined) {
+                    ++batch_fallbacks[std::size_t(s)];
                     batch = false; // asked again one case at a time
                     next = cursor;
                     continue;
@@ -957,6 +960,7 @@ struct PluginWorker::Impl {
             // not answer is charged with how it ended.
             stop_worker();
             if (batch) {
+                ++batch_fallbacks[std::size_t(s)];
                 batch = false;
                 continue;
             }
@@ -1021,6 +1025,9 @@ std::uint64_t PluginWorker::output_bytes(int s) const {
 }
 int PluginWorker::restarts(int s) const {
     return impl_->restarts.at(std::size_t(s));
+}
+int PluginWorker::batch_fallbacks(int s) const {
+    return impl_->batch_fallbacks.at(std::size_t(s));
 }
 
 } // namespace linequad::audit

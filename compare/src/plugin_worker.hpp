@@ -65,6 +65,9 @@ class PluginWorker {
     // How many times solver s's calls crashed, exited or timed out, ending the worker (which was
     // started again for the next call).
     int restarts(int s) const;
+    // How many of solver s's packets (its batch entry's calls) failed (declined, crashed, exited
+    // or timed out) and were asked again one case at a time: no case of them is charged for it.
+    int batch_fallbacks(int s) const;
 
   private:
     struct Impl;

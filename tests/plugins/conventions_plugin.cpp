@@ -111,7 +111,14 @@ Result first_crossing(const Shape& s, const Line& l, bool entry) {
     return out;
 }
 
-enum Kind { nearest_at_zero, first_entry_no_hit, nearest_at_t0, first_exit, contact_point };
+enum Kind {
+    nearest_at_zero,
+    first_entry_no_hit,
+    nearest_at_t0,
+    first_exit,
+    contact_point,
+    every_hit
+};
 
 template <Kind K>
 int solve(void*, const lq_shape* cs, const lq_line* cl, lq_answer* out) {
@@ -139,6 +146,9 @@ int solve(void*, const lq_shape* cs, const lq_line* cl, lq_answer* out) {
     case first_exit:
         put(first_crossing(s, l, false), out);
         return 0;
+    case every_hit:
+        put(correct::intersect(s, l, {Need::all, true}), out);
+        return 0;
     case contact_point: {
         Result all = correct::intersect(s, l, {Need::all, true});
         if (!all.on_surface) return put(all, out), 0;
@@ -150,6 +160,17 @@ int solve(void*, const lq_shape* cs, const lq_line* cl, lq_answer* out) {
     }
     }
     return 1;
+}
+
+// A packet solver's entry: n cases in one call (here, each in turn), as Embree's rtcIntersect4/8/16
+// or a renderer's ray packets take them. `crashes`: a packet of more than one case faults, while
+// one case at a time answers (the audit asks again so, and charges no case).
+template <bool crashes>
+int solve_packet(void* self, int n, const lq_shape* shapes, const lq_line* lines, lq_answer* out) {
+    if (crashes && n > 1) *static_cast<volatile int*>(nullptr) = 1;
+    for (int i = 0; i < n; ++i)
+        solve<every_hit>(self, &shapes[i], &lines[i], &out[i]);
+    return 0;
 }
 
 constexpr unsigned every_shape = 15u;
@@ -171,6 +192,11 @@ const lq_solver solvers[] = {
     {"contact_point", 64, LQ_ALL, LQ_LINE, LQ_AS_POSED, everything, every_shape,
      "a contact as its first point", solve<contact_point>, nullptr, LQ_INSIDE_AS_ANSWERS,
      LQ_CONTACT_FIRST_POINT, nullptr},
+    {"packet", 64, LQ_ALL, LQ_LINE, LQ_AS_POSED, everything, every_shape, "a packet entry",
+     solve<every_hit>, nullptr, LQ_INSIDE_AS_ANSWERS, LQ_CONTACT_INTERVAL, solve_packet<false>},
+    {"packet_crashes", 64, LQ_ALL, LQ_LINE, LQ_AS_POSED, everything, every_shape,
+     "a packet entry that faults", solve<every_hit>, nullptr, LQ_INSIDE_AS_ANSWERS,
+     LQ_CONTACT_INTERVAL, solve_packet<true>},
 };
 
 } // namespace
