@@ -56,6 +56,31 @@ if LINEQUAD="$work/flaky" bash "$source_dir/scripts/campaign.sh" "$work/c" 4 --c
 fi
 grep -q "holds another campaign" "$work/other.log" || fail "the refusal did not say why"
 
+# A directory named to break things: a leading dash, braces (GNU parallel's replacement string),
+# quotes, a command substitution. Everything lands inside it, nothing runs.
+odd="-{} it's \"odd\" \$(touch PWNED)"
+(cd "$work" && LINEQUAD="$linequad" JOBS=2 bash "$source_dir/scripts/campaign.sh" "$odd" 2 \
+  "${options[@]}" >odd.log 2>&1) || fail "a campaign into '$odd' failed: $(cat "$work/odd.log")"
+for f in shard_0/report.json shard_1/report.json merged/report.json merged/report.html; do
+  [ -f "$work/$odd/$f" ] || fail "'$odd/$f' was not written"
+done
+[ ! -e "$work/PWNED" ] && [ ! -e PWNED ] || fail "a directory's name ran a command"
+[ "$(find "$work" -maxdepth 1 -name 'shard_*' | wc -l)" = 0 ] || fail "a shard was written outside its directory"
+
+# Two campaigns at once on one directory: the second is refused while the first runs.
+printf '#!/usr/bin/env bash\nsleep 3\nexec %q "$@"\n' "$linequad" >"$work/slow"
+chmod +x "$work/slow"
+LINEQUAD="$work/slow" JOBS=1 bash "$source_dir/scripts/campaign.sh" "$work/busy" 2 "${options[@]}" \
+  >"$work/busy1.log" 2>&1 &
+first=$!
+sleep 1
+if LINEQUAD="$linequad" bash "$source_dir/scripts/campaign.sh" "$work/busy" 2 "${options[@]}" \
+  >"$work/busy2.log" 2>&1; then
+  fail "a second campaign ran in a directory while the first was running"
+fi
+grep -q "another campaign is running" "$work/busy2.log" || fail "the refusal did not say why: $(cat "$work/busy2.log")"
+wait "$first" || fail "the first campaign failed: $(cat "$work/busy1.log")"
+
 # The merged campaign grades as the unsharded run.
 "$linequad" audit "${options[@]}" --out "$work/whole" >/dev/null 2>&1
 same() {
@@ -105,4 +130,4 @@ LINEQUAD="$linequad" bash "$source_dir/scripts/campaign.sh" --merge "$work/k8s" 
   fail "shards missing after every pod ran"
 
 echo "PASS: retried shard 1, resumed shard 2 alone, merged = unsharded; Slurm and Kubernetes" \
-  "shards merged"
+  "shards merged; an odd directory name stayed data; a second campaign at once was refused"

@@ -129,7 +129,7 @@ TEST_CASE("audit: the report is the same for any number of threads (timings asid
     o.threads = 1;
     audit::Report one = audit::run(o);
     auto without_timings = [](audit::Report r) {
-        r.seconds = 0, r.date.clear();
+        r.seconds = 0, r.date.clear(), r.run.clear();
         for (auto& [key, row] : r.rows)
             row.ns = {};
         return audit::to_json(r);

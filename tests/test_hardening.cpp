@@ -121,7 +121,7 @@ TEST_CASE("report: JSON round trip is exact and report.md is rendered from it", 
     fs::path dir = scratch("report_pair");
     {
         audit::OutputDirectory out(dir.string());
-        out.save(r);
+        out.finish(r, false);
     }
     REQUIRE(audit::read_json((dir / "report.json").string(), &back, &why));
     CHECK(slurp(dir / "report.md") == audit::markdown(back));

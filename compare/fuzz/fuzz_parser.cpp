@@ -4,10 +4,12 @@
 // - a case: parse -> format -> parse gives the same case, bit for bit (the formatted text of
 //   every double is exact, so equal text is equal bits); a scene's record (header, shape, line)
 //   likewise, and of the same kind;
-// - a result line and a report: format(parse(x)) is a fixed point of format(parse(.)).
+// - a result line and a report: format(parse(x)) is a fixed point of format(parse(.));
+// - a scene file (many lines): read, written and read again, it is written the same.
 // A failure aborts with the input and what broke.
 #include "linequad/audit.hpp"
 #include "linequad/case_io.hpp"
+#include "linequad/scene_audit.hpp"
 
 #include "jsonl.hpp"
 
@@ -83,6 +85,23 @@ void report_round_trip(std::string_view text) {
     audit::markdown(b); // renders whatever it holds
 }
 
+// A whole scene file (records a line each): what reads is written back as read, a fixed point.
+void scenes_round_trip(std::string_view text) {
+    std::vector<audit::SceneCase> a, b;
+    try {
+        a = audit::scenes_from_text(text);
+    } catch (const std::runtime_error&) {
+        return; // refused, naming the line: the file is all or nothing
+    }
+    std::string once = audit::format_scenes(a);
+    try {
+        b = audit::scenes_from_text(once);
+    } catch (const std::runtime_error& e) {
+        broken("written scenes do not read", text, e.what());
+    }
+    if (audit::format_scenes(b) != once) broken("scenes are not a fixed point", text, once);
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -92,5 +111,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     record_round_trip(text);
     result_round_trip(text);
     report_round_trip(text);
+    scenes_round_trip(text);
     return 0;
 }

@@ -2,6 +2,7 @@
 // job summary and as JUnit XML for CI test views.
 #include "linequad/audit.hpp"
 
+#include "escape.hpp"
 #include "jsonl.hpp"
 
 #include <cmath>
@@ -117,14 +118,47 @@ bool Diff::worse() const {
     return count(*this, Change::worse) > 0;
 }
 
+namespace {
+
+// How two reports' campaigns differ (their cases then differ), or "".
+std::string campaign_difference(const Report& a, const Report& b) {
+    std::vector<std::string> what;
+    auto differ = [&](bool d, const std::string& name) {
+        if (d) what.push_back(name);
+    };
+    differ(a.seed != b.seed,
+           "seed " + std::to_string(a.seed) + " against " + std::to_string(b.seed));
+    differ(a.cases_per_group != b.cases_per_group, std::to_string(a.cases_per_group) +
+                                                       " cases per group against " +
+                                                       std::to_string(b.cases_per_group));
+    differ(a.families != b.families, "the families");
+    differ(a.shapes != b.shapes, "the shapes");
+    differ(a.ranges != b.ranges, "the ranges");
+    differ(a.frames != b.frames, "the frames (" + a.frames + " against " + b.frames + ")");
+    differ(a.cases_file != b.cases_file || a.cases_count != b.cases_count, "the cases file");
+    differ(a.results_file != b.results_file, "the results graded");
+    std::string out;
+    for (const std::string& w : what)
+        out += (out.empty() ? "" : "; ") + w;
+    return out;
+}
+
+std::string incompleteness(const Report& r, const char* which) {
+    if (r.complete()) return "";
+    return std::string(which) + " is " +
+           (r.status != Status::complete ? status_name(r.status)
+                                         : std::to_string(r.shards_included.size()) + " of " +
+                                               std::to_string(r.shards) + " shards");
+}
+
+} // namespace
+
 Diff diff(const Report& old_report, const Report& new_report, const DiffThresholds& t) {
     Diff d;
-    if (old_report.seed != new_report.seed ||
-        old_report.cases_per_group != new_report.cases_per_group)
-        d.campaigns = "seed " + std::to_string(old_report.seed) + ", " +
-                      std::to_string(old_report.cases_per_group) +
-                      " cases per group against seed " + std::to_string(new_report.seed) + ", " +
-                      std::to_string(new_report.cases_per_group);
+    d.campaigns = campaign_difference(old_report, new_report);
+    for (std::string s : {incompleteness(old_report, "the old report"),
+                          incompleteness(new_report, "the new report")})
+        if (!s.empty()) d.incomplete += (d.incomplete.empty() ? "" : "; ") + s;
     std::map<Pair, Row> old_rows = by_family_and_solver(old_report),
                         new_rows = by_family_and_solver(new_report);
     for (const auto& [pair, o] : old_rows) {
@@ -159,7 +193,17 @@ Diff diff(const Report& old_report, const Report& new_report, const DiffThreshol
 
 std::string diff_markdown(const Diff& d, const std::string& old_name, const std::string& new_name) {
     std::ostringstream md;
-    md << "## linequad diff\n\n`" << old_name << "` → `" << new_name << "`\n\n";
+    using escape::markdown_text;
+    md << "## linequad diff\n\n"
+       << markdown_text(old_name) << " → " << markdown_text(new_name) << "\n\n";
+    // What makes the comparison say less than it seems to, first.
+    if (!d.campaigns.empty())
+        md << "**Not the same campaign** (" << markdown_text(d.campaigns)
+           << "): their cases differ, so a change below may be the cases' and not the "
+              "solvers'.\n\n";
+    if (!d.incomplete.empty())
+        md << "**Incomplete** (" << markdown_text(d.incomplete)
+           << "): a report that did not grade every case of its campaign measures fewer cases.\n\n";
     md << "**" << (d.worse() ? "Worse" : "Not worse") << "**: " << count(d, Change::worse)
        << " measures got worse beyond their thresholds, "
        << count(d, Change::worse_within_threshold) << " within them, " << count(d, Change::better)
@@ -170,8 +214,9 @@ std::string diff_markdown(const Diff& d, const std::string& old_name, const std:
     }
     md << "| family | solver | measure | old | new | verdict |\n|---|---|---|---:|---:|---|\n";
     for (const Change& c : d.changes)
-        md << "| " << c.family << " | " << c.solver << " | " << c.measure << " | " << c.old_value
-           << " | " << c.new_value << " | " << verdict_name(c.verdict) << " |\n";
+        md << "| " << markdown_text(c.family) << " | " << markdown_text(c.solver) << " | "
+           << c.measure << " | " << c.old_value << " | " << c.new_value << " | "
+           << verdict_name(c.verdict) << " |\n";
     return md.str();
 }
 

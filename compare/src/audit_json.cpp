@@ -346,6 +346,7 @@ void read_report(const Json& root, Report* r) {
     r->compiler = top.at("compiler").text(), r->flags = top.at("flags").text();
     r->version = top.at("version").text(), r->commit = top.at("commit").text();
     r->date = top.at("date").text();
+    if (top.find("run")) r->run = top.at("run").text();
     r->seconds = top.at("seconds").real();
     r->seed = top.at("seed").count();
     r->cases_per_group = top.at("cases_per_group").count();
@@ -472,6 +473,7 @@ std::string to_json(const Report& r) {
                         {"solvers", r.solvers},
                         {"shards", r.shards},
                         {"shards_included", r.shards_included}};
+    if (!r.run.empty()) head["run"] = r.run;
     if (r.from_cases_file()) {
         head["cases_file"] = r.cases_file;
         head["cases_count"] = r.cases_count;

@@ -270,6 +270,7 @@ std::string markdown(const Report& r) {
     md << "# linequad accuracy audit\n\n";
     md << "| | |\n|---|---|\n";
     using escape::markdown_text;
+    if (!r.run.empty()) md << "| run | " << markdown_text(r.run) << " |\n";
     md << "| command | " << markdown_text(r.command) << " |\n| commit | " << markdown_text(r.commit)
        << " |\n| date | " << markdown_text(r.date) << " |\n";
     md << "| machine | " << markdown_text(r.machine) << " |\n| compiler | "
@@ -479,15 +480,15 @@ bool write_plots(const Report& r, const std::string& dir) {
 
 namespace {
 
-// Files an earlier run left that would describe another report (report.html is written when
-// the run ends).
-bool earlier_figure(const std::string& name) {
+// Files an earlier run left that would describe another report: report.md and report.html, and
+// the figures (report.json stays: it is the record until this run's replaces it).
+bool earlier_file(const std::string& name) {
     auto ends = [&](const char* e) {
         std::size_t n = std::strlen(e);
         return name.size() >= n && name.compare(name.size() - n, n, e) == 0;
     };
     bool figure = ends(".svg") || ends(".png") || ends(".dat");
-    return name == "plots.gp" || name == "report.html" ||
+    return name == "plots.gp" || name == "report.html" || name == "report.md" ||
            (figure && (name.rfind("pareto.", 0) == 0 || name.rfind("difficulty_", 0) == 0 ||
                        name.rfind("distance.", 0) == 0));
 }
@@ -501,7 +502,7 @@ OutputDirectory::OutputDirectory(const std::string& dir) : dir_(dir) {
     if (ec) throw std::runtime_error("cannot create " + dir + ": " + ec.message());
     if (!fs::is_directory(dir, ec)) throw std::runtime_error(dir + " is not a directory");
     std::string lock = dir + "/.lock";
-    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (lock_fd_ < 0)
         throw std::runtime_error("cannot write " + lock + ": " + std::strerror(errno));
     if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
@@ -516,30 +517,16 @@ OutputDirectory::OutputDirectory(const std::string& dir) : dir_(dir) {
     if (::ftruncate(lock_fd_, 0) != 0 || ::pwrite(lock_fd_, pid.data(), pid.size(), 0) < 0)
         throw std::runtime_error("cannot write " + lock + ": " + std::strerror(errno));
     for (const auto& entry : fs::directory_iterator(dir, ec))
-        if (entry.is_regular_file() && earlier_figure(entry.path().filename().string()))
+        if (earlier_file(entry.path().filename().string())) {
             fs::remove(entry.path(), ec);
+            if (ec)
+                throw std::runtime_error("cannot remove " + entry.path().string() +
+                                         " (an earlier run's): " + ec.message());
+        }
 }
 
 OutputDirectory::~OutputDirectory() {
     if (lock_fd_ >= 0) ::close(lock_fd_); // releases the lock
-}
-
-namespace {
-// report.json, then report.md from what was saved. Returns the report as read back.
-Report save_pair(const Report& r, const std::string& dir) {
-    std::string text = to_json(r);
-    jsonl::write_file(dir + "/report.json", text);
-    Report saved;
-    std::string why;
-    if (!from_json(text, &saved, &why))
-        throw std::logic_error("the report written does not read back: " + why);
-    jsonl::write_file(dir + "/report.md", markdown(saved));
-    return saved;
-}
-} // namespace
-
-void OutputDirectory::save(const Report& r) {
-    save_pair(r, dir_);
 }
 
 void OutputDirectory::checkpoint(const Report& r) {
@@ -547,8 +534,17 @@ void OutputDirectory::checkpoint(const Report& r) {
     jsonl::write_file(dir_ + "/report.md", markdown(r));
 }
 
-void OutputDirectory::save_with_plots(const Report& r) {
-    write_plots(save_pair(r, dir_), dir_);
+void OutputDirectory::finish(const Report& r, bool plots,
+                             const std::function<void(const std::string&)>& also) {
+    std::string text = to_json(r);
+    Report saved;
+    std::string why;
+    if (!from_json(text, &saved, &why))
+        throw std::logic_error("the report written does not read back: " + why);
+    if (plots) write_plots(saved, dir_);
+    jsonl::write_file(dir_ + "/report.md", markdown(saved));
+    if (also) also(dir_);
+    jsonl::write_file(dir_ + "/report.json", text);
 }
 
 } // namespace linequad::audit

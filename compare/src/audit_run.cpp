@@ -25,6 +25,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <random>
 #include <thread>
 #include <unistd.h>
 #include <unordered_map>
@@ -37,6 +38,15 @@ std::atomic<bool> stop_flag{false};
 
 bool stop_requested() {
     return stop_flag.load(std::memory_order_relaxed);
+}
+
+std::string new_run_id() {
+    std::random_device random;
+    std::uint64_t id = (std::uint64_t(random()) << 32) ^ random() ^
+                       std::uint64_t(std::chrono::system_clock::now().time_since_epoch().count());
+    char text[20];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(id));
+    return text;
 }
 
 namespace {
@@ -109,6 +119,7 @@ void fill_provenance(Report& r, const Options& o) {
     std::time_t now = std::time(nullptr);
     std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
     r.date = date;
+    r.run = new_run_id();
     r.seed = o.seed, r.cases_per_group = o.cases_per_group;
     r.shards = o.shards;
     r.shards_included = {o.shard};
@@ -277,7 +288,7 @@ class Saver {
     // Marks the directory as holding a run in progress, before anything is computed.
     void begin(Report& rep) {
         rep.status = Status::running;
-        if (dir_) dir_->save(rep);
+        if (dir_) dir_->checkpoint(rep);
         last_ = std::chrono::steady_clock::now();
     }
     // Saves at most every few seconds: a kill -9 loses no more than that.
@@ -292,11 +303,7 @@ class Saver {
     void end(Report& rep, const Options& o, std::chrono::steady_clock::time_point start) {
         rep.seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (!dir_) return;
-        if (o.plots)
-            dir_->save_with_plots(rep);
-        else
-            dir_->save(rep);
+        if (dir_) dir_->finish(rep, o.plots, o.finish_with);
     }
 
   private:

@@ -257,9 +257,15 @@ bool read_family(Reader& r, std::string* out) {
     return true;
 }
 
-bool parse_case_object(const Json& obj, Case* c, std::string* why) {
+// An id as its text in the line (every digit of a number kept), else as nlohmann reads it.
+std::string id_text(std::string_view line, const char* key, const Json& id) {
+    std::string raw = jsonl::member_text(line, key);
+    return raw.empty() ? jsonl::dump(id) : raw;
+}
+
+bool parse_case_object(const Json& obj, std::string_view line, Case* c, std::string* why) {
     Reader r{obj, why};
-    if (const Json* id = r.find("id")) c->id = jsonl::dump(*id);
+    if (const Json* id = r.find("id")) c->id = id_text(line, "id", *id);
     if (r.find("scene") || r.find("shape_id"))
         return r.fail(r.find("scene") ? "scene" : "shape_id",
                       "a scene's record, where a single case is read (linequad solve and "
@@ -324,7 +330,7 @@ bool parse_case(std::string_view line, Case* c, std::string* why) {
     *c = Case{};
     Json obj;
     if (!parse_object(line, &obj, why)) return false;
-    return parse_case_object(obj, c, why);
+    return parse_case_object(obj, line, c, why);
 }
 
 bool parse_record(std::string_view line, Record* rec, std::string* why) {
@@ -334,21 +340,21 @@ bool parse_record(std::string_view line, Record* rec, std::string* why) {
     Reader r{obj, why};
     if (const Json* id = r.find("scene")) {
         rec->kind = RecordKind::scene;
-        rec->scene.id = jsonl::dump(*id);
+        rec->scene.id = id_text(line, "scene", *id);
         return only_fields(r, obj, {"scene", "family", "k", "note"}, "a scene") &&
                read_family(r, &rec->scene.family) && read_k(r, &rec->scene.k);
     }
     if (const Json* id = r.find("shape_id")) {
         rec->kind = RecordKind::scene_shape;
-        rec->shape.id = jsonl::dump(*id);
+        rec->shape.id = id_text(line, "shape_id", *id);
         return parse_scene_shape(r, obj, &rec->shape);
     }
     if (r.find("shape")) {
         rec->kind = RecordKind::single_case;
-        return parse_case_object(obj, &rec->single, why);
+        return parse_case_object(obj, line, &rec->single, why);
     }
     rec->kind = RecordKind::scene_line;
-    if (const Json* id = r.find("id")) rec->line.id = jsonl::dump(*id);
+    if (const Json* id = r.find("id")) rec->line.id = id_text(line, "id", *id);
     return only_fields(r, obj, {"id", "L0", "v", "range", "t0", "t1", "note"},
                        "a scene's line (a single case names its \"shape\")") &&
            r.vec("L0", &rec->line.line.L0) && r.vec("v", &rec->line.line.v) &&
@@ -500,7 +506,7 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
     Reader r{obj, why};
     const Json* id = r.need("id");
     if (!id) return false;
-    pr->id = jsonl::dump(*id);
+    pr->id = id_text(line, "id", *id);
     pr->has_id = true;
     if (const Json* s = r.find("solver")) {
         if (!s->is_string()) return r.fail("solver", "expected a solver's name");

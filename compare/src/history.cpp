@@ -170,6 +170,12 @@ History::History(const std::string& path) : db_(std::make_unique<Db>()), path_(p
         sqlite3_close(db_->handle);
         throw std::runtime_error(path + ": " + why);
     }
+    // SQLite opens a file it cannot write read-only, without a word: refused here, before an
+    // audit's work, not when its report is added.
+    if (sqlite3_db_readonly(db_->handle, "main") == 1) {
+        sqlite3_close(db_->handle);
+        throw std::runtime_error(path + ": cannot write it (read-only)");
+    }
     try {
         sqlite3_busy_timeout(db_->handle, 30000);
         db_->exec("PRAGMA foreign_keys = ON");

@@ -247,6 +247,146 @@ std::string read_file(const std::string& path) {
     return out;
 }
 
+namespace {
+
+// A scanner over JSON text already known to be valid: it finds where tokens end and never reads
+// past the end, whatever it is given.
+struct Scan {
+    std::string_view t;
+    std::size_t i = 0;
+    bool ok = true;
+
+    void space() {
+        while (i < t.size() && (t[i] == ' ' || t[i] == '\t' || t[i] == '\n' || t[i] == '\r'))
+            ++i;
+    }
+    bool take(char c) {
+        space();
+        if (i < t.size() && t[i] == c) return ++i, true;
+        return false;
+    }
+    // A string token from its opening quote; *decoded gets its value (for keys).
+    void string(std::string* decoded) {
+        if (i >= t.size() || t[i] != '"') return void(ok = false);
+        for (++i; i < t.size() && t[i] != '"'; ++i) {
+            if (t[i] != '\\') {
+                if (decoded) *decoded += t[i];
+                continue;
+            }
+            if (++i >= t.size()) return void(ok = false);
+            char e = t[i];
+            if (e != 'u') {
+                static const std::string_view from = "\"\\/bfnrt", to = "\"\\/\b\f\n\r\t";
+                std::size_t k = from.find(e);
+                if (k == std::string_view::npos) return void(ok = false);
+                if (decoded) *decoded += to[k];
+                continue;
+            }
+            // \uXXXX (a surrogate pair is two of them): the code point in UTF-8.
+            auto hex4 = [&](std::size_t at, unsigned* out) {
+                if (at + 4 > t.size()) return false;
+                unsigned v = 0;
+                for (std::size_t k = at; k < at + 4; ++k) {
+                    char c = t[k];
+                    int d = c >= '0' && c <= '9'   ? c - '0'
+                            : c >= 'a' && c <= 'f' ? c - 'a' + 10
+                            : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                                   : -1;
+                    if (d < 0) return false;
+                    v = v * 16 + unsigned(d);
+                }
+                *out = v;
+                return true;
+            };
+            unsigned cp = 0;
+            if (!hex4(i + 1, &cp)) return void(ok = false);
+            i += 4;
+            if (cp >= 0xD800 && cp <= 0xDBFF) {
+                unsigned lo = 0;
+                if (i + 2 < t.size() && t[i + 1] == '\\' && t[i + 2] == 'u' && hex4(i + 3, &lo) &&
+                    lo >= 0xDC00 && lo <= 0xDFFF) {
+                    cp = 0x10000 + ((cp - 0xD800) << 10) + (lo - 0xDC00);
+                    i += 6;
+                }
+            }
+            if (!decoded) continue;
+            if (cp < 0x80) {
+                *decoded += char(cp);
+            } else if (cp < 0x800) {
+                *decoded += char(0xC0 | (cp >> 6));
+                *decoded += char(0x80 | (cp & 0x3F));
+            } else if (cp < 0x10000) {
+                *decoded += char(0xE0 | (cp >> 12));
+                *decoded += char(0x80 | ((cp >> 6) & 0x3F));
+                *decoded += char(0x80 | (cp & 0x3F));
+            } else {
+                *decoded += char(0xF0 | (cp >> 18));
+                *decoded += char(0x80 | ((cp >> 12) & 0x3F));
+                *decoded += char(0x80 | ((cp >> 6) & 0x3F));
+                *decoded += char(0x80 | (cp & 0x3F));
+            }
+        }
+        if (i >= t.size()) return void(ok = false);
+        ++i; // the closing quote
+    }
+    // Any value, appended to *out without the whitespace between its tokens.
+    void value(std::string* out, int depth = 0) {
+        space();
+        if (i >= t.size() || depth > 64) return void(ok = false);
+        std::size_t from = i;
+        char c = t[i];
+        if (c == '"') {
+            string(nullptr);
+            if (ok) out->append(t.substr(from, i - from));
+        } else if (c == '{' || c == '[') {
+            char close = c == '{' ? '}' : ']';
+            *out += c;
+            ++i;
+            if (take(close)) return void(*out += close);
+            for (bool first = true; ok; first = false) {
+                if (!first) *out += ',';
+                if (c == '{') {
+                    space();
+                    std::size_t k = i;
+                    string(nullptr);
+                    if (!ok) return;
+                    out->append(t.substr(k, i - k));
+                    if (!take(':')) return void(ok = false);
+                    *out += ':';
+                }
+                value(out, depth + 1);
+                if (take(close)) return void(*out += close);
+                if (!take(',')) return void(ok = false);
+            }
+        } else {
+            while (i < t.size() && t[i] != ',' && t[i] != '}' && t[i] != ']' && t[i] != ' ' &&
+                   t[i] != '\t' && t[i] != '\n' && t[i] != '\r')
+                ++i;
+            if (i == from) return void(ok = false);
+            out->append(t.substr(from, i - from));
+        }
+    }
+};
+
+} // namespace
+
+std::string member_text(std::string_view text, std::string_view key) {
+    Scan s{text};
+    if (!s.take('{') || s.take('}')) return "";
+    while (s.ok) {
+        s.space();
+        std::string name;
+        s.string(&name);
+        if (!s.ok || !s.take(':')) return "";
+        std::string value;
+        s.value(&value);
+        if (!s.ok) return "";
+        if (name == key) return value;
+        if (!s.take(',')) return "";
+    }
+    return "";
+}
+
 void write_file(const std::string& path, std::string_view content) {
     auto failed = [&](const std::string& what, int err) {
         return std::runtime_error("cannot write " + what + ": " + std::strerror(err));

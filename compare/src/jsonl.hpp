@@ -26,6 +26,12 @@ inline constexpr std::size_t default_max_line_bytes = std::size_t(1) << 20;
 // Parses one JSON document. On failure returns false with *why naming the problem and the column.
 bool parse(std::string_view text, Json* out, std::string* why);
 
+// The text of the value of `key`, a member of the JSON object `text` (already parsed, so known to
+// be JSON), exactly as written there but for the whitespace between its tokens: a number keeps
+// every digit (2^64 + 1 is not read as a double), a string its escapes. Empty when `text` is not
+// an object or has no such member. What ids are kept as: echoed back as they came.
+std::string member_text(std::string_view text, std::string_view key);
+
 // Compact JSON text of a value; bytes that are not UTF-8 (which only our own messages can carry:
 // the parser refuses them in input) become U+FFFD, so the output is always JSON.
 std::string dump(const Json& v);

@@ -23,9 +23,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <new>
 #include <optional>
@@ -73,14 +75,15 @@ std::string positive_number(const std::string& text, double hi) {
     double x = std::strtod(text.c_str(), &end);
     bool ok =
         !text.empty() && end == text.c_str() + text.size() && std::isfinite(x) && x > 0 && x <= hi;
+    char most[32];
+    std::snprintf(most, sizeof most, "%g", hi);
     return ok ? ""
-              : "expected a number above 0 and at most " + std::to_string(int(hi)) + ", not '" +
-                    text + "'";
+              : "expected a number above 0 and at most " + std::string(most) + ", not '" + text +
+                    "'";
 }
 
 CLI::Validator PositiveNumber(double hi) {
-    return CLI::Validator([=](const std::string& t) { return positive_number(t, hi); },
-                          "0<X<=" + std::to_string(int(hi)));
+    return CLI::Validator([=](const std::string& t) { return positive_number(t, hi); }, "");
 }
 
 // "K/N": shard K of N.
@@ -288,7 +291,36 @@ int run_solve(const SolveArgs& a) {
     std::string line, why;
     long errors = 0;
     Record rec;
-    std::optional<OpenScene> open; // the scene the file has open, if any
+    // A scene is all or nothing: its lines are answered when it closes (at the next scene, a
+    // single case or the end of the file), and not one of them if any record inside it was
+    // malformed, whatever it was meant as (a mistyped shape reads as a broken single case). What
+    // is written while it is open waits too, so that the output keeps the input's order.
+    std::optional<OpenScene> open;
+    struct Pending {
+        std::string text;                    // a line to write as it is, or
+        std::optional<SceneLine> scene_line; // a scene's line, answered when the scene closes
+    };
+    std::vector<Pending> pending;
+    auto write = [&](std::string text) {
+        if (open)
+            pending.push_back({std::move(text), std::nullopt});
+        else
+            out.line(text);
+    };
+    auto close_scene = [&] {
+        if (!open) return;
+        for (Pending& p : pending) {
+            if (!p.scene_line) {
+                out.line(p.text);
+                continue;
+            }
+            for (const NamedSolver& s : solvers)
+                if (!every_solver || answers_scenes(s.name()))
+                    out.line(scene_answer_line(s.name(), *open, *p.scene_line, query));
+        }
+        pending.clear();
+        open.reset();
+    };
     for (;;) {
         auto status = in.next(&line);
         if (status == jsonl::LineReader::Status::end) break;
@@ -327,20 +359,22 @@ int run_solve(const SolveArgs& a) {
             }
         }
         if (!parsed) {
-            // A scene that may have lost a shape must not answer: a missing shape is a missing
-            // hit. A broken scene header opens a broken scene, so its shapes join no other.
-            if (rec.kind == RecordKind::scene) open.emplace(), open->header = rec.scene;
-            if (open && rec.kind != RecordKind::single_case && rec.kind != RecordKind::scene_line &&
-                open->broken.empty())
-                open->broken = why;
+            // A broken scene header opens a broken scene, so that its shapes join no other.
+            if (rec.kind == RecordKind::scene) {
+                close_scene();
+                open.emplace();
+                open->header = rec.scene;
+            }
+            if (open && open->broken.empty()) open->broken = why;
             ++errors;
             std::fprintf(stderr, "linequad: %s\n", why.c_str());
             for (const NamedSolver& s : solvers)
-                out.line(format_failure(rec.id(), s.name(), "malformed_case", why));
+                write(format_failure(rec.id(), s.name(), "malformed_case", why));
             continue;
         }
         switch (rec.kind) {
         case RecordKind::scene:
+            close_scene();
             open.emplace();
             open->header = rec.scene;
             break;
@@ -350,15 +384,15 @@ int run_solve(const SolveArgs& a) {
             break;
         case RecordKind::scene_line:
             open->has_lines = true;
-            for (const NamedSolver& s : solvers)
-                if (!every_solver || answers_scenes(s.name()))
-                    out.line(scene_answer_line(s.name(), *open, rec.line, query));
+            pending.push_back({"", rec.line});
             break;
-        default:
+        default: // a single case ends the scene before it
+            close_scene();
             for (const NamedSolver& s : solvers)
                 out.line(s.answer_line(rec.single, query));
         }
     }
+    close_scene();
     out.finish();
     report_plugin_output(ext);
     return errors ? 1 : 0;
@@ -509,8 +543,8 @@ int run_audit(const CampaignArgs& a, const std::string& command) {
     // Opened before the run: a database it cannot use is refused before hours of work.
     std::optional<audit::History> history;
     if (!a.history.empty()) history.emplace(a.history);
+    o.finish_with = audit::write_report_html;
     audit::Report r = audit::run(o, ext);
-    if (!o.out_dir.empty()) audit::write_report_html(o.out_dir);
     if (history) {
         std::size_t n = history->add(r, a.commit);
         std::fprintf(stderr, "audit: %zu rows added to %s\n", n, a.history.c_str());
@@ -606,6 +640,16 @@ int run_cases(const CampaignArgs& a) {
 int run_merge(const std::vector<std::string>& inputs, const std::string& out,
               const std::string& command, const std::string& history_path,
               const std::string& commit) {
+    // merge never writes over an input: --out may not be the directory of a report it reads.
+    namespace fs = std::filesystem;
+    for (const std::string& input : inputs) {
+        std::error_code ec;
+        fs::path dir = fs::path(input).parent_path();
+        if (dir.empty()) dir = ".";
+        if (fs::exists(out, ec) && fs::equivalent(dir, out, ec))
+            return fail("merge --out " + out + ": it holds " + input +
+                        ", an input (merge never writes over an input; choose another directory)");
+    }
     std::optional<audit::History> history;
     if (!history_path.empty()) history.emplace(history_path);
     audit::Report merged;
@@ -626,9 +670,9 @@ int run_merge(const std::vector<std::string>& inputs, const std::string& out,
         merged.merge(r);
     }
     merged.command = command;
+    merged.run = audit::new_run_id();
     audit::OutputDirectory dir(out);
-    dir.save_with_plots(merged);
-    audit::write_report_html(out);
+    dir.finish(merged, true, audit::write_report_html);
     std::fprintf(stderr, "merge: %zu reports into %s/report.md and report.html\n", inputs.size(),
                  out.c_str());
     if (history) {
@@ -654,6 +698,7 @@ int run_merge(const std::vector<std::string>& inputs, const std::string& out,
 struct DiffArgs {
     std::string old_report, new_report, markdown_file = "-", junit_file;
     std::string max_growth = "0", p99_growth = "0", time_growth;
+    bool any_campaign = false;
 };
 
 double to_real(const std::string& text) {
@@ -680,6 +725,16 @@ int run_diff(const DiffArgs& a) {
     }
     if (!a.junit_file.empty())
         jsonl::write_file(a.junit_file, audit::diff_junit(d, a.old_report, a.new_report));
+    // A gate that compared other cases, or fewer, would pass on what it did not measure.
+    if (!d.comparable() && !a.any_campaign) {
+        std::fprintf(stderr,
+                     "linequad: diff: %s%s%s; not a comparison of the same cases "
+                     "(--any-campaign compares them anyway)\n",
+                     d.campaigns.empty() ? "" : ("not the same campaign: " + d.campaigns).c_str(),
+                     !d.campaigns.empty() && !d.incomplete.empty() ? "; " : "",
+                     d.incomplete.c_str());
+        return 1;
+    }
     return d.worse() ? 1 : 0;
 }
 
@@ -882,6 +937,9 @@ int main_checked(int argc, char** argv) {
                      "how much slower a median may get (default: times are shown, never fail)")
         ->type_name("F")
         ->check(growth);
+    dcmd->add_flag("--any-campaign", diff.any_campaign,
+                   "compare reports of different campaigns, or incomplete ones (said at the top "
+                   "of the markdown); without it such a diff exits 1");
     dcmd->add_option("--markdown", diff.markdown_file, "where the markdown goes (- : stdout)")
         ->type_name("FILE")
         ->capture_default_str();
@@ -917,18 +975,28 @@ int main_checked(int argc, char** argv) {
     hist->add_option("--plot", history_args.plot, "draw the trend (one solver) as an SVG file")
         ->type_name("FILE.svg");
 
-    audit::SpawnAuditOptions spawn_args;
+    // Read as text and checked here, as the audit's are (CLI11 reads "-1" as 2^64 - 1, "010" as
+    // octal, and takes "nan" for a positive number).
+    struct {
+        std::string cases = "500", seed = "1", epsilon = "1e-4";
+    } spawn_text;
     std::string spawn_out;
     CLI::App* sp = app.add_subcommand(
         "spawn", "Audit rays spawned from hits: how often each way of starting them (stable with "
                  "the usual epsilon, correct from the hit, spawn_ray's proven offset) finds the "
                  "surface it left again, graded against the oracle. Writes markdown.");
-    sp->add_option("--cases", spawn_args.cases, "cases per family and shape (default 500)")
-        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 32));
-    sp->add_option("--seed", spawn_args.seed, "the families' seed (default 1)");
-    sp->add_option("--epsilon", spawn_args.epsilon,
-                   "the distance stable's rays skip (default 1e-4)")
-        ->check(CLI::PositiveNumber);
+    sp->add_option("--cases", spawn_text.cases, "cases per family and shape")
+        ->type_name("N")
+        ->check(WholeNumber(1, std::uint64_t(1) << 32))
+        ->capture_default_str();
+    sp->add_option("--seed", spawn_text.seed, "the families' seed")
+        ->type_name("S")
+        ->check(WholeNumber(0, UINT64_MAX))
+        ->capture_default_str();
+    sp->add_option("--epsilon", spawn_text.epsilon, "the distance stable's rays skip")
+        ->type_name("E")
+        ->check(PositiveNumber(1e300))
+        ->capture_default_str();
     sp->add_option("--out", spawn_out, "write the report here (default: standard output)")
         ->type_name("FILE.md");
 
@@ -1024,7 +1092,13 @@ int main_checked(int argc, char** argv) {
     if (c->parsed()) return run_cases(cases_args);
     if (m->parsed()) return run_merge(inputs, merge_out, command, merge_history, merge_commit);
     if (hist->parsed()) return run_history(history_args);
-    if (sp->parsed()) return run_spawn(spawn_args, spawn_out, command);
+    if (sp->parsed()) {
+        audit::SpawnAuditOptions o;
+        o.cases = to_whole(spawn_text.cases);
+        o.seed = to_whole(spawn_text.seed);
+        o.epsilon = std::strtod(spawn_text.epsilon.c_str(), nullptr);
+        return run_spawn(o, spawn_out, command);
+    }
     if (sc->parsed()) {
         audit::SceneAuditOptions o;
         o.scenes = to_whole(scene_args.scenes);
@@ -1058,6 +1132,9 @@ int main_checked(int argc, char** argv) {
 
 int main(int argc, char** argv) {
     jsonl::guard_standard_descriptors();
+    // A file-size limit makes a write fail (EFBIG, named like any write error, its temporary
+    // file removed) instead of killing the process with nothing said.
+    std::signal(SIGXFSZ, SIG_IGN);
     try {
         return main_checked(argc, argv);
     } catch (const std::bad_alloc&) {

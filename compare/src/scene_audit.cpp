@@ -4,6 +4,7 @@
 #include "linequad/audit.hpp"
 #include "linequad/exact.hpp"
 
+#include "escape.hpp"
 #include "jsonl.hpp"
 
 #include <algorithm>
@@ -188,19 +189,17 @@ std::string quantile(const Histogram& h, double q, std::uint64_t max) {
 
 } // namespace
 
-std::vector<SceneCase> read_scenes(const std::string& path, std::size_t max_line_bytes) {
-    jsonl::LineReader in(path, max_line_bytes);
+namespace {
+
+// Scenes from records a line each (next_line: false at the end; `where` names a line).
+template <class NextLine, class Where>
+std::vector<SceneCase> scenes_from(NextLine&& next_line, Where&& where) {
     std::vector<SceneCase> scenes;
     std::unordered_set<std::string> ids; // the open scene's shape ids
     std::string line, why;
     Record rec;
-    for (;;) {
-        auto status = in.next(&line);
-        if (status == jsonl::LineReader::Status::end) break;
-        std::string at = in.name() + ": line " + std::to_string(in.number()) + ": ";
-        if (status == jsonl::LineReader::Status::error) throw std::runtime_error(in.error());
-        if (status == jsonl::LineReader::Status::too_long)
-            throw std::runtime_error(jsonl::too_long_message(in.number(), max_line_bytes));
+    while (next_line(&line)) {
+        std::string at = where() + ": ";
         if (jsonl::blank(line)) continue;
         if (!parse_record(line, &rec, &why)) throw std::runtime_error(at + why);
         switch (rec.kind) {
@@ -234,6 +233,41 @@ std::vector<SceneCase> read_scenes(const std::string& path, std::size_t max_line
         }
     }
     return scenes;
+}
+
+} // namespace
+
+std::vector<SceneCase> read_scenes(const std::string& path, std::size_t max_line_bytes) {
+    jsonl::LineReader in(path, max_line_bytes);
+    auto next = [&](std::string* line) {
+        auto status = in.next(line);
+        if (status == jsonl::LineReader::Status::error) throw std::runtime_error(in.error());
+        if (status == jsonl::LineReader::Status::too_long)
+            throw std::runtime_error(jsonl::too_long_message(in.number(), max_line_bytes));
+        return status == jsonl::LineReader::Status::line;
+    };
+    return scenes_from(next, [&] { return in.name() + ": line " + std::to_string(in.number()); });
+}
+
+std::vector<SceneCase> scenes_from_text(std::string_view text) {
+    std::size_t at = 0;
+    long number = 0;
+    auto next = [&](std::string* line) {
+        if (at >= text.size()) return false;
+        std::size_t end = text.find('\n', at);
+        if (end == std::string_view::npos) end = text.size();
+        *line = std::string(text.substr(at, end - at));
+        at = end + 1, ++number;
+        return true;
+    };
+    return scenes_from(next, [&] { return "line " + std::to_string(number); });
+}
+
+std::string format_scenes(const std::vector<SceneCase>& scenes) {
+    std::string out;
+    for (const SceneCase& sc : scenes)
+        append_scene(out, sc);
+    return out;
 }
 
 std::vector<SceneRow> run_scene_audit(const SceneAuditOptions& o) {
@@ -270,12 +304,12 @@ std::vector<SceneRow> run_scene_audit(const SceneAuditOptions& o) {
 std::string scene_report_markdown(const std::vector<SceneRow>& rows, const SceneAuditOptions& o,
                                   const std::string& command) {
     std::string md = "# Scenes: nearest hits and their order, against the exact oracle\n\n";
-    md += "`" + command + "`\n\n";
+    md += escape::markdown_code(command) + "\n\n";
     if (o.cases_file.empty())
         md += std::to_string(o.scenes) + " scenes per family, " + std::to_string(o.lines) +
               " lines each, seed " + std::to_string(o.seed) + ".\n\n";
     else
-        md += "Scenes from `" + o.cases_file + "`.\n\n";
+        md += "Scenes from " + escape::markdown_code(o.cases_file) + ".\n\n";
     md += "The oracle solves every shape of a scene exactly and orders the hits by comparing "
           "their exact roots; ties are hits on two shapes at exactly one t. A correct scene must "
           "give the oracle's answer bit for bit (every hit, its shape, its tie) for need all and "
@@ -298,13 +332,14 @@ std::string scene_report_markdown(const std::vector<SceneRow>& rows, const Scene
         std::snprintf(buf, sizeof buf, "%.1f", t.scenes ? double(t.shapes) / double(t.scenes) : 0);
         std::string per_scene = buf;
         std::snprintf(buf, sizeof buf, "%.2f", t.lines ? double(t.solved) / double(t.lines) : 0);
-        md += "| " + r.family + " | " + count(t.scenes) + " | " + count(t.lines) + " | " +
-              per_scene + " | " + count(t.hits) + " | " + percent(t.tie_lines, t.lines) + " | " +
-              count(t.correct_differs_all) + " / " + count(t.correct_differs_nearest) + " | " +
-              percent(t.refined_all, t.lines) + " / " + percent(t.refined_nearest, t.lines) +
-              " | " + buf + " | " + percent(t.stable_wrong, t.lines) + " / " +
-              percent(t.stable_missed, t.lines) + " / " + percent(t.stable_phantom, t.lines) +
-              " | " + percent(t.stable_count_differs, t.lines) + " / " +
+        md += "| " + escape::markdown_text(r.family) + " | " + count(t.scenes) + " | " +
+              count(t.lines) + " | " + per_scene + " | " + count(t.hits) + " | " +
+              percent(t.tie_lines, t.lines) + " | " + count(t.correct_differs_all) + " / " +
+              count(t.correct_differs_nearest) + " | " + percent(t.refined_all, t.lines) + " / " +
+              percent(t.refined_nearest, t.lines) + " | " + buf + " | " +
+              percent(t.stable_wrong, t.lines) + " / " + percent(t.stable_missed, t.lines) + " / " +
+              percent(t.stable_phantom, t.lines) + " | " +
+              percent(t.stable_count_differs, t.lines) + " / " +
               percent(t.stable_misordered, t.lines) + " | " +
               quantile(t.stable_error, 0.5, t.stable_max_ulps) + " / " +
               quantile(t.stable_error, 0.99, t.stable_max_ulps) + " / " + count(t.stable_max_ulps) +

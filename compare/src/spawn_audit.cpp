@@ -6,6 +6,7 @@
 #include "linequad/solvers.hpp"
 #include "linequad/spawn.hpp"
 
+#include "escape.hpp"
 #include "numeric/big_float.hpp"
 #include "shapes/all.hpp"
 
@@ -208,13 +209,13 @@ std::string percent(std::uint64_t n, std::uint64_t of) {
 
 std::string spawn_report_markdown(const std::vector<SpawnRow>& rows, const SpawnAuditOptions& o,
                                   const std::string& command) {
-    char head[256];
-    std::snprintf(head, sizeof head,
-                  "# Spawned rays: self-intersection\n\n`%s`\n\n%llu cases per family and "
-                  "shape, seed %llu; epsilon = %g (a distance along the ray).\n\n",
-                  command.c_str(), (unsigned long long)o.cases, (unsigned long long)o.seed,
-                  o.epsilon);
-    std::string out = head;
+    char campaign[160];
+    std::snprintf(campaign, sizeof campaign,
+                  "%llu cases per family and shape, seed %llu; epsilon = %g (a distance along "
+                  "the ray).\n\n",
+                  (unsigned long long)o.cases, (unsigned long long)o.seed, o.epsilon);
+    std::string out = "# Spawned rays: self-intersection\n\n" + escape::markdown_code(command) +
+                      "\n\n" + campaign;
     out += "A ray leaves each crossing of a family's line: **through** on along the line (the "
            "exact next crossing is the line's next hit), **reflect** mirrored off the first "
            "crossing of the shape made whole, out of the convex solid (the exact answer: no "

@@ -170,8 +170,9 @@ enum class Status {
 const char* status_name(Status s);
 
 struct Report {
-    // Provenance.
-    std::string command, machine, compiler, flags, version, commit, date;
+    // Provenance. `run` tells one run (or merge) from another: its report.md and report.html
+    // name it beside its status.
+    std::string command, machine, compiler, flags, version, commit, date, run;
     double seconds = 0;
     // The campaign. Shards of one campaign agree on all of it (merge checks).
     std::uint64_t seed = 0, cases_per_group = 0;
@@ -219,6 +220,9 @@ struct Report {
     Row total(const std::string& solver) const; // all rows of one solver
 };
 
+// A fresh run identity (Report::run): 16 hex digits.
+std::string new_run_id();
+
 // Why b cannot be merged into a (another campaign, a shard twice, a results grading), naming
 // the difference; empty when it can.
 std::string unmergeable(const Report& a, const Report& b);
@@ -261,6 +265,9 @@ struct Options {
     // number (timings aside): each chunk is graded on its own and merged in order.
     int threads = 0;
     std::size_t max_line_bytes = std::size_t(1) << 20; // per line of a cases or results file
+    // Written into out_dir at the end, from report.md and the figures, before report.json says
+    // the run ended (the linequad program's report.html); nothing when empty.
+    std::function<void(const std::string& dir)> finish_with;
 };
 
 // Runs the campaign (or grades a results file) and writes the report; returns it. The output
@@ -297,8 +304,11 @@ struct Change {
 struct Diff {
     std::vector<Change> changes;
     std::vector<std::pair<std::string, std::string>> compared; // (family, solver), in order
-    std::string campaigns; // how the two campaigns differ, if they do (their cases then differ)
-    bool worse() const;    // anything worse beyond its threshold
+    std::string campaigns;  // how the two campaigns differ, if they do (their cases then differ)
+    std::string incomplete; // which report did not grade its whole campaign, if one did not
+    bool worse() const;     // anything worse beyond its threshold
+    // The same campaign, both complete: a change is then the solvers' own.
+    bool comparable() const { return campaigns.empty() && incomplete.empty(); }
 };
 
 Diff diff(const Report& old_report, const Report& new_report, const DiffThresholds& t);
@@ -319,21 +329,23 @@ std::string markdown(const Report& r);
 bool write_plots(const Report& r, const std::string& dir);
 std::string difficulty_figure(const std::string& family);
 
-// An output directory held by one run: locked (a second run into it is refused, naming the
-// lock), marked as in progress before anything is computed, and saved atomically: report.json,
-// then report.md written from the saved JSON, so the two always agree. Plots of an earlier run
-// are removed at the start: they would describe another report.
+// An output directory held by one run: locked (a second run into it is refused, naming the lock),
+// emptied of an earlier run's report.md, report.html and figures before anything is written (so
+// that no file of another run is ever presented as this one's), marked as running, and saved as
+// it goes. Every file is written to a temporary name and renamed; report.json, the record, is
+// written last at the end, so that a run killed while finishing still says "running" there.
 class OutputDirectory {
   public:
     explicit OutputDirectory(const std::string& dir); // throws, naming the path and the reason
     ~OutputDirectory();
     OutputDirectory(const OutputDirectory&) = delete;
     OutputDirectory& operator=(const OutputDirectory&) = delete;
-    void save(const Report& r);            // report.json and report.md
-    void save_with_plots(const Report& r); // and the figures
-    // A running report's save: the same files, without reading report.json back to check it
-    // (the reading was three fifths of a save); the final save checks it.
+    // A running report's save: report.json, then report.md from the same report.
     void checkpoint(const Report& r);
+    // The end of a run: the report checked by reading its JSON back, then the figures (when
+    // `plots`), report.md, whatever `also` writes from them (report.html), and report.json last.
+    void finish(const Report& r, bool plots,
+                const std::function<void(const std::string& dir)>& also = {});
     const std::string& path() const { return dir_; }
 
   private:

@@ -51,6 +51,10 @@ SceneCase make_scene(SceneFamily f, std::uint64_t seed, std::uint64_t index, int
 // Every scene of a file in the case format (linequad/case_io.hpp); a single case, a malformed
 // record or a scene with a repeated shape id is an error naming its line.
 std::vector<SceneCase> read_scenes(const std::string& path, std::size_t max_line_bytes);
+// The same from text (its lines); errors name the line.
+std::vector<SceneCase> scenes_from_text(std::string_view text);
+// Scenes in the case format, a record a line: what read_scenes reads back as they are.
+std::string format_scenes(const std::vector<SceneCase>& scenes);
 
 struct SceneTally {
     std::uint64_t scenes = 0, shapes = 0, lines = 0;
