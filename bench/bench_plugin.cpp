@@ -9,7 +9,7 @@
 #include "generic_cases.hpp"
 
 #include "linequad/audit_plugin.h"
-#include "plugin_worker.hpp"
+#include "run/plugin_worker.hpp"
 
 #include <benchmark/benchmark.h>
 #include <dlfcn.h>

@@ -2,7 +2,7 @@
 // result files, malformed input and interruption.
 #include "support.hpp"
 
-#include "ordered_pool.hpp"
+#include "run/ordered_pool.hpp"
 
 #include "linequad/audit.hpp"
 #include "linequad/exact.hpp"

@@ -2,9 +2,9 @@
 // against their definitions.
 #include "support.hpp"
 
+#include "forms/certified.hpp"
+#include "forms/prescale.hpp"
 #include "numeric/bounded.hpp"
-#include "solve/certified.hpp"
-#include "solve/prescale.hpp"
 
 #include <mpfr.h>
 

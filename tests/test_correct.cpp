@@ -3,10 +3,11 @@
 #include "rational.hpp"
 #include "support.hpp"
 
+#include "forms/exact_form.hpp"
+#include "forms/frame.hpp"
 #include "numeric/big_float.hpp"
 #include "numeric/bounded_dd.hpp"
 #include "numeric/format.hpp"
-#include "shapes/frame.hpp"
 
 #include "linequad/exact.hpp"
 #include "linequad/families.hpp"

@@ -4,7 +4,7 @@
 
 #include "linequad/audit.hpp"
 
-#include "jsonl.hpp"
+#include "io/jsonl.hpp"
 
 #include <fstream>
 #include <limits>

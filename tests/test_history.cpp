@@ -1,6 +1,6 @@
 // The history database: runs appended per commit and campaign, a rerun replacing its run, trends
 // read back in order, and databases it cannot use refused by name.
-#include "history.hpp"
+#include "report/history.hpp"
 
 #include "linequad/audit.hpp"
 

@@ -5,8 +5,8 @@
 
 #include "linequad/audit.hpp"
 
-#include "escape.hpp"
-#include "history.hpp"
+#include "io/escape.hpp"
+#include "report/history.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,6 +1,6 @@
 // report.html from report.md: tables, figures inlined, raw HTML shown as text, no URL left that
 // would leave the file. (html_report_test.sh opens a real report in Chromium.)
-#include "report_html.hpp"
+#include "report/report_html.hpp"
 
 #include <catch2/catch.hpp>
 

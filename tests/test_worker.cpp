@@ -11,7 +11,7 @@
 #include "linequad/solvers.hpp"
 
 #include "numeric/fp_environment.hpp"
-#include "plugin_worker.hpp"
+#include "run/plugin_worker.hpp"
 
 #include <nlohmann/json.hpp>
 

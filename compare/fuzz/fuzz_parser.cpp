@@ -11,7 +11,7 @@
 #include "linequad/case_io.hpp"
 #include "linequad/scene_audit.hpp"
 
-#include "jsonl.hpp"
+#include "io/jsonl.hpp"
 
 #include <cstdint>
 #include <cstdio>

@@ -4,7 +4,7 @@
 // belongs in tests/fuzz_regressions.jsonl once fixed.
 #include "linequad/case_io.hpp"
 #include "linequad/invariants.hpp"
-#include "shape_types.hpp"
+#include "io/shape_types.hpp"
 
 #include <cstdint>
 #include <cstdio>

@@ -7,7 +7,7 @@
 #include "numeric/fp_environment.hpp"
 #include "rounding.hpp"
 #include "shapes/all.hpp"
-#include "solve/finish.hpp"
+#include "forms/finish.hpp"
 
 #include <CGAL/Gmpq.h>
 #include <CGAL/Gmpz.h>

@@ -2,9 +2,9 @@
 // value whose error bound proves which double is nearest.
 #pragma once
 
+#include "forms/prescale.hpp"
 #include "numeric/bounded_dd.hpp"
 #include "numeric/format.hpp"
-#include "solve/prescale.hpp"
 
 #include "linequad/result.hpp"
 #include "linequad/shapes.hpp"

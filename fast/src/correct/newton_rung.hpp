@@ -18,7 +18,7 @@
 #pragma once
 
 #include "correct/ladder.hpp"
-#include "correct/line_form.hpp"
+#include "forms/line_form.hpp"
 
 #include "linequad/result.hpp"
 

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "correct/ladder.hpp"
-#include "correct/line_form.hpp"
+#include "forms/line_form.hpp"
 
 #include "numeric/compensated_sum.hpp"
 #include "numeric/eft.hpp"

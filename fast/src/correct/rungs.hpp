@@ -3,9 +3,9 @@
 #pragma once
 
 #include "correct/ladder.hpp"
+#include "forms/exact_form.hpp"
 #include "numeric/big_float.hpp"
 #include "numeric/bounded_dd.hpp"
-#include "shapes/exact_form.hpp"
 
 namespace linequad::detail {
 

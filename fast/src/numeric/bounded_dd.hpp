@@ -15,13 +15,15 @@
 #pragma once
 
 #include "numeric/eft.hpp"
-#include "shapes/exact_form.hpp"
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 
 namespace linequad {
+
+// What sign() returns when the bound cannot exclude zero (the exact form's `undecided`).
+inline constexpr int undecided_sign = 2;
 
 // T is double, or a lane type holding one value per lane (the batch correct solver's lanes).
 template <class T>
@@ -63,7 +65,7 @@ LINEQUAD_INLINE int sign(const BoundedDD& x) {
     using dd_detail::mag;
     if (x.e == 0 && x.hi == 0) return 0; // normalized: lo = 0 too
     if (std::fabs(x.hi) * dd_detail::F::shrink(8) > x.e) return x.hi > 0 ? 1 : -1;
-    return exact_form::undecided; // also for NaN and infinite bounds
+    return undecided_sign; // also for NaN and infinite bounds
 }
 
 LINEQUAD_INLINE BoundedDD operator-(BoundedDD a) {
@@ -133,11 +135,3 @@ LINEQUAD_INLINE BoundedDD sqrt(const BoundedDD& a) {
 }
 
 } // namespace linequad
-
-// X + Y sqrt(D) evaluated, sqrt(D) once per quadratic: cheaper than squaring, and as decisive.
-template <>
-struct linequad::exact_form::SurdSign<linequad::BoundedDD> {
-    BoundedDD root;
-    explicit SurdSign(const BoundedDD& D) : root(sign(D) == 0 ? BoundedDD() : sqrt(D)) {}
-    int operator()(const BoundedDD& X, const BoundedDD& Y) const { return sign(X + Y * root); }
-};

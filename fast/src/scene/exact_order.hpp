@@ -4,8 +4,8 @@
 // rounded t is the same double; any others are ordered by their t already.
 #pragma once
 
+#include "forms/exact_form.hpp"
 #include "numeric/big_float.hpp"
-#include "shapes/exact_form.hpp"
 
 #include "linequad/prepared.hpp"
 

@@ -3,12 +3,12 @@
 // around each shape's axis is tested before the shape is solved.
 #include "linequad/scene.hpp"
 
+#include "forms/finish.hpp"
+#include "forms/traits.hpp"
 #include "linequad/solvers.hpp"
 #include "numeric/fp_environment.hpp"
 #include "scene/bounds.hpp"
 #include "scene/exact_order.hpp"
-#include "shapes/traits.hpp"
-#include "solve/finish.hpp"
 
 #ifdef LINEQUAD_HAVE_EMBREE
 #include <embree3/rtcore.h>

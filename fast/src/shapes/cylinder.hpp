@@ -42,11 +42,11 @@
 // by Lagrange's identity.
 #pragma once
 
-#include "correct/line_form.hpp"
-#include "shapes/exact_form.hpp"
-#include "shapes/traits.hpp"
-#include "solve/certified.hpp"
-#include "solve/roots.hpp"
+#include "forms/certified.hpp"
+#include "forms/exact_form.hpp"
+#include "forms/line_form.hpp"
+#include "forms/roots.hpp"
+#include "forms/traits.hpp"
 
 namespace linequad::detail {
 

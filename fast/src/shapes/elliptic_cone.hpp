@@ -41,13 +41,13 @@
 // none; closed, each nappe is a solid of its own and they meet at the apex z = 0.
 #pragma once
 
-#include "correct/line_form.hpp"
-#include "shapes/exact_form.hpp"
-#include "shapes/frame.hpp"
+#include "forms/certified.hpp"
+#include "forms/exact_form.hpp"
+#include "forms/frame.hpp"
+#include "forms/line_form.hpp"
+#include "forms/roots.hpp"
+#include "forms/traits.hpp"
 #include "shapes/seed_frame.hpp"
-#include "shapes/traits.hpp"
-#include "solve/certified.hpp"
-#include "solve/roots.hpp"
 
 #include <type_traits>
 

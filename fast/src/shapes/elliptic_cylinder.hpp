@@ -29,13 +29,13 @@
 // the exact form's W + t V.
 #pragma once
 
-#include "correct/line_form.hpp"
-#include "shapes/exact_form.hpp"
-#include "shapes/frame.hpp"
+#include "forms/certified.hpp"
+#include "forms/exact_form.hpp"
+#include "forms/frame.hpp"
+#include "forms/line_form.hpp"
+#include "forms/roots.hpp"
+#include "forms/traits.hpp"
 #include "shapes/seed_frame.hpp"
-#include "shapes/traits.hpp"
-#include "solve/certified.hpp"
-#include "solve/roots.hpp"
 
 namespace linequad::detail {
 

@@ -47,11 +47,11 @@
 // starts at the double-double rung.
 #pragma once
 
+#include "forms/certified.hpp"
+#include "forms/exact_form.hpp"
+#include "forms/roots.hpp"
+#include "forms/traits.hpp"
 #include "shapes/cylinder.hpp"
-#include "shapes/exact_form.hpp"
-#include "shapes/traits.hpp"
-#include "solve/certified.hpp"
-#include "solve/roots.hpp"
 
 namespace linequad::detail {
 

@@ -1,7 +1,7 @@
 // The exact orientation of an affine frame: the sign of det[a b c], decided by a floating-point
 // filter, then by Shewchuk expansions of the products, or by BigFloat when products of three
 // would underflow.
-#include "shapes/frame.hpp"
+#include "forms/frame.hpp"
 
 #include "numeric/big_float.hpp"
 #include "numeric/expansion.hpp"

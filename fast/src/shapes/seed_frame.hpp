@@ -4,7 +4,7 @@
 // otherwise), in double (seed) or float (seed32). The only code that uses Eigen.
 #pragma once
 
-#include "solve/prescale.hpp"
+#include "forms/prescale.hpp"
 
 #include "linequad/shapes.hpp"
 

@@ -4,7 +4,7 @@
 // gives them, from which write_result() makes the Result as it would.
 #pragma once
 
-#include "solve/finish.hpp"
+#include "forms/finish.hpp"
 
 #include "linequad/prepared.hpp"
 

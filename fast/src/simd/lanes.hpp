@@ -2,7 +2,7 @@
 // powers of two per lane, and the helpers written once over the lane type's operations.
 #pragma once
 
-#include "solve/prescale.hpp"
+#include "forms/prescale.hpp"
 
 namespace linequad::detail {
 

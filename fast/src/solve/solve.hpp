@@ -3,11 +3,11 @@
 // is here. Src is the shape as the solver sees it: as given, or prepared (shapes/traits.hpp).
 #pragma once
 
+#include "forms/certified.hpp"
+#include "forms/closure.hpp"
+#include "forms/finish.hpp"
+#include "forms/roots.hpp"
 #include "shapes/all.hpp"
-#include "solve/certified.hpp"
-#include "solve/closure.hpp"
-#include "solve/finish.hpp"
-#include "solve/roots.hpp"
 
 #include <type_traits>
 

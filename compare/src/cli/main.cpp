@@ -1,0 +1,71 @@
+// linequad: solve cases with any solver; audit solvers against the exact oracle. Each subcommand
+// is in a file of its own (cli/cli.hpp).
+#include "cli/cli.hpp"
+
+#include "io/jsonl.hpp"
+
+#include <csignal>
+#include <iostream>
+#include <new>
+
+using namespace linequad;
+
+namespace {
+
+std::string joined(int argc, char** argv) {
+    std::string s = "linequad";
+    for (int i = 1; i < argc; ++i)
+        s += std::string(" ") + argv[i];
+    return s;
+}
+
+int main_checked(int argc, char** argv) {
+    CLI::App app{"linequad: line-quadric intersection solvers, graded against an exact oracle"};
+    app.require_subcommand(0, 1);
+    bool version = false;
+    app.add_flag("--version", version, "version, compiler and floating-point flags");
+    const cli::Command commands[] = {
+        cli::solve_command(app),  cli::replay_command(app),  cli::audit_command(app),
+        cli::cases_command(app),  cli::merge_command(app),   cli::diff_command(app),
+        cli::html_command(app),   cli::history_command(app), cli::spawn_command(app),
+        cli::scenes_command(app), cli::solvers_command(app), cli::version_command(app),
+        cli::worker_command(app)};
+    try {
+        app.parse(argc, argv);
+        for (const cli::Command& c : commands)
+            if (c.check && c.app->parsed())
+                if (auto [option, why] = c.check(); !why.empty())
+                    throw CLI::ValidationError(option, why);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) { // --help, on standard output
+            app.exit(e);
+            std::cout.flush();
+            if (!std::cout) throw std::runtime_error("cannot write standard output");
+            return 0;
+        }
+        std::fprintf(stderr, "linequad: %s\nrun 'linequad --help' for the commands and options\n",
+                     e.what());
+        return 2;
+    }
+    if (version) return cli::print_version();
+    for (const cli::Command& c : commands)
+        if (c.app->parsed()) return c.run(joined(argc, argv));
+    std::fputs(app.help().c_str(), stderr);
+    return 2;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    jsonl::guard_standard_descriptors();
+    // A file-size limit makes a write fail (EFBIG, named like any write error, its temporary
+    // file removed) instead of killing the process with nothing said.
+    std::signal(SIGXFSZ, SIG_IGN);
+    try {
+        return main_checked(argc, argv);
+    } catch (const std::bad_alloc&) {
+        return cli::fail("out of memory");
+    } catch (const std::exception& e) {
+        return cli::fail(e.what());
+    }
+}

@@ -1,0 +1,192 @@
+// What the subcommands share: options read strictly, solvers from outside, output.
+#include "cli/cli.hpp"
+
+#include "linequad/registry.hpp"
+
+#include "io/jsonl.hpp"
+#include "io/process.hpp"
+#include "peers/peers.hpp"
+#include "run/plugin_worker.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace linequad::cli {
+
+std::string whole_number(const std::string& text, std::uint64_t lo, std::uint64_t hi,
+                         std::uint64_t* out) {
+    std::uint64_t x = 0;
+    const char* end = text.data() + text.size();
+    auto [p, ec] = std::from_chars(text.data(), end, x);
+    bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+    if (!digits || ec != std::errc() || p != end || x < lo || x > hi)
+        return "expected a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+               ", not '" + text + "'";
+    if (out) *out = x;
+    return "";
+}
+
+CLI::Validator WholeNumber(std::uint64_t lo, std::uint64_t hi) {
+    return CLI::Validator(
+        [=](const std::string& text) { return whole_number(text, lo, hi, nullptr); },
+        std::to_string(lo) + ".." + std::to_string(hi));
+}
+
+std::uint64_t to_whole(const std::string& text) {
+    std::uint64_t x = 0;
+    whole_number(text, 0, UINT64_MAX, &x);
+    return x;
+}
+
+namespace {
+
+// A finite number, all of the text, in [lo, hi] (lo excluded when open); "" or why not.
+std::string real_in(const std::string& text, double lo, bool open, double hi, const char* what) {
+    char* end = nullptr;
+    double x = std::strtod(text.c_str(), &end);
+    bool ok = !text.empty() && end == text.c_str() + text.size() && std::isfinite(x) &&
+              (open ? x > lo : x >= lo) && x <= hi;
+    return ok ? "" : std::string("expected ") + what + ", not '" + text + "'";
+}
+
+} // namespace
+
+CLI::Validator PositiveNumber(double hi) {
+    char most[32];
+    std::snprintf(most, sizeof most, "%g", hi);
+    std::string what = "a number above 0 and at most " + std::string(most);
+    return CLI::Validator(
+        [=](const std::string& t) { return real_in(t, 0, true, hi, what.c_str()); }, "");
+}
+
+CLI::Validator Fraction() {
+    return CLI::Validator(
+        [](const std::string& t) { return real_in(t, 0, false, HUGE_VAL, "a fraction >= 0"); }, "");
+}
+
+double to_real(const std::string& text) {
+    return std::strtod(text.c_str(), nullptr);
+}
+
+std::string shard_error(const std::string& text, int* k, int* n) {
+    std::size_t slash = text.find('/');
+    std::uint64_t kk = 0, nn = 0;
+    if (slash == std::string::npos ||
+        !whole_number(text.substr(slash + 1), 1, max_shards, &nn).empty() ||
+        !whole_number(text.substr(0, slash), 0, nn - 1, &kk).empty())
+        return "expected K/N with 0 <= K < N <= " + std::to_string(max_shards) + ", not '" + text +
+               "'";
+    if (k) *k = int(kk), *n = int(nn);
+    return "";
+}
+
+std::vector<std::string> split_list(const std::string& list) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    for (;;) {
+        std::size_t comma = list.find(',', start);
+        out.push_back(list.substr(start, comma - start));
+        if (comma == std::string::npos) return out;
+        start = comma + 1;
+    }
+}
+
+CLI::Validator each_of_list(std::function<std::string(const std::string&)> check) {
+    return CLI::Validator(
+        [check](const std::string& list) {
+            for (const std::string& name : split_list(list))
+                if (std::string why = check(name); !why.empty()) return why;
+            return std::string();
+        },
+        "");
+}
+
+void add_plugin_options(CLI::App* app, std::vector<std::string>& plugins, std::string& timeout) {
+    app->add_option("--plugin", plugins,
+                    "a shared library of solvers (the C ABI of linequad/audit_plugin.h), run in "
+                    "a worker process")
+        ->type_name("LIB.so")
+        ->check(CLI::ExistingFile);
+    app->add_option("--solver-timeout", timeout,
+                    "seconds a plugin's call may take before it is stopped and answered as "
+                    "timed out")
+        ->type_name("S")
+        ->check(PositiveNumber(3600))
+        ->capture_default_str();
+}
+
+void add_history_options(CLI::App* app, std::string& history, std::string& commit) {
+    CLI::Option* db =
+        app->add_option("--history", history,
+                        "append the report's summary to this SQLite database (linequad history)")
+            ->type_name("DB");
+    app->add_option("--commit", commit,
+                    "the commit to record it under (default: linequad's own, as the report "
+                    "names it): your solver's commit when you audit your solver")
+        ->type_name("ID")
+        ->needs(db);
+}
+
+std::vector<audit::ExternalSolver> external_solvers(const std::vector<std::string>& plugins,
+                                                    const std::string& timeout) {
+    std::vector<audit::ExternalSolver> out = peers::solvers();
+    audit::PluginOptions po;
+    po.program = process::self(); // the worker is this program in another mode
+    po.timeout_seconds = to_real(timeout);
+    for (const std::string& path : plugins)
+        for (audit::ExternalSolver& e : audit::load_plugin(path, po)) {
+            for (const audit::ExternalSolver& x : out)
+                if (x.name == e.name)
+                    throw std::invalid_argument(path + ": solver '" + e.name +
+                                                "' is already defined (by " +
+                                                (x.plugin.empty() ? "linequad" : x.plugin) + ")");
+            if (find_solver(e.name))
+                throw std::invalid_argument(path + ": solver '" + e.name +
+                                            "' has the name of one of linequad's");
+            out.push_back(std::move(e));
+        }
+    return out;
+}
+
+const audit::ExternalSolver* find_external(const std::vector<audit::ExternalSolver>& ext,
+                                           const std::string& name) {
+    for (const audit::ExternalSolver& e : ext)
+        if (e.name == name) return &e;
+    return nullptr;
+}
+
+std::string solver_error(const std::string& name, bool batch_too,
+                         const std::vector<audit::ExternalSolver>& ext) {
+    if (find_solver(name) || find_external(ext, name) || (batch_too && name == audit::batch_name))
+        return "";
+    return "no solver named '" + name + "' (see: linequad solvers)";
+}
+
+void report_plugin_output(const std::vector<audit::ExternalSolver>& ext) {
+    for (const audit::ExternalSolver& e : ext)
+        if (e.worker && e.worker->output_bytes(e.worker_index))
+            std::fprintf(stderr, "linequad: %s wrote %llu bytes of its own; the first lines:\n%s\n",
+                         e.name.c_str(), (unsigned long long)e.worker->output_bytes(e.worker_index),
+                         e.worker->output(e.worker_index).c_str());
+}
+
+int fail(const std::string& msg) {
+    std::fprintf(stderr, "linequad: %s\n", msg.c_str());
+    return 2;
+}
+
+int write_markdown(const std::string& md, const std::string& out_file, const char* what) {
+    if (out_file.empty()) {
+        jsonl::Output out;
+        out.text(md);
+        out.finish();
+    } else {
+        jsonl::write_file(out_file, md);
+        std::fprintf(stderr, "%s: %s\n", what, out_file.c_str());
+    }
+    return 0;
+}
+
+} // namespace linequad::cli
