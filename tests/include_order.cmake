@@ -1,10 +1,11 @@
 # Includes run in one direction: a file in a folder includes only its own folder's headers and
 # those of the folders before it, in the order docs/architecture.md gives (ROOT's subfolders,
-# lowest first, semicolon separated in ORDER). Fails naming every include that runs back up.
-#   cmake -DROOT=<dir> -DORDER="numeric;forms;shapes;..." -P include_order.cmake
+# lowest first, comma separated in ORDER). Fails naming every include that runs back up.
+#   cmake -DROOT=<absolute dir> -DORDER=numeric,forms,shapes,... -P include_order.cmake
 if(NOT ROOT OR NOT ORDER)
-  message(FATAL_ERROR "usage: cmake -DROOT=dir -DORDER=a;b;c -P include_order.cmake")
+  message(FATAL_ERROR "usage: cmake -DROOT=dir -DORDER=a,b,c -P include_order.cmake")
 endif()
+string(REPLACE "," ";" ORDER "${ORDER}")
 file(GLOB_RECURSE files RELATIVE ${ROOT} ${ROOT}/*.cpp ${ROOT}/*.hpp ${ROOT}/*.h)
 set(bad "")
 set(checked 0)

@@ -4,10 +4,10 @@
 #include "linequad/exact.hpp"
 
 #include "double_word.hpp"
+#include "forms/finish.hpp"
 #include "numeric/fp_environment.hpp"
 #include "rounding.hpp"
 #include "shapes/all.hpp"
-#include "forms/finish.hpp"
 
 #include <CGAL/Gmpq.h>
 #include <CGAL/Gmpz.h>
@@ -577,32 +577,10 @@ struct ExactT {
     int S = 0;
 };
 
-// sgn(a + b sqrt(p)), p >= 0.
-int sign_surd(const CGAL::Mpzf& a, const CGAL::Mpzf& b, const CGAL::Mpzf& p) {
-    int sa = sgn(a), sb = CGAL::is_zero(p) ? 0 : sgn(b);
-    if (sb == 0) return sa;
-    if (sa == 0 || sa == sb) return sb;
-    int bigger = sgn(CGAL::Mpzf(a * a - b * b * p)); // |a| against |b| sqrt(p)
-    return bigger == 0 ? 0 : bigger > 0 ? sa : sb;
-}
-
-// sgn(x - y): with sigma = sgn(Den_x Den_y),
-//     sgn(x - y) = sigma sgn(P + Q),  P = A + B sqrt(D_x),  Q = C sqrt(D_y),
-//     A = N_x Den_y - N_y Den_x,  B = S_x Den_y,  C = -S_y Den_x;
-// where P and Q differ in sign, the larger in magnitude wins:
-//     sgn(P^2 - Q^2) = sgn((A^2 + B^2 D_x - C^2 D_y) + 2 A B sqrt(D_x)).
+// sgn(x - y), the roots compared exactly (exact_form::compare_roots); minus infinity first.
 int compare(const ExactT& x, const ExactT& y) {
     if (x.minus_infinity || y.minus_infinity) return int(y.minus_infinity) - int(x.minus_infinity);
-    using NT = CGAL::Mpzf;
-    int sigma = sgn(x.Den) * sgn(y.Den);
-    NT A = x.N * y.Den - y.N * x.Den;
-    NT B = NT(x.S) * y.Den, C = NT(-y.S) * x.Den;
-    int sp = sign_surd(A, B, x.D);
-    int sq = CGAL::is_zero(y.D) ? 0 : sgn(C);
-    if (sq == 0) return sigma * sp;
-    if (sp == 0 || sp == sq) return sigma * sq;
-    int larger = sign_surd(NT(A * A + B * B * x.D - C * C * y.D), NT(NT(2) * A * B), x.D);
-    return sigma * (larger == 0 ? 0 : larger > 0 ? sp : sq);
+    return exact_form::compare_roots<CGAL::Mpzf>({x.N, x.S, x.Den, x.D}, {y.N, y.S, y.Den, y.D});
 }
 
 struct ExactHit {

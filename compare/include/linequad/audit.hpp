@@ -230,12 +230,22 @@ std::string unmergeable(const Report& a, const Report& b);
 // What a solver's answers carry, and so are graded on (linequad/case_io.hpp).
 using Grading = Carries;
 
-// Grades one solver result against the oracle's for one case, into a row and a curve point,
-// in ulps of the case's precision (the oracle's answer rounded to it).
-// `reference` names the reference in the row's worst cases (see Worst).
-void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
-           Row& row, CurvePoint* curve, const Grading& what = {},
-           std::string_view reference = "exact");
+// One answer to grade: the case, the solver's answer and the reference (the oracle's, or for a
+// solver from outside the reference for what it declares), what of the answer is graded, and how
+// the reference names itself in the row's worst cases (see Worst).
+struct Answered {
+    const Case& c;
+    const std::string& solver;
+    const Result& got;
+    const Result& reference;
+    Grading what = {};
+    std::string_view reference_name = "exact";
+};
+
+// Grades one answer into a row and a curve point (if given), in ulps of the case's precision
+// (the reference rounded to it). A mismatched classification measures no error: the roots it
+// would compare are not the same roots.
+void grade(const Answered& a, Row& row, CurvePoint* curve);
 
 // The audit's name for stable's batch path (many lines against one shape): not a Solver, since
 // it takes lines in arrays. Graded like stable, whose results it equals bit for bit.

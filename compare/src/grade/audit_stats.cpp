@@ -1,6 +1,8 @@
 // Mergeable statistics and the grading of one result against the oracle's.
 #include "linequad/audit.hpp"
 
+#include "shapes/all.hpp"
+
 #include "linequad/case_io.hpp"
 
 #include "numeric/format.hpp"
@@ -169,23 +171,11 @@ std::uint64_t point_ulps(Vec3 got, Vec3 want, const Line& l, double t, Precision
 }
 
 // The scene's magnitude for the scene-relative error: the largest coordinate of the shape's
-// defining points and sizes, of L0, and of t v.
+// defining points and sizes (its traits' magnitude), of L0, and of t v.
 double scene_size(const Case& c, double t) {
     double m = std::max(max_abs(c.line.L0), std::fabs(t) * max_abs(c.line.v));
-    std::visit(
-        [&](const auto& x) {
-            using S = std::decay_t<decltype(x)>;
-            if constexpr (std::is_same_v<S, Cylinder>)
-                m = std::max({m, max_abs(x.C), max_abs(x.H), std::fabs(x.r)});
-            if constexpr (std::is_same_v<S, EllipticCylinder>)
-                m = std::max({m, max_abs(x.C), max_abs(x.a), max_abs(x.b), max_abs(x.c)});
-            if constexpr (std::is_same_v<S, EllipticCone>)
-                m = std::max({m, max_abs(x.C), max_abs(x.H), max_abs(x.a), max_abs(x.b)});
-            if constexpr (std::is_same_v<S, Frustum>)
-                m = std::max({m, max_abs(x.C0), max_abs(x.C1), std::fabs(x.r0), std::fabs(x.r1)});
-        },
-        c.shape);
-    return m;
+    return std::max(m,
+                    std::visit([](const auto& x) { return detail::shape_magnitude(x); }, c.shape));
 }
 
 // |t - t_oracle| |v| in ulps (of the case's format) of the scene's magnitude, rounded up.
@@ -241,88 +231,101 @@ void Row::merge(const Row& o) {
         keep(worst, w);
 }
 
-void grade(const Case& c, const std::string& solver, const Result& got, const Result& oracle,
-           Row& row, CurvePoint* curve, const Grading& what, std::string_view reference) {
-    bool flags[mismatch_kinds] = {};
-    bool points = what.points;
-    ++row.cases;
-    if (got.error_code == ErrorCode::foreign) ++row.foreign[got.error_field];
-    row.binary32_cases += c.precision == Precision::binary32;
-    if (got.ok() && got.rung != Rung::none) ++row.rungs[std::size_t(got.rung)];
-    std::uint64_t case_max = 0;
-    if (!oracle.ok() || !got.ok()) {
-        if (oracle.ok() != got.ok() || oracle.error_code != got.error_code) flags[refused] = true;
-    } else if (!finite_result(got) && finite_result(oracle)) {
-        flags[nonfinite] = true;
-    } else if (oracle.on_surface != got.on_surface) {
-        flags[oracle.on_surface ? on_surface_missed : on_surface_invented] = true;
+namespace {
+
+int tangents(const Result& r) {
+    int n = 0;
+    for (int i = 0; i < r.count; ++i)
+        n += r.hits[i].kind == HitKind::tangent;
+    return n;
+}
+
+// How an answer is classified against its reference: each kind of mismatch it makes.
+using Flags = std::array<bool, mismatch_kinds>;
+Flags classify(const Result& got, const Result& want, const Grading& what) {
+    Flags f{};
+    if (!want.ok() || !got.ok()) {
+        f[refused] = want.ok() != got.ok() || want.error_code != got.error_code;
+    } else if (!finite_result(got) && finite_result(want)) {
+        f[nonfinite] = true;
+    } else if (want.on_surface != got.on_surface) {
+        f[want.on_surface ? on_surface_missed : on_surface_invented] = true;
     } else {
-        auto tangents = [](const Result& r) {
-            int n = 0;
-            for (int i = 0; i < r.count; ++i)
-                n += r.hits[i].kind == HitKind::tangent;
-            return n;
-        };
         // A solver that does not tell tangents from crossings is graded on its count of hits.
-        int to = tangents(oracle), tg = what.kinds ? tangents(got) : to;
-        if (to > tg) flags[tangent_missed] = true;
-        if (tg > to) flags[tangent_invented] = true;
-        if (oracle.count != got.count) flags[hit_count] = true;
-        bool classified = !flags[hit_count] && !flags[tangent_missed] && !flags[tangent_invented];
-        if (classified) {
-            bool parts = !oracle.on_surface || oracle.surface_part == got.surface_part;
-            for (int i = 0; i < oracle.count; ++i)
-                parts = parts && oracle.hits[i].part == got.hits[i].part;
-            flags[part_wrong] = what.parts && !parts;
-        }
-        // Hits on other parts are other roots: no t error or bound is measured between them.
-        if (classified && !flags[part_wrong]) {
-            // A certified bound must cover the exact root; the oracle's t is within half an ulp
-            // of it, so a bound holds when |t - t_oracle| <= bound + ulp(t_oracle) / 2.
-            auto check_bound = [&](const Hit& h, double o) {
-                if (std::isnan(h.bound)) return;
-                ++row.bounded_roots;
-                double half_ulp = half_ulp_of(o, c.precision);
-                double err = std::fabs(h.t - o);
-                if (!(err <= h.bound + half_ulp)) ++row.bound_violations;
-                if (h.bound < half_ulp) ++row.bound_below_half_ulp;
-                double ratio = h.bound / std::fmax(err, half_ulp);
-                row.tightness.add(std::isfinite(ratio) && ratio < 1.8e19
-                                      ? std::uint64_t(std::ceil(ratio))
-                                      : UINT64_MAX);
-            };
-            auto add_t = [&](double g, double o) {
-                std::uint64_t u = ulps_between(g, o, c.precision);
-                row.t_error.add(u);
-                if (curve) curve->t_error.add(u);
-                row.t_max = std::max(row.t_max, u);
-                row.t_sum += double(u);
-                if (u > 0) row.t_bits_sum += std::log2(1.0 + double(u)); // log2(1) adds 0
-                ++row.graded_roots;
-                case_max = std::max(case_max, u);
-                std::uint64_t su = std::isinf(o) && g == o ? 0 : scene_ulps(c, g, o);
-                row.s_error.add(su);
-                row.s_max = std::max(row.s_max, su);
-            };
-            if (oracle.on_surface) {
-                add_t(got.s0, oracle.s0);
-                add_t(got.s1, oracle.s1);
-            }
-            for (int i = 0; i < oracle.count; ++i) {
-                add_t(got.hits[i].t, oracle.hits[i].t);
-                check_bound(got.hits[i], oracle.hits[i].t);
-                if (!points) continue;
-                std::uint64_t u = point_ulps(got.hits[i].p, oracle.hits[i].p, c.line,
-                                             oracle.hits[i].t, c.precision);
-                row.p_error.add(u);
-                row.p_max = std::max(row.p_max, u);
-                ++row.graded_coords;
-            }
+        int tw = tangents(want), tg = what.kinds ? tangents(got) : tw;
+        f[tangent_missed] = tw > tg, f[tangent_invented] = tg > tw;
+        f[hit_count] = want.count != got.count;
+        if (!f[hit_count] && !f[tangent_missed] && !f[tangent_invented]) {
+            bool parts = !want.on_surface || want.surface_part == got.surface_part;
+            for (int i = 0; i < want.count; ++i)
+                parts = parts && want.hits[i].part == got.hits[i].part;
+            f[part_wrong] = what.parts && !parts;
         }
     }
-    bool mismatch = false;
-    for (int m = 0; m < mismatch_kinds; ++m)
-        mismatch = mismatch || flags[m];
+    return f;
+}
+
+// The errors of an answer classified like its reference (hits on other parts are other roots:
+// nothing is measured between them): t and the scene error, certified bounds, points. Returns
+// the case's largest t error in ulps.
+std::uint64_t grade_roots(const Answered& a, Row& row, CurvePoint* curve) {
+    const Case& c = a.c;
+    std::uint64_t case_max = 0;
+    // A certified bound must cover the exact root; the oracle's t is within half an ulp of it,
+    // so a bound holds when |t - t_oracle| <= bound + ulp(t_oracle) / 2.
+    auto check_bound = [&](const Hit& h, double o) {
+        if (std::isnan(h.bound)) return;
+        ++row.bounded_roots;
+        double half_ulp = half_ulp_of(o, c.precision);
+        double err = std::fabs(h.t - o);
+        if (!(err <= h.bound + half_ulp)) ++row.bound_violations;
+        if (h.bound < half_ulp) ++row.bound_below_half_ulp;
+        double ratio = h.bound / std::fmax(err, half_ulp);
+        row.tightness.add(std::isfinite(ratio) && ratio < 1.8e19 ? std::uint64_t(std::ceil(ratio))
+                                                                 : UINT64_MAX);
+    };
+    auto add_t = [&](double g, double o) {
+        std::uint64_t u = ulps_between(g, o, c.precision);
+        row.t_error.add(u);
+        if (curve) curve->t_error.add(u);
+        row.t_max = std::max(row.t_max, u);
+        row.t_sum += double(u);
+        if (u > 0) row.t_bits_sum += std::log2(1.0 + double(u)); // log2(1) adds 0
+        ++row.graded_roots;
+        case_max = std::max(case_max, u);
+        std::uint64_t su = std::isinf(o) && g == o ? 0 : scene_ulps(c, g, o);
+        row.s_error.add(su);
+        row.s_max = std::max(row.s_max, su);
+    };
+    const Result &got = a.got, &want = a.reference;
+    if (want.on_surface) {
+        add_t(got.s0, want.s0);
+        add_t(got.s1, want.s1);
+    }
+    for (int i = 0; i < want.count; ++i) {
+        add_t(got.hits[i].t, want.hits[i].t);
+        check_bound(got.hits[i], want.hits[i].t);
+        if (!a.what.points) continue;
+        std::uint64_t u =
+            point_ulps(got.hits[i].p, want.hits[i].p, c.line, want.hits[i].t, c.precision);
+        row.p_error.add(u);
+        row.p_max = std::max(row.p_max, u);
+        ++row.graded_coords;
+    }
+    return case_max;
+}
+
+} // namespace
+
+void grade(const Answered& a, Row& row, CurvePoint* curve) {
+    const Result& got = a.got;
+    ++row.cases;
+    if (got.error_code == ErrorCode::foreign) ++row.foreign[got.error_field];
+    row.binary32_cases += a.c.precision == Precision::binary32;
+    if (got.ok() && got.rung != Rung::none) ++row.rungs[std::size_t(got.rung)];
+    Flags flags = classify(got, a.reference, a.what);
+    bool mismatch = std::find(flags.begin(), flags.end(), true) != flags.end();
+    std::uint64_t case_max = mismatch ? 0 : grade_roots(a, row, curve);
     // A certified solver that says it is unsure is not wrong; one that is sure must be right.
     if (got.ok() && got.certainty == Certainty::uncertain) {
         ++row.uncertain;
@@ -339,7 +342,7 @@ void grade(const Case& c, const std::string& solver, const Result& got, const Re
         curve->t_max = std::max(curve->t_max, case_max);
     }
     if (qualifies(row.worst, mismatch, case_max)) {
-        Worst w(c, solver, got, oracle, what, reference);
+        Worst w(a.c, a.solver, got, a.reference, a.what, a.reference_name);
         w.mismatch = mismatch, w.ulps = case_max;
         keep(row.worst, std::move(w));
     }

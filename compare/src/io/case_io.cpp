@@ -499,6 +499,40 @@ std::string format_failure(const std::string& id, std::string_view solver, std::
            ",\"error\":" + json_string(message) + ",\"code\":" + json_string(code) + "}";
 }
 
+// A result line's hits, into pr (at most max_hits, checked by the caller).
+bool read_hits(Reader& r, const Json& hits, ParsedResult* pr, std::string* why) {
+    for (const Json& h : hits) {
+        Reader hr{h, why};
+        Hit& out = pr->result.hits[pr->result.count++];
+        out = Hit{0,    {}, std::numeric_limits<double>::quiet_NaN(), HitKind::cross, Part::lateral,
+                  false};
+        if (!h.is_object() || !hr.number("t", &out.t))
+            return r.fail("hits", "each hit needs t, a number");
+        if (const Json* kind = hr.find("kind")) {
+            if (!kind->is_string() || (*kind != "cross" && *kind != "tangent"))
+                return r.fail("hits", "kind must be cross or tangent");
+            out.kind = *kind == "tangent" ? HitKind::tangent : HitKind::cross;
+            pr->has_kinds = true;
+        }
+        if (const Json* part = hr.find("part")) {
+            if (!read_part(*part, &out.part))
+                return r.fail("hits", "part must be lateral, base or top");
+            pr->has_parts = true;
+        }
+        if (hr.find("p")) {
+            if (!hr.vec("p", &out.p)) return r.fail("hits", "p must be 3 numbers");
+            pr->has_points = true;
+        }
+        if (hr.find("bound") && !hr.number("bound", &out.bound))
+            return r.fail("hits", "bound must be a number");
+        if (const Json* c = hr.find("certain")) {
+            if (!c->is_boolean()) return r.fail("hits", "certain must be true or false");
+            out.certain = c->get<bool>();
+        }
+    }
+    return true;
+}
+
 bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
     *pr = ParsedResult{};
     Json obj;
@@ -531,35 +565,7 @@ bool parse_result(std::string_view line, ParsedResult* pr, std::string* why) {
     if (!hits) return false;
     if (!hits->is_array() || hits->size() > std::size_t(max_hits))
         return r.fail("hits", "expected an array of at most " + std::to_string(max_hits) + " hits");
-    for (const Json& h : *hits) {
-        Reader hr{h, why};
-        Hit& out = pr->result.hits[pr->result.count++];
-        out = Hit{0,    {}, std::numeric_limits<double>::quiet_NaN(), HitKind::cross, Part::lateral,
-                  false};
-        if (!h.is_object() || !hr.number("t", &out.t))
-            return r.fail("hits", "each hit needs t, a number");
-        if (const Json* kind = hr.find("kind")) {
-            if (!kind->is_string() || (*kind != "cross" && *kind != "tangent"))
-                return r.fail("hits", "kind must be cross or tangent");
-            out.kind = *kind == "tangent" ? HitKind::tangent : HitKind::cross;
-            pr->has_kinds = true;
-        }
-        if (const Json* part = hr.find("part")) {
-            if (!read_part(*part, &out.part))
-                return r.fail("hits", "part must be lateral, base or top");
-            pr->has_parts = true;
-        }
-        if (hr.find("p")) {
-            if (!hr.vec("p", &out.p)) return r.fail("hits", "p must be 3 numbers");
-            pr->has_points = true;
-        }
-        if (hr.find("bound") && !hr.number("bound", &out.bound))
-            return r.fail("hits", "bound must be a number");
-        if (const Json* c = hr.find("certain")) {
-            if (!c->is_boolean()) return r.fail("hits", "certain must be true or false");
-            out.certain = c->get<bool>();
-        }
-    }
+    if (!read_hits(r, *hits, pr, why)) return false;
     const Json* on = r.find("on_surface");
     if (on && on->is_array()) {
         if (on->size() != 2) return r.fail("on_surface", "expected [t0, t1]");

@@ -226,21 +226,8 @@ void check_total(const Node& n, std::uint64_t total, std::uint64_t want, const c
                std::to_string(want));
 }
 
-Row read_row(const Node& n) {
-    Row r;
-    r.cases = n.at("cases").count();
-    auto at_most_cases = [&](const char* key) { return n.at(key).count(r.cases); };
-    // Reports from before binary32 cases have none.
-    if (n.find("binary32_cases")) r.binary32_cases = at_most_cases("binary32_cases");
-    r.graded_roots = n.at("graded_roots").count();
-    r.graded_coords = n.at("graded_points").count();
-    r.cases_mismatched = at_most_cases("cases_mismatched");
-    Node m = n.at("mismatches");
-    for (int k = 0; k < mismatch_kinds; ++k) {
-        // Reports from before shapes had parts have no part_wrong: none could be.
-        if (k == part_wrong && !m.find(mismatch_name(k))) continue;
-        r.mismatches[k] = m.at(mismatch_name(k)).count(r.cases);
-    }
+// A row's errors: t, points, scene, each histogram consistent with its counts.
+void read_errors(const Node& n, Row& r) {
     Node t = n.at("t_ulps");
     r.t_max = t.at("max").count();
     r.t_sum = t.at("sum").real();
@@ -266,6 +253,40 @@ Row read_row(const Node& n) {
                       std::to_string(r.graded_roots) + ")");
         check_max(sc.at("max"), r.s_max, r.s_error, scene);
     }
+}
+
+// A row's certified bounds and the correct solvers' rungs.
+void read_certified_and_rungs(const Node& n, Row& r) {
+    Node c = n.at("certified");
+    r.uncertain = c.at("uncertain").count(r.cases);
+    r.certain_wrong = c.at("certain_wrong").count(r.cases);
+    r.bounded_roots = c.at("bounded_roots").count(r.graded_roots);
+    r.bound_violations = c.at("bound_violations").count(r.bounded_roots);
+    r.bound_below_half_ulp = c.at("bound_below_half_ulp").count(r.bounded_roots);
+    check_total(c.at("tightness"), read_pairs(c.at("tightness"), r.tightness.count),
+                r.bounded_roots, "bounded_roots");
+    Node g = n.at("rungs");
+    r.rungs[std::size_t(Rung::newton)] = g.at("newton").count(r.cases);
+    r.rungs[std::size_t(Rung::double_double)] = g.at("double_double").count(r.cases);
+    r.rungs[std::size_t(Rung::exact)] = g.at("exact").count(r.cases);
+}
+
+Row read_row(const Node& n) {
+    Row r;
+    r.cases = n.at("cases").count();
+    auto at_most_cases = [&](const char* key) { return n.at(key).count(r.cases); };
+    // Reports from before binary32 cases have none.
+    if (n.find("binary32_cases")) r.binary32_cases = at_most_cases("binary32_cases");
+    r.graded_roots = n.at("graded_roots").count();
+    r.graded_coords = n.at("graded_points").count();
+    r.cases_mismatched = at_most_cases("cases_mismatched");
+    Node m = n.at("mismatches");
+    for (int k = 0; k < mismatch_kinds; ++k) {
+        // Reports from before shapes had parts have no part_wrong: none could be.
+        if (k == part_wrong && !m.find(mismatch_name(k))) continue;
+        r.mismatches[k] = m.at(mismatch_name(k)).count(r.cases);
+    }
+    read_errors(n, r);
     if (n.find("unrepresented")) r.unrepresented = n.at("unrepresented").count();
     // Counts by name: each name once, no zero count, at most `most` in all.
     auto counts = [&](const char* field, std::map<std::string, std::uint64_t>& out,
@@ -299,18 +320,7 @@ Row read_row(const Node& n) {
     }
     counts("environment_changes", r.environment, r.cases + r.unrepresented);
     read_pairs(n.at("ns_per_solve").at("histogram"), r.ns.count);
-    Node c = n.at("certified");
-    r.uncertain = c.at("uncertain").count(r.cases);
-    r.certain_wrong = c.at("certain_wrong").count(r.cases);
-    r.bounded_roots = c.at("bounded_roots").count(r.graded_roots);
-    r.bound_violations = c.at("bound_violations").count(r.bounded_roots);
-    r.bound_below_half_ulp = c.at("bound_below_half_ulp").count(r.bounded_roots);
-    check_total(c.at("tightness"), read_pairs(c.at("tightness"), r.tightness.count),
-                r.bounded_roots, "bounded_roots");
-    Node g = n.at("rungs");
-    r.rungs[std::size_t(Rung::newton)] = g.at("newton").count(r.cases);
-    r.rungs[std::size_t(Rung::double_double)] = g.at("double_double").count(r.cases);
-    r.rungs[std::size_t(Rung::exact)] = g.at("exact").count(r.cases);
+    read_certified_and_rungs(n, r);
     Node w = n.at("worst");
     for (std::size_t i = 0, size = w.size(Row::keep_worst); i < size; ++i) {
         Node x = w.item(i);
@@ -328,32 +338,10 @@ std::string expect_in(const std::vector<std::string>& list, const std::string& s
     return "'" + s + "' is not one of the report's " + what;
 }
 
-void read_report(const Json& root, Report* r) {
-    Node top{root};
-    if (!root.is_object()) throw Invalid("not a JSON object");
-    std::string format = top.at("format").text();
-    if (format == "linequad-audit-1")
-        throw Invalid("format: linequad-audit-1 is an older report format; run the audit again "
-                      "with this linequad");
-    if (format != format_name) top.at("format").fail("not a linequad audit report");
-    *r = Report{};
-    std::string status = top.at("status").text();
-    bool known_status = false;
-    for (Status s : {Status::running, Status::stopped, Status::complete})
-        if (status == status_name(s)) r->status = s, known_status = true;
-    if (!known_status) top.at("status").fail("expected running, stopped or complete");
-    r->command = top.at("command").text(), r->machine = top.at("machine").text();
-    r->compiler = top.at("compiler").text(), r->flags = top.at("flags").text();
-    r->version = top.at("version").text(), r->commit = top.at("commit").text();
-    r->date = top.at("date").text();
-    if (top.find("run")) r->run = top.at("run").text();
-    r->seconds = top.at("seconds").real();
-    r->seed = top.at("seed").count();
-    r->cases_per_group = top.at("cases_per_group").count();
-    if (top.find("results_file")) r->results_file = top.at("results_file").text();
-    if (top.find("cases_file")) r->cases_file = top.at("cases_file").text();
-    if (top.find("cases_count")) r->cases_count = top.at("cases_count").count();
-    if (top.find("external")) {
+// The solvers from outside linequad: how each was handed its cases, what it did besides.
+void read_external(const Node& top, Report* r) {
+    if (!top.find("external")) return;
+    {
         Node ex = top.at("external");
         for (std::size_t i = 0, n = ex.size(); i < n; ++i) {
             Node x = ex.item(i);
@@ -378,6 +366,10 @@ void read_report(const Json& root, Report* r) {
             r->external[name] = e;
         }
     }
+}
+
+// What the campaign ran: families, shapes, frames, ranges, solvers, shards, the oracle's steps.
+void read_campaign(const Node& top, Report* r) {
     auto any = [](const std::string&) { return std::string(); };
     // A cases file's families are whatever its cases name.
     r->families = top.at("families").names([&](const std::string& f) {
@@ -414,7 +406,9 @@ void read_report(const Json& root, Report* r) {
         r->oracle_by_intervals = top.at("oracle_rounded_by_intervals").count();
     if (top.find("oracle_rounded_by_filter"))
         r->oracle_by_filter = top.at("oracle_rounded_by_filter").count();
+}
 
+void read_rows(const Node& top, Report* r) {
     Node rows = top.at("rows");
     for (std::size_t i = 0, n = rows.size(); i < n; ++i) {
         Node x = rows.item(i);
@@ -427,6 +421,9 @@ void read_report(const Json& root, Report* r) {
         if (r->rows.count(key)) x.fail(key.name() + " appears twice");
         r->rows[key] = read_row(x);
     }
+}
+
+void read_curves(const Node& top, Report* r) {
     Node curves = top.at("curves");
     for (std::size_t i = 0, n = curves.size(); i < n; ++i) {
         Node x = curves.item(i);
@@ -449,6 +446,37 @@ void read_report(const Json& root, Report* r) {
             read_pairs(p.at("histogram"), q.t_error.count);
         }
     }
+}
+
+void read_report(const Json& root, Report* r) {
+    Node top{root};
+    if (!root.is_object()) throw Invalid("not a JSON object");
+    std::string format = top.at("format").text();
+    if (format == "linequad-audit-1")
+        throw Invalid("format: linequad-audit-1 is an older report format; run the audit again "
+                      "with this linequad");
+    if (format != format_name) top.at("format").fail("not a linequad audit report");
+    *r = Report{};
+    std::string status = top.at("status").text();
+    bool known_status = false;
+    for (Status s : {Status::running, Status::stopped, Status::complete})
+        if (status == status_name(s)) r->status = s, known_status = true;
+    if (!known_status) top.at("status").fail("expected running, stopped or complete");
+    r->command = top.at("command").text(), r->machine = top.at("machine").text();
+    r->compiler = top.at("compiler").text(), r->flags = top.at("flags").text();
+    r->version = top.at("version").text(), r->commit = top.at("commit").text();
+    r->date = top.at("date").text();
+    if (top.find("run")) r->run = top.at("run").text();
+    r->seconds = top.at("seconds").real();
+    r->seed = top.at("seed").count();
+    r->cases_per_group = top.at("cases_per_group").count();
+    if (top.find("results_file")) r->results_file = top.at("results_file").text();
+    if (top.find("cases_file")) r->cases_file = top.at("cases_file").text();
+    if (top.find("cases_count")) r->cases_count = top.at("cases_count").count();
+    read_external(top, r);
+    read_campaign(top, r);
+    read_rows(top, r);
+    read_curves(top, r);
 }
 
 } // namespace

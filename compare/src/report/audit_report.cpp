@@ -265,8 +265,10 @@ std::string notes_of(const Row& row) {
 }
 } // namespace
 
-std::string markdown(const Report& r) {
-    std::ostringstream md;
+namespace {
+
+// What was run, where, how: the report's first table, and how to read the rest.
+void write_provenance(std::ostream& md, const Report& r) {
     md << "# linequad accuracy audit\n\n";
     md << "| | |\n|---|---|\n";
     using escape::markdown_text;
@@ -311,7 +313,11 @@ std::string markdown(const Report& r) {
           "results equal stable's bit for bit): graded on every case, one line per call; its "
           "ns is per line, each chunk's lines solved as one batch against four of the chunk's "
           "shapes.\n\n";
+}
 
+// Every solver over every family: the headline table and the Pareto figure.
+void write_headline(std::ostream& md, const Report& r) {
+    using escape::markdown_text;
     md << "## Headline: every family\n\n";
     md << "Scene error: the t error as a distance, |t - t_oracle| |v|, in ulps of the scene's "
           "magnitude (the largest of |L0|, |t v| and the shape's coordinates), p99 / max. "
@@ -335,8 +341,11 @@ std::string markdown(const Report& r) {
            << scene_error(t) << " | " << point_max(t) << " | " << median_ns(generic) << " |\n";
     }
     if (timed) md << "\n![run time against error](pareto.svg)\n\n";
-    write_external(md, r);
+}
 
+// Every row: a family, a shape and a solver.
+void write_rows(std::ostream& md, const Report& r) {
+    using escape::markdown_text;
     md << "## By family and shape\n\n";
     md << "| family | shape | solver | cases | unrep. | mismatched | by kind | uncertain | "
           "bound viol. | bound/err p50 | t max | t p99 | t p99.9 | t mean | scene error | "
@@ -355,11 +364,11 @@ std::string markdown(const Report& r) {
            << fmt(row.graded_roots ? row.t_sum / double(row.graded_roots) : 0) << " | "
            << scene_error(row) << " | " << point_max(row) << " | " << median_ns(row) << " |\n";
     }
+}
 
-    write_external_by_family(md, r);
-    write_float_beside_double(md, r);
-    write_rungs(md, r);
-
+// The figures of error against difficulty, and against distance.
+void write_difficulty(std::ostream& md, const Report& r) {
+    using escape::markdown_text;
     md << "\n## Error against difficulty\n\n";
     bool scale = false, far = false;
     for (const std::string& f : r.families)
@@ -373,7 +382,11 @@ std::string markdown(const Report& r) {
         md << "Error against distance: the shape's size and distance from the world origin "
               "(scale) beside the ray origin's distance from the shape (far_origin).\n\n"
               "![distance](distance.svg)\n\n";
+}
 
+// Each row's worst cases, with the command that replays each.
+void write_worst(std::ostream& md, const Report& r) {
+    using escape::markdown_text;
     md << "## Worst cases\n\nEach replays with the command under it: the case as the solver saw "
           "it, its answer and the reference its grade used, as above.\n\n";
     for (const auto& [key, row] : r.rows) {
@@ -387,6 +400,10 @@ std::string markdown(const Report& r) {
             md << "  " << escape::markdown_code(replay(r, w, key.solver)) << "\n\n";
         }
     }
+}
+
+// How the oracle rounded its answers.
+void write_oracle_rounding(std::ostream& md, const Report& r) {
     md << "## Oracle rounding\n\nFloats rounded from the oracle's interval filter alone: "
        << r.oracle_by_intervals
        << ". Values rounded by its double-word enclosures: " << r.oracle_by_filter
@@ -394,6 +411,22 @@ std::string markdown(const Report& r) {
     for (int i = 0; i < 8; ++i)
         md << (i ? ", " : "") << r.oracle_steps[i];
     md << ".\n";
+}
+
+} // namespace
+
+std::string markdown(const Report& r) {
+    std::ostringstream md;
+    write_provenance(md, r);
+    write_headline(md, r);
+    write_external(md, r);
+    write_rows(md, r);
+    write_external_by_family(md, r);
+    write_float_beside_double(md, r);
+    write_rungs(md, r);
+    write_difficulty(md, r);
+    write_worst(md, r);
+    write_oracle_rounding(md, r);
     return md.str();
 }
 

@@ -73,14 +73,24 @@ struct Axis {
     }
 };
 
-void draw_chart(std::ostringstream& out, const Chart& c, double x0, int width, int height) {
-    bool right_axis = !c.y2_label.empty();
-    double left = x0 + 80, right = x0 + width - (right_axis ? 80 : 30), top = 40;
-    // The legend below the plot: entries of 190 px, as many rows as they need.
-    int per_row = std::max(1, int((width - 40) / 190));
-    int rows = int((c.series.size() + std::size_t(per_row) - 1) / std::size_t(per_row));
-    double bottom = height - 55 - 18 * rows;
+// Where a chart's plot area is, and its axes.
+struct Frame {
+    double x0, width, height, left, right, top, bottom;
+    int per_row, rows; // the legend's entries per row, and its rows
+    Axis ax, ay, ay2;
+    double px(double x) const { return left + ax.at(x) * (right - left); }
+    double py(const Axis& a, double y) const { return bottom - a.at(y) * (bottom - top); }
+};
 
+Frame frame_of(const Chart& c, double x0, int width, int height) {
+    Frame f;
+    bool right_axis = !c.y2_label.empty();
+    f.x0 = x0, f.width = width, f.height = height;
+    f.left = x0 + 80, f.right = x0 + width - (right_axis ? 80 : 30), f.top = 40;
+    // The legend below the plot: entries of 190 px, as many rows as they need.
+    f.per_row = std::max(1, int((width - 40) / 190));
+    f.rows = int((c.series.size() + std::size_t(f.per_row) - 1) / std::size_t(f.per_row));
+    f.bottom = height - 55 - 18 * f.rows;
     double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
     for (const Series& s : c.series)
         for (auto [x, y] : s.points) {
@@ -91,97 +101,104 @@ void draw_chart(std::ostringstream& out, const Chart& c, double x0, int width, i
         }
     for (const auto& [x, name] : c.x_names)
         xmin = std::min(xmin, x), xmax = std::max(xmax, x);
-    Axis ax, ay, ay2;
-    ax.fit(xmin, xmax, false);
-    if (!c.x_names.empty()) ax.lo = xmin - 0.5, ax.hi = xmax + 0.5;
-    ay.fit(ymin, ymax, c.log_y);
-    ay2.fit(c.y2_min, c.y2_max, false);
-    auto px = [&](double x) { return left + ax.at(x) * (right - left); };
-    auto py = [&](const Axis& a, double y) { return bottom - a.at(y) * (bottom - top); };
+    f.ax.fit(xmin, xmax, false);
+    if (!c.x_names.empty()) f.ax.lo = xmin - 0.5, f.ax.hi = xmax + 0.5;
+    f.ay.fit(ymin, ymax, c.log_y);
+    f.ay2.fit(c.y2_min, c.y2_max, false);
+    return f;
+}
 
-    out << "<g font-family=\"sans-serif\" font-size=\"11\">\n";
-    out << "<text x=\"" << num(x0 + width / 2.0) << "\" y=\"22\" text-anchor=\"middle\" "
+// The title, the plot's box, the grid, the ticks and the axes' labels.
+void draw_axes(std::ostringstream& out, const Chart& c, const Frame& f) {
+    out << "<text x=\"" << num(f.x0 + f.width / 2.0) << "\" y=\"22\" text-anchor=\"middle\" "
         << "font-size=\"14\">" << text(c.title) << "</text>\n";
-    out << "<rect x=\"" << num(left) << "\" y=\"" << num(top) << "\" width=\"" << num(right - left)
-        << "\" height=\"" << num(bottom - top) << "\" fill=\"none\" stroke=\"#444\"/>\n";
-    // Grid and ticks.
+    out << "<rect x=\"" << num(f.left) << "\" y=\"" << num(f.top) << "\" width=\""
+        << num(f.right - f.left) << "\" height=\"" << num(f.bottom - f.top)
+        << "\" fill=\"none\" stroke=\"#444\"/>\n";
     if (c.x_names.empty()) {
-        for (double t : ax.ticks) {
-            double x = px(t);
-            out << "<line x1=\"" << num(x) << "\" y1=\"" << num(top) << "\" x2=\"" << num(x)
-                << "\" y2=\"" << num(bottom) << "\" stroke=\"#e4e4e4\"/>\n";
-            out << "<text x=\"" << num(x) << "\" y=\"" << num(bottom + 15)
+        for (double t : f.ax.ticks) {
+            double x = f.px(t);
+            out << "<line x1=\"" << num(x) << "\" y1=\"" << num(f.top) << "\" x2=\"" << num(x)
+                << "\" y2=\"" << num(f.bottom) << "\" stroke=\"#e4e4e4\"/>\n";
+            out << "<text x=\"" << num(x) << "\" y=\"" << num(f.bottom + 15)
                 << "\" text-anchor=\"middle\">" << text(tick_label(t)) << "</text>\n";
         }
     } else {
         for (const auto& [x, name] : c.x_names)
-            out << "<text transform=\"translate(" << num(px(x)) << "," << num(bottom + 12)
+            out << "<text transform=\"translate(" << num(f.px(x)) << "," << num(f.bottom + 12)
                 << ") rotate(30)\" text-anchor=\"start\" font-size=\"10\">" << text(name)
                 << "</text>\n";
     }
-    for (double t : ay.ticks) {
-        double y = py(ay, t);
-        out << "<line x1=\"" << num(left) << "\" y1=\"" << num(y) << "\" x2=\"" << num(right)
+    for (double t : f.ay.ticks) {
+        double y = f.py(f.ay, t);
+        out << "<line x1=\"" << num(f.left) << "\" y1=\"" << num(y) << "\" x2=\"" << num(f.right)
             << "\" y2=\"" << num(y) << "\" stroke=\"#e4e4e4\"/>\n";
-        out << "<text x=\"" << num(left - 6) << "\" y=\"" << num(y + 4) << "\" text-anchor=\"end\">"
-            << text(tick_label(t)) << "</text>\n";
+        out << "<text x=\"" << num(f.left - 6) << "\" y=\"" << num(y + 4)
+            << "\" text-anchor=\"end\">" << text(tick_label(t)) << "</text>\n";
     }
+    bool right_axis = !c.y2_label.empty();
     if (right_axis)
-        for (double t : ay2.ticks)
-            out << "<text x=\"" << num(right + 6) << "\" y=\"" << num(py(ay2, t) + 4) << "\">"
+        for (double t : f.ay2.ticks)
+            out << "<text x=\"" << num(f.right + 6) << "\" y=\"" << num(f.py(f.ay2, t) + 4) << "\">"
                 << text(tick_label(t)) << "</text>\n";
-    out << "<text x=\"" << num((left + right) / 2) << "\" y=\"" << num(bottom + 38)
+    out << "<text x=\"" << num((f.left + f.right) / 2) << "\" y=\"" << num(f.bottom + 38)
         << "\" text-anchor=\"middle\">" << text(c.x_label) << "</text>\n";
-    out << "<text transform=\"translate(" << num(x0 + 18) << "," << num((top + bottom) / 2)
+    out << "<text transform=\"translate(" << num(f.x0 + 18) << "," << num((f.top + f.bottom) / 2)
         << ") rotate(-90)\" text-anchor=\"middle\">" << text(c.y_label) << "</text>\n";
     if (right_axis)
-        out << "<text transform=\"translate(" << num(x0 + width - 14) << ","
-            << num((top + bottom) / 2) << ") rotate(90)\" text-anchor=\"middle\">"
+        out << "<text transform=\"translate(" << num(f.x0 + f.width - 14) << ","
+            << num((f.top + f.bottom) / 2) << ") rotate(90)\" text-anchor=\"middle\">"
             << text(c.y2_label) << "</text>\n";
+}
 
-    // The series: lines through runs of drawable points, and markers.
-    for (std::size_t i = 0; i < c.series.size(); ++i) {
-        const Series& s = c.series[i];
-        const Axis& a = s.right ? ay2 : ay;
-        std::string color = palette[std::size_t(s.color >= 0 ? s.color : int(i)) % 10];
-        std::vector<std::pair<double, double>> run;
-        auto flush = [&] {
-            if (s.lines && run.size() > 1) {
-                out << "<polyline fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1.8\""
-                    << (s.dashed ? " stroke-dasharray=\"6,4\"" : "") << " points=\"";
-                for (auto [x, y] : run)
-                    out << num(x) << "," << num(y) << " ";
-                out << "\"/>\n";
-            }
-            run.clear();
-        };
-        for (auto [x, y] : s.points) {
-            double X = px(x), Y = py(a, y);
-            if (!std::isfinite(X) || !std::isfinite(Y)) {
-                flush();
-                continue;
-            }
-            run.emplace_back(X, Y);
-            if (!s.markers) continue;
-            if (s.square)
-                out << "<rect x=\"" << num(X - 3.5) << "\" y=\"" << num(Y - 3.5)
-                    << "\" width=\"7\" height=\"7\" fill=\"" << color << "\"/>\n";
-            else
-                out << "<circle cx=\"" << num(X) << "\" cy=\"" << num(Y) << "\" r=\"3.5\" fill=\""
-                    << color << "\"/>\n";
+// A series: lines through its runs of drawable points, its markers, and its legend entry.
+void draw_series(std::ostringstream& out, const Series& s, std::size_t i, const Frame& f) {
+    const Axis& a = s.right ? f.ay2 : f.ay;
+    std::string color = palette[std::size_t(s.color >= 0 ? s.color : int(i)) % 10];
+    std::vector<std::pair<double, double>> run;
+    auto flush = [&] {
+        if (s.lines && run.size() > 1) {
+            out << "<polyline fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1.8\""
+                << (s.dashed ? " stroke-dasharray=\"6,4\"" : "") << " points=\"";
+            for (auto [x, y] : run)
+                out << num(x) << "," << num(y) << " ";
+            out << "\"/>\n";
         }
-        flush();
-        // Its legend entry.
-        int row = int(i) / per_row, col = int(i) % per_row;
-        double lx = x0 + 20 + 190 * col, ly = height - 30 - 18 * (rows - 1 - row);
-        out << "<line x1=\"" << num(lx) << "\" y1=\"" << num(ly - 4) << "\" x2=\"" << num(lx + 22)
-            << "\" y2=\"" << num(ly - 4) << "\" stroke=\"" << color << "\" stroke-width=\"2\""
-            << (s.dashed ? " stroke-dasharray=\"6,4\"" : "") << "/>\n";
-        out << "<text x=\"" << num(lx + 28) << "\" y=\"" << num(ly) << "\">" << text(s.name)
-            << "</text>\n";
+        run.clear();
+    };
+    for (auto [x, y] : s.points) {
+        double X = f.px(x), Y = f.py(a, y);
+        if (!std::isfinite(X) || !std::isfinite(Y)) {
+            flush();
+            continue;
+        }
+        run.emplace_back(X, Y);
+        if (!s.markers) continue;
+        if (s.square)
+            out << "<rect x=\"" << num(X - 3.5) << "\" y=\"" << num(Y - 3.5)
+                << "\" width=\"7\" height=\"7\" fill=\"" << color << "\"/>\n";
+        else
+            out << "<circle cx=\"" << num(X) << "\" cy=\"" << num(Y) << "\" r=\"3.5\" fill=\""
+                << color << "\"/>\n";
     }
+    flush();
+    int row = int(i) / f.per_row, col = int(i) % f.per_row;
+    double lx = f.x0 + 20 + 190 * col, ly = f.height - 30 - 18 * (f.rows - 1 - row);
+    out << "<line x1=\"" << num(lx) << "\" y1=\"" << num(ly - 4) << "\" x2=\"" << num(lx + 22)
+        << "\" y2=\"" << num(ly - 4) << "\" stroke=\"" << color << "\" stroke-width=\"2\""
+        << (s.dashed ? " stroke-dasharray=\"6,4\"" : "") << "/>\n";
+    out << "<text x=\"" << num(lx + 28) << "\" y=\"" << num(ly) << "\">" << text(s.name)
+        << "</text>\n";
+}
+
+void draw_chart(std::ostringstream& out, const Chart& c, double x0, int width, int height) {
+    Frame f = frame_of(c, x0, width, height);
+    out << "<g font-family=\"sans-serif\" font-size=\"11\">\n";
+    draw_axes(out, c, f);
+    for (std::size_t i = 0; i < c.series.size(); ++i)
+        draw_series(out, c.series[i], i, f);
     for (const Chart::Label& l : c.labels) {
-        double X = px(l.x), Y = py(ay, l.y);
+        double X = f.px(l.x), Y = f.py(f.ay, l.y);
         if (!std::isfinite(X) || !std::isfinite(Y)) continue;
         out << "<text x=\"" << num(X) << "\" y=\"" << num(Y - 8) << "\" text-anchor=\"middle\">"
             << text(l.text) << "</text>\n";

@@ -340,33 +340,17 @@ std::vector<Case> read_cases(const Options& o) {
     return cases;
 }
 
-Report grade_results(const Options& o) {
-    Report rep;
-    fill_provenance(rep, o);
-    rep.cases_file = o.cases_file, rep.results_file = o.results_file;
-    rep.seed = 0, rep.cases_per_group = 0;
-    rep.families.clear();
-    exact::rounding_stats() = {};
-    auto start = std::chrono::steady_clock::now();
-    std::vector<Case> cases = read_cases(o);
-    rep.cases_count = cases.size();
-    std::unordered_map<std::string, std::size_t> index;
-    for (std::size_t i = 0; i < cases.size(); ++i) {
-        index[cases[i].id] = i;
-        std::string family = cases[i].family.empty() ? "cases" : cases[i].family;
-        if (std::find(rep.families.begin(), rep.families.end(), family) == rep.families.end())
-            rep.families.push_back(family);
-    }
-    Saver saver(o);
-    saver.begin(rep);
-
-    // Answers, by solver and then by case; each (case, solver) at most once.
-    struct Answer {
-        ParsedResult result;
-        long line = 0;
-        bool malformed = false;
-    };
-    std::map<std::string, std::unordered_map<std::size_t, Answer>> answers;
+// A results file's answers, by solver and then by the index of their case; each (case, solver)
+// at most once, each naming a case of the file.
+struct Answer {
+    ParsedResult result;
+    long line = 0;
+    bool malformed = false;
+};
+using ResultsByCase = std::map<std::string, std::unordered_map<std::size_t, Answer>>;
+ResultsByCase read_answers(const Options& o,
+                           const std::unordered_map<std::string, std::size_t>& index) {
+    ResultsByCase answers;
     jsonl::LineReader res(o.results_file, o.max_line_bytes);
     std::string line, why;
     for (;;) {
@@ -401,37 +385,68 @@ Report grade_results(const Options& o) {
     }
     // An empty results file still grades one solver: every case unanswered.
     if (answers.empty()) answers["results"];
-    for (const auto& [solver, by_case] : answers)
-        rep.solvers.push_back(solver);
+    return answers;
+}
 
-    for (std::size_t i = 0; i < cases.size(); ++i) {
-        const Case& c = cases[i];
-        Result oracle = exact::intersect(c.shape, c.line, {}, c.precision);
-        std::string family = c.family.empty() ? "cases" : c.family;
-        for (const auto& [solver, by_case] : answers) {
-            Row& row = rep.rows[{family, shape_name(c.shape), solver}];
-            auto a = by_case.find(i);
-            if (a == by_case.end() || a->second.malformed) {
-                // No answer, or none we can read: a refusal the oracle never makes.
-                Result none = Result::failure(ErrorCode::out_of_range,
-                                              a == by_case.end() ? "no answer" : "malformed");
-                grade(c, solver, none, oracle, row, nullptr, Grading{false});
-            } else if (a->second.result.error_code == "unrepresented") {
-                // What `linequad solve` writes for a case an external solver cannot take.
-                ++row.unrepresented;
-            } else {
-                const ParsedResult& pr = a->second.result;
-                grade(c, solver, pr.result, oracle, row, &rep.curves[{family, solver}][c.k],
-                      Grading{pr.has_points, pr.has_kinds, pr.has_parts});
-            }
+// One case's answers from every solver of a results file, graded into rep.
+void grade_answers(const Case& c, std::size_t i, const ResultsByCase& answers, Report& rep) {
+    Result oracle = exact::intersect(c.shape, c.line, {}, c.precision);
+    std::string family = c.family.empty() ? "cases" : c.family;
+    for (const auto& [solver, by_case] : answers) {
+        Row& row = rep.rows[{family, shape_name(c.shape), solver}];
+        auto a = by_case.find(i);
+        if (a == by_case.end() || a->second.malformed) {
+            // No answer, or none we can read: a refusal the oracle never makes.
+            Result none = Result::failure(ErrorCode::out_of_range,
+                                          a == by_case.end() ? "no answer" : "malformed");
+            grade({c, solver, none, oracle, Grading{false}}, row, nullptr);
+        } else if (a->second.result.error_code == "unrepresented") {
+            // What `linequad solve` writes for a case an external solver cannot take.
+            ++row.unrepresented;
+        } else {
+            const ParsedResult& pr = a->second.result;
+            grade(
+                {c, solver, pr.result, oracle, Grading{pr.has_points, pr.has_kinds, pr.has_parts}},
+                row, &rep.curves[{family, solver}][c.k]);
         }
-        saver.maybe_save(rep, start);
     }
-    rep.status = Status::complete;
+}
+
+void note_oracle_steps(Report& rep) {
     const auto& steps = exact::rounding_stats().by_steps;
     std::copy(std::begin(steps), std::end(steps), rep.oracle_steps.begin());
     rep.oracle_by_intervals = exact::rounding_stats().by_intervals;
     rep.oracle_by_filter = exact::rounding_stats().by_filter;
+}
+
+Report grade_results(const Options& o) {
+    Report rep;
+    fill_provenance(rep, o);
+    rep.cases_file = o.cases_file, rep.results_file = o.results_file;
+    rep.seed = 0, rep.cases_per_group = 0;
+    rep.families.clear();
+    exact::rounding_stats() = {};
+    auto start = std::chrono::steady_clock::now();
+    std::vector<Case> cases = read_cases(o);
+    rep.cases_count = cases.size();
+    std::unordered_map<std::string, std::size_t> index;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        index[cases[i].id] = i;
+        std::string family = cases[i].family.empty() ? "cases" : cases[i].family;
+        if (std::find(rep.families.begin(), rep.families.end(), family) == rep.families.end())
+            rep.families.push_back(family);
+    }
+    Saver saver(o);
+    saver.begin(rep);
+    ResultsByCase answers = read_answers(o, index);
+    for (const auto& [solver, by_case] : answers)
+        rep.solvers.push_back(solver);
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        grade_answers(cases[i], i, answers, rep);
+        saver.maybe_save(rep, start);
+    }
+    rep.status = Status::complete;
+    note_oracle_steps(rep);
     saver.end(rep, o, start);
     return rep;
 }
@@ -492,22 +507,20 @@ class ChunkGrader {
                        double(cases.size()));
             auto& curve = out.curves[{family, name}];
             for (std::size_t i = 0; i < cases.size(); ++i)
-                grade(cases[i], name, got_[i], oracle_[i], row, &curve[cases[i].k]);
+                grade({cases[i], name, got_[i], oracle_[i]}, row, &curve[cases[i].k]);
         }
         if (batch_ && precision == Precision::binary64) {
+            const std::string batch = batch_name;
             Row& row = out.rows[{family, shape, batch_name}];
             row.ns.add(run_batch(cases, got_));
             auto& curve = out.curves[{family, batch_name}];
             for (std::size_t i = 0; i < cases.size(); ++i)
-                grade(cases[i], batch_name, got_[i], oracle_[i], row, &curve[cases[i].k]);
+                grade({cases[i], batch, got_[i], oracle_[i]}, row, &curve[cases[i].k]);
         }
         for (const ExternalSolver* e : solvers_.external)
             if (e->precision == precision && e->takes(cases[0].shape))
                 grade_external(*e, cases, family, shape, out);
-        const auto& steps = exact::rounding_stats().by_steps;
-        std::copy(std::begin(steps), std::end(steps), out.oracle_steps.begin());
-        out.oracle_by_intervals = exact::rounding_stats().by_intervals;
-        out.oracle_by_filter = exact::rounding_stats().by_filter;
+        note_oracle_steps(out);
         return out;
     }
 
@@ -565,7 +578,8 @@ class ChunkGrader {
                 continue;
             }
             Grading what{e.points && ref.points, e.kinds && ref.kinds, e.parts && ref.parts};
-            grade(posed_[j], e.name, *a.result, ref.result, row, &curve[posed_[j].k], what, label);
+            grade({posed_[j], e.name, *a.result, ref.result, what, label}, row,
+                  &curve[posed_[j].k]);
         }
     }
 

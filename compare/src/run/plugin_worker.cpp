@@ -203,36 +203,25 @@ void watch_parent() {
     }).detach();
 }
 
-} // namespace
-
-int plugin_worker_main(const std::string& path) {
-    ::signal(SIGPIPE, SIG_IGN); // a parent gone: writes fail, and the worker ends
-    watch_parent();
-    struct stat st {};
-    Shared shared;
-    if (::fstat(shared_fd, &st) != 0 || std::size_t(st.st_size) < shared.at.size) {
-        std::fprintf(stderr, "linequad plugin-worker: run by linequad itself, not by hand\n");
-        return 2;
-    }
-    shared.base = ::mmap(nullptr, shared.at.size, PROT_READ | PROT_WRITE, MAP_SHARED, shared_fd, 0);
-    if (shared.base == MAP_FAILED) return 2;
-
-    FpState before = numeric::fp_state();
+// The plugin loaded and its entry asked for its solvers (ABI 2, else 1): what it offers, and the
+// floating-point environment before and after. Refuses (ending the worker) when it cannot.
+struct Loaded {
+    std::vector<Offered> offered;
+    int abi = LQ_ABI;
+    FpState before{}, after{};
+};
+Loaded load(const std::string& path) {
+    Loaded out;
+    out.before = numeric::fp_state();
     void* lib = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!lib) refuse_to_load(std::string("cannot load it: ") + ::dlerror());
     auto entry = reinterpret_cast<lq_plugin_entry>(::dlsym(lib, "linequad_audit_plugin"));
     if (!entry) refuse_to_load("exports no linequad_audit_plugin (see linequad/audit_plugin.h)");
-    const void* array = nullptr;
-    int abi = LQ_ABI, n = -1;
+    const lq_solver* array = nullptr;
+    int n = -1;
     try {
-        const lq_solver* s = nullptr;
-        n = entry(LQ_ABI, &s);
-        array = s;
-        if (n < 0) {
-            abi = 1;
-            n = entry(1, &s);
-            array = s;
-        }
+        n = entry(LQ_ABI, &array);
+        if (n < 0) out.abi = 1, n = entry(1, &array);
     } catch (const std::exception& e) {
         refuse_to_load(std::string("its linequad_audit_plugin threw: ") + e.what());
     } catch (...) {
@@ -241,25 +230,26 @@ int plugin_worker_main(const std::string& path) {
     if (n < 0) refuse_to_load("does not speak the plugin ABI 2 or 1");
     if (n == 0 || !array) refuse_to_load("offers no solver");
     if (n > 256) refuse_to_load("offers " + std::to_string(n) + " solvers (at most 256)");
-    FpState loaded = numeric::fp_state();
-
-    std::vector<Offered> offered;
+    out.after = numeric::fp_state();
     for (int i = 0; i < n; ++i) {
-        Offered o{};
-        if (abi == 1) {
-            const lq_solver_v1& s = static_cast<const lq_solver_v1*>(array)[i];
-            o = {s.name,    s.precision, s.answers, s.parametrisation, s.surface,
-                 s.carries, s.shapes,    s.mapping, s.solve,           s.self};
+        if (out.abi == 1) {
+            const lq_solver_v1& s = reinterpret_cast<const lq_solver_v1*>(array)[i];
+            out.offered.push_back({s.name, s.precision, s.answers, s.parametrisation, s.surface,
+                                   s.carries, s.shapes, s.mapping, s.solve, s.self});
         } else {
-            const lq_solver& s = static_cast<const lq_solver*>(array)[i];
-            o = {s.name,    s.precision, s.answers,    s.parametrisation, s.surface,
-                 s.carries, s.shapes,    s.mapping,    s.solve,           s.self,
-                 s.inside,  s.contact,   s.solve_batch};
+            const lq_solver& s = array[i];
+            out.offered.push_back({s.name, s.precision, s.answers, s.parametrisation, s.surface,
+                                   s.carries, s.shapes, s.mapping, s.solve, s.self, s.inside,
+                                   s.contact, s.solve_batch});
         }
-        offered.push_back(o);
     }
+    return out;
+}
+
+// The first line the worker writes: what the plugin declares, for the parent to check.
+jsonl::Json hello(const Loaded& l) {
     jsonl::Json solvers = jsonl::Json::array();
-    for (const Offered& o : offered)
+    for (const Offered& o : l.offered)
         solvers.push_back({{"name", o.name ? std::string(o.name, strnlen(o.name, 4096)) : ""},
                            {"has_name", o.name != nullptr},
                            {"precision", o.precision},
@@ -273,82 +263,122 @@ int plugin_worker_main(const std::string& path) {
                            {"inside", o.inside},
                            {"contact", o.contact},
                            {"batch", o.solve_batch != nullptr}});
-    say_hello({{"ok", true},
-               {"abi", abi},
-               {"before", state_json(before)},
-               {"loaded", state_json(loaded)},
-               {"solvers", solvers}});
+    return {{"ok", true},
+            {"abi", l.abi},
+            {"before", state_json(l.before)},
+            {"loaded", state_json(l.after)},
+            {"solvers", solvers}};
+}
 
-    Header* h = shared.header();
-    for (std::uint32_t next = 1;; ++next) {
-        auto waiting = [&] { return std::int32_t(h->posted.load() - next) < 0; };
-        while (!spin_while(waiting, std::chrono::microseconds(300))) {
-            h->worker_sleeps.store(1);
-            if (waiting()) {
-                char bell[64];
-                ssize_t n = ::read(request_fd, bell, sizeof bell);
-                if (n == 0 || (n < 0 && errno != EINTR)) return 0; // the parent is done
-            }
-            h->worker_sleeps.store(0);
-        }
-        Request q = h->requests[next % ring];
-        if (q.magic != request_magic || q.seq != next || q.solver >= offered.size() ||
-            q.count > capacity || q.first > q.count)
-            return 4;
-        const Offered& o = offered[q.solver];
+// The worker answering requests: each call in the environment loading left, noted if it leaves
+// another; an exception caught and named; `done` advanced after every call.
+class Answerer {
+  public:
+    Answerer(const Shared& shared, FpState loaded) : sh_(shared), loaded_(loaded) {}
+    // Request q with solver o; its reply (the calls' time, and whether a packet was declined).
+    Reply answer(const Request& q, const Offered& o) const {
         Reply r{reply_magic, q.seq, all_answered, 0, 0};
         auto start = Clock::now();
-        // Each call starts in the environment loading left, and is noted if it leaves another.
-        auto settle = [&] {
-            if (numeric::fp_state() != loaded) numeric::set_fp_state(loaded);
-        };
-        auto note_environment = [&](Note& note) {
-            FpState now = numeric::fp_state();
-            note.changed = now != loaded;
-            note.simd = now.simd, note.x87 = now.x87;
-        };
         if (q.batch && o.solve_batch) {
-            for (std::uint32_t i = q.first; i < q.count; ++i)
-                shared.answers()[i] = lq_answer{}, shared.notes()[i] = Note{};
-
-            settle();
-            int rc = -1;
-            try {
-                rc = o.solve_batch(o.self, int(q.count - q.first), shared.shapes() + q.first,
-                                   shared.lines() + q.first, shared.answers() + q.first);
-            } catch (...) {
-                rc = -1;
-            }
-            r.ns = std::uint64_t(
-                std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count());
-            note_environment(shared.notes()[q.first]);
-            if (rc != 0) r.status = batch_declined;
-            h->done.store(q.count, std::memory_order_release);
+            if (!packet(q, o)) r.status = batch_declined;
         } else {
-            for (std::uint32_t i = q.first; i < q.count; ++i) {
-                lq_answer& a = shared.answers()[i];
-                Note& note = shared.notes()[i];
-                a = lq_answer{};
-                settle();
-                try {
-                    note.outcome = o.solve(o.self, &shared.shapes()[i], &shared.lines()[i], &a) == 0
-                                       ? answered
-                                       : returned_nonzero;
-                } catch (const std::exception& e) {
-                    note.outcome = threw;
-                    char* text = shared.thrown()[i].text;
-                    std::strncpy(text, e.what() ? e.what() : "", sizeof(Thrown::text) - 1);
-                    text[sizeof(Thrown::text) - 1] = 0;
-                } catch (...) {
-                    note.outcome = threw_other;
-                }
-                note_environment(note);
-                h->done.store(i + 1, std::memory_order_release);
-            }
-            r.ns = std::uint64_t(
-                std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count());
+            for (std::uint32_t i = q.first; i < q.count; ++i)
+                one(i, o);
         }
-        h->replies[next % ring] = r;
+        r.ns = std::uint64_t(
+            std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count());
+        return r;
+    }
+
+  private:
+    void settle() const {
+        if (numeric::fp_state() != loaded_) numeric::set_fp_state(loaded_);
+    }
+    void note_environment(Note& note) const {
+        FpState now = numeric::fp_state();
+        note.changed = now != loaded_;
+        note.simd = now.simd, note.x87 = now.x87;
+    }
+    void one(std::uint32_t i, const Offered& o) const {
+        lq_answer& a = sh_.answers()[i];
+        Note& note = sh_.notes()[i];
+        a = lq_answer{};
+        settle();
+        try {
+            note.outcome = o.solve(o.self, &sh_.shapes()[i], &sh_.lines()[i], &a) == 0
+                               ? answered
+                               : returned_nonzero;
+        } catch (const std::exception& e) {
+            note.outcome = threw;
+            char* text = sh_.thrown()[i].text;
+            std::strncpy(text, e.what() ? e.what() : "", sizeof(Thrown::text) - 1);
+            text[sizeof(Thrown::text) - 1] = 0;
+        } catch (...) {
+            note.outcome = threw_other;
+        }
+        note_environment(note);
+        sh_.header()->done.store(i + 1, std::memory_order_release);
+    }
+    // A packet through the batch entry: true when it answered.
+    bool packet(const Request& q, const Offered& o) const {
+        for (std::uint32_t i = q.first; i < q.count; ++i)
+            sh_.answers()[i] = lq_answer{}, sh_.notes()[i] = Note{};
+        settle();
+        int rc = -1;
+        try {
+            rc = o.solve_batch(o.self, int(q.count - q.first), sh_.shapes() + q.first,
+                               sh_.lines() + q.first, sh_.answers() + q.first);
+        } catch (...) {
+            rc = -1;
+        }
+        note_environment(sh_.notes()[q.first]);
+        sh_.header()->done.store(q.count, std::memory_order_release);
+        return rc == 0;
+    }
+    const Shared& sh_;
+    FpState loaded_;
+};
+
+// Waits for request `next` to be posted: a moment spinning, then asleep until the parent rings.
+// False when the parent has gone.
+bool wait_for_request(Header* h, std::uint32_t next) {
+    auto waiting = [&] { return std::int32_t(h->posted.load() - next) < 0; };
+    while (!spin_while(waiting, std::chrono::microseconds(300))) {
+        h->worker_sleeps.store(1);
+        if (waiting()) {
+            char bell[64];
+            ssize_t n = ::read(request_fd, bell, sizeof bell);
+            if (n == 0 || (n < 0 && errno != EINTR)) return false;
+        }
+        h->worker_sleeps.store(0);
+    }
+    return true;
+}
+
+} // namespace
+
+int plugin_worker_main(const std::string& path) {
+    ::signal(SIGPIPE, SIG_IGN); // a parent gone: writes fail, and the worker ends
+    watch_parent();
+    struct stat st {};
+    Shared shared;
+    if (::fstat(shared_fd, &st) != 0 || std::size_t(st.st_size) < shared.at.size) {
+        std::fprintf(stderr, "linequad plugin-worker: run by linequad itself, not by hand\n");
+        return 2;
+    }
+    shared.base = ::mmap(nullptr, shared.at.size, PROT_READ | PROT_WRITE, MAP_SHARED, shared_fd, 0);
+    if (shared.base == MAP_FAILED) return 2;
+    Loaded loaded = load(path);
+    say_hello(hello(loaded));
+    Answerer answerer(shared, loaded.after);
+    Header* h = shared.header();
+    for (std::uint32_t next = 1;; ++next) {
+        if (!wait_for_request(h, next)) return 0; // the parent is done
+        Request q = h->requests[next % ring];
+        if (q.magic != request_magic || q.seq != next || q.solver >= loaded.offered.size() ||
+            q.count > capacity || q.first > q.count)
+            return 4;
+        h->replies[next % ring] = answerer.answer(q, loaded.offered[q.solver]);
         h->finished.store(next);
         if (h->parent_sleeps.load()) {
             char bell = 1;
@@ -870,106 +900,122 @@ struct PluginWorker::Impl {
             a.environment = interned(numeric::fp_change(loaded, {note.simd, note.x87}));
     }
 
-    // Solver s on posed[base, base + count), through cases [0, count) of the shared memory, into
-    // out[base + i]; false when stopped. Requests of a few hundred cases are kept two in flight,
-    // so that the worker answers one while this process writes the next and reads the last: what
-    // the two processes do overlaps. A packet solver's batch entry gets them all in one call.
-    bool run(int s, const std::vector<Case>& posed, std::size_t base, std::uint32_t count,
-             std::vector<ExternalAnswer>& out, double* ns, std::uint64_t* timed) {
-        // A few requests per batch: enough to overlap, few enough that the calls' own cost stays
-        // above the four system calls each request takes.
-        const std::uint32_t per_request = std::max<std::uint32_t>(64, (count + 3) / 4);
+    // One solver's cases on their way through the worker: [0, cursor) read back, [0, filled)
+    // written to the shared memory.
+    struct Run {
+        int s;
+        const std::vector<Case>& posed;
+        std::size_t base;
+        std::uint32_t count;
+        std::vector<ExternalAnswer>& out;
+        bool batch;
+        std::uint32_t cursor = 0, filled = 0;
+        double ns = 0;
+        std::uint64_t timed = 0;
+    };
+
+    void fill(Run& r, std::uint32_t to) {
+        for (; r.filled < to; ++r.filled) {
+            const Case& c = r.posed[r.base + r.filled];
+            shared.shapes()[r.filled] = to_plugin_shape(c.shape);
+            shared.lines()[r.filled] = lq_line{{c.line.L0.x, c.line.L0.y, c.line.L0.z},
+                                               {c.line.v.x, c.line.v.y, c.line.v.z},
+                                               c.line.range.t0,
+                                               c.line.range.t1};
+        }
+    }
+    // The answers [cursor, done) read (a plugin cannot make this read past `count`).
+    void take(Run& r, std::uint32_t done) {
+        for (done = std::min(done, r.count); r.cursor < done; ++r.cursor)
+            collect(r.cursor, r.out[r.base + r.cursor]);
+    }
+
+    // Requests of a few hundred cases kept two in flight, so that the worker answers one while
+    // this process writes the next and reads the last (a packet solver's batch entry gets them
+    // all in one call), until every case is answered or the worker ends or a stop is asked.
+    Waited drive(Run& r) {
+        // A few requests per batch: enough to overlap, few enough that a request's own cost
+        // stays small beside its calls'.
+        const std::uint32_t per_request = std::max<std::uint32_t>(64, (r.count + 3) / 4);
         Header* h = shared.header();
-        bool batch = solvers[std::size_t(s)].batch;
-        std::uint32_t cursor = 0, filled = 0; // answers read: [0, cursor); cases written
-        auto fill = [&](std::uint32_t to) {
-            for (; filled < to; ++filled) {
-                const Case& c = posed[base + filled];
-                shared.shapes()[filled] = to_plugin_shape(c.shape);
-                shared.lines()[filled] = lq_line{{c.line.L0.x, c.line.L0.y, c.line.L0.z},
-                                                 {c.line.v.x, c.line.v.y, c.line.v.z},
-                                                 c.line.range.t0,
-                                                 c.line.range.t1};
-            }
+        struct Sent {
+            std::uint32_t seq, from, to;
         };
-        // The answers [cursor, done) read (a plugin cannot make this read past `count`).
-        auto take = [&](std::uint32_t done) {
-            for (done = std::min(done, count); cursor < done; ++cursor)
-                collect(cursor, out[base + cursor]);
-        };
-        while (cursor < count) {
-            if (!ensure_worker()) {
-                const char* why = own_words("the worker could not be started again: " + broken);
-                for (std::uint32_t i = cursor; i < count; ++i)
-                    out[base + i].result = Result::failure(ErrorCode::foreign, why);
-                return true;
+        Sent flight[2];
+        int in_flight = 0;
+        std::uint32_t next = r.cursor;
+        h->done.store(r.cursor, std::memory_order_release); // the worker waits: nothing in flight
+        while (r.cursor < r.count) {
+            while (in_flight < 2 && next < r.count && !(r.batch && in_flight)) {
+                std::uint32_t to = r.batch ? r.count : std::min(r.count, next + per_request);
+                fill(r, to);
+                Request q{request_magic, ++seq, std::uint32_t(r.s), next, to, r.batch ? 1u : 0u};
+                h->requests[q.seq % ring] = q;
+                h->posted.store(q.seq);
+                char bell = 1;
+                if (h->worker_sleeps.load() && !write_exactly(channel, &bell, 1)) break;
+                flight[in_flight++] = {q.seq, next, to};
+                next = to;
             }
-            writing = s;
-            h->done.store(cursor, std::memory_order_release);
-            struct Sent {
-                std::uint32_t seq, from, to;
-            };
-            Sent flight[2];
-            int in_flight = 0;
-            std::uint32_t next = cursor;
-            Waited w{Waited::replied, {}, ""};
-            while (cursor < count) {
-                while (in_flight < 2 && next < count && !(batch && in_flight)) {
-                    std::uint32_t to = batch ? count : std::min(count, next + per_request);
-                    fill(to);
-                    Request q{request_magic, ++seq, std::uint32_t(s), next, to, batch ? 1u : 0u};
-                    h->requests[q.seq % ring] = q;
-                    h->posted.store(q.seq);
-                    char bell = 1;
-                    if (h->worker_sleeps.load() && !write_exactly(channel, &bell, 1)) break;
-                    flight[in_flight++] = {q.seq, next, to};
-                    next = to;
-                }
-                if (in_flight == 0) {
-                    w = {Waited::ended, {}, process::describe_status(reap())};
-                    break;
-                }
-                Sent oldest = flight[0];
-                // A packet's answers are read only once its call has returned (and answered).
-                w = wait_reply(oldest.seq, [&](std::uint32_t done) {
-                    if (!batch) take(done);
-                });
-                if (w.kind != Waited::replied) break;
-                if (w.reply.magic != reply_magic || w.reply.seq != oldest.seq ||
-                    w.reply.status > batch_declined ||
-                    h->done.load(std::memory_order_acquire) < oldest.to) {
-                    stop_worker();
-                    w = {Waited::ended, {}, "broke the worker's protocol"};
-                    break;
-                }
-                flight[0] = flight[1], --in_flight;
-                if (w.reply.status == batch_declined) {
-                    ++batch_fallbacks[std::size_t(s)];
-                    batch = false; // asked again one case at a time
-                    next = cursor;
-                    continue;
-                }
-                take(oldest.to);
-                *ns += double(std::min<std::uint64_t>(w.reply.ns, std::uint64_t(1) << 50));
-                *timed += oldest.to - oldest.from;
+            if (in_flight == 0) return {Waited::ended, {}, process::describe_status(reap())};
+            Sent oldest = flight[0];
+            // A packet's answers are read only once its call has returned (and answered).
+            bool packet = r.batch;
+            Waited w = wait_reply(oldest.seq, [&](std::uint32_t done) {
+                if (!packet) take(r, done);
+            });
+            if (w.kind != Waited::replied) return w;
+            if (w.reply.magic != reply_magic || w.reply.seq != oldest.seq ||
+                w.reply.status > batch_declined ||
+                h->done.load(std::memory_order_acquire) < oldest.to) {
+                stop_worker();
+                return {Waited::ended, {}, "broke the worker's protocol"};
             }
-            if (w.kind == Waited::stopped) return false;
-            if (cursor >= count) break;
-            // The worker is gone. The cases it answered stand; a packet's call is asked again
-            // one case at a time (which case failed is not known); else the first case it did
-            // not answer is charged with how it ended.
-            stop_worker();
-            if (batch) {
-                ++batch_fallbacks[std::size_t(s)];
-                batch = false;
+            flight[0] = flight[1], --in_flight;
+            if (w.reply.status == batch_declined) { // asked again one case at a time
+                ++batch_fallbacks[std::size_t(r.s)];
+                r.batch = false;
+                next = r.cursor;
+                h->done.store(r.cursor, std::memory_order_release); // the worker waits again
                 continue;
             }
-            take(std::clamp(h->done.load(std::memory_order_acquire), cursor, count));
-            if (cursor >= count) break;
-            ++restarts[std::size_t(s)];
+            take(r, oldest.to);
+            r.ns += double(std::min<std::uint64_t>(w.reply.ns, std::uint64_t(1) << 50));
+            r.timed += oldest.to - oldest.from;
+        }
+        return {Waited::replied, {}, ""};
+    }
+
+    // Solver s on posed[base, base + count), through cases [0, count) of the shared memory, into
+    // out[base + i]; false when stopped. When the worker ends, the cases it answered stand; a
+    // packet's call is asked again one case at a time (which case failed is not known); else the
+    // first case it did not answer is charged with how it ended, and the worker is started again
+    // for the rest.
+    bool run(Run& r) {
+        while (r.cursor < r.count) {
+            if (!ensure_worker()) {
+                const char* why = own_words("the worker could not be started again: " + broken);
+                for (std::uint32_t i = r.cursor; i < r.count; ++i)
+                    r.out[r.base + i].result = Result::failure(ErrorCode::foreign, why);
+                return true;
+            }
+            writing = r.s;
+            Waited w = drive(r);
+            if (w.kind == Waited::stopped) return false;
+            if (r.cursor >= r.count) break;
+            stop_worker();
+            if (r.batch) {
+                ++batch_fallbacks[std::size_t(r.s)];
+                r.batch = false;
+                continue;
+            }
+            take(r, std::clamp(shared.header()->done.load(std::memory_order_acquire), r.cursor,
+                               r.count));
+            if (r.cursor >= r.count) break;
+            ++restarts[std::size_t(r.s)];
             std::string name = w.kind == Waited::timed_out ? "timed out" : w.why;
-            out[base + cursor].result = Result::failure(ErrorCode::foreign, own_words(name));
-            ++cursor;
+            r.out[r.base + r.cursor].result = Result::failure(ErrorCode::foreign, own_words(name));
+            ++r.cursor;
         }
         return true;
     }
@@ -1009,7 +1055,9 @@ bool PluginWorker::answer(int s, const std::vector<Case>& posed, std::vector<Ext
     std::uint64_t timed = 0;
     for (std::size_t base = 0; base < posed.size(); base += capacity) {
         auto count = std::uint32_t(std::min<std::size_t>(capacity, posed.size() - base));
-        if (!m.run(s, posed, base, count, out, &total, &timed)) return false;
+        Impl::Run r{s, posed, base, count, out, m.solvers[std::size_t(s)].batch};
+        if (!m.run(r)) return false;
+        total += r.ns, timed += r.timed;
     }
     m.drain_output(); // what it wrote while answering, for the report
     // The calls' own time per case, scaled to every case (those of crashed calls have none).

@@ -59,12 +59,12 @@ inline void hit_test_in(Result& r, Binary32) {
 }
 
 // The first input that is not a float, for a float target.
-template <class Src>
-Error target_error(const Src&, const Line&, Binary64) {
+template <class Source>
+Error target_error(const Source&, const Line&, Binary64) {
     return {};
 }
-template <class Src>
-Error target_error(const Src& src, const Line& l, Binary32) {
+template <class Source>
+Error target_error(const Source& src, const Line& l, Binary32) {
     return binary32_error(src.shape, l);
 }
 
@@ -80,15 +80,15 @@ inline bool moderate(double extent, const Line& l) {
 
 template <class Target>
 struct CorrectTo {
-    template <class Src>
-    static Result solve(const Src& src, const Line& l, Query q) {
+    template <class Source>
+    static Result solve(const Source& src, const Line& l, Query q) {
         Validity valid = check(src, l);
         if (!valid.error.ok()) return Result::failure(valid.error);
         if (Error e = target_error(src, l, Target{}); !e.ok()) return Result::failure(e);
         double extent = scene_extent(src, l);
         if (q.need == Need::any) q.points = false; // a hit test computes no point
         // The quick rung first, where the scene's products stay in double's normal range.
-        using Traits = ShapeTraits<typename Src::Shape>;
+        using Traits = ShapeTraits<typename Source::Shape>;
         if constexpr (Traits::has_line_form) {
             if (q.need == Need::any && !closed(src.shape) && moderate(extent, l)) {
                 Result r;
@@ -105,9 +105,10 @@ struct CorrectTo {
     }
 
     // The rungs in turn, each only where the one before cannot prove its answer.
-    template <class Src>
-    static Result ladder(const Src& src, int orientation, double extent, const Line& l, Query q) {
-        using S = typename Src::Shape;
+    template <class Source>
+    static Result ladder(const Source& src, int orientation, double extent, const Line& l,
+                         Query q) {
+        using S = typename Source::Shape;
         using Traits = ShapeTraits<S>;
         Result r; // the one result, returned in place
         // The Newton rung on the scene as `unit` has it; r is left empty when the rung declines.

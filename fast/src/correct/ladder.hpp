@@ -26,8 +26,8 @@ struct Unit {
 // No value when scaling could lose bits (a component tiny beside the scene: fragile_scene; a
 // range end that would leave the normal range) or leave t's scale out of range; the exact rung,
 // which needs no scaling, answers those.
-template <class Src>
-std::optional<Unit> unit_scale(const Src& src, double extent, const Line& l) {
+template <class Source>
+std::optional<Unit> unit_scale(const Source& src, double extent, const Line& l) {
     using F = Binary64;
     if (fragile_scene(src, extent, l)) return std::nullopt;
     Prescale ps = prescale_for(extent, l.v);

@@ -205,11 +205,25 @@ template <class BT>
     return finish_certified(c, cp.n, cr.certain && cp.certain, e, l, q);
 }
 
+// What each shape's certified derivation gives: the quadratic in the parameter s moved by tc,
+// and the axial coordinate z0 + s dz with its extent.
+template <class BT>
+struct CertifiedForm {
+    BoundedQuadratic<BT> quad;
+    double tc;
+    BT z0, dz;
+    Extent extent;
+};
+
 // The last step of every certified solve: the roots s (moved by tc), their axial coordinate
 // z0 + s dz, and the result; a line on the surface only from exact zeros (certified_roots).
+// t_scale: what prescaling did to t.
 template <class BT>
-Result certified_result(const BoundedQuadratic<BT>& quad, double tc, BT z0, BT dz, double t_scale,
-                        Extent e, const Line& l, Query q) {
+Result certified_result(const CertifiedForm<BT>& f, double t_scale, const Line& l, Query q) {
+    const BoundedQuadratic<BT>& quad = f.quad;
+    const BT &z0 = f.z0, &dz = f.dz;
+    double tc = f.tc;
+    const Extent& e = f.extent;
     CertifiedRoots<BT> cr = certified_roots(quad);
     if (cr.on_surface) {
         Result r = finish_on_surface(z0.v - tc * dz.v, dz.v, t_scale, e, l);
@@ -244,16 +258,6 @@ struct BoundedDualFrame : exact_form::AdjugateFrame<BT> {
         BoundedVec3<BT> s = this->scaled_local(u);
         return {s.x / this->det, s.y / this->det, s.z / this->det};
     }
-};
-
-// What each shape's certified derivation gives: the quadratic in the parameter s moved by tc,
-// and the axial coordinate z0 + s dz with its extent.
-template <class BT>
-struct CertifiedForm {
-    BoundedQuadratic<BT> quad;
-    double tc;
-    BT z0, dz;
-    Extent extent;
 };
 
 } // namespace linequad::detail

@@ -99,6 +99,34 @@ int sign_surd(const NT& X, const NT& Y, const NT& D) {
     return sign_surd(X, sy, NT(Y * Y * D));
 }
 
+// A root of some quadratic, (N + S sqrt(D)) / Den, its parts where they are kept.
+template <class NT>
+struct SurdView {
+    const NT& N;
+    int S;
+    const NT& Den;
+    const NT& D;
+};
+
+// sgn(a - b) for roots of two quadratics, in an exact number type. With sigma = sgn(Den_a Den_b),
+//     sgn(a - b) = sigma sgn(P + Q),  P = A + B sqrt(D_a),  Q = C sqrt(D_b),
+//     A = N_a Den_b - N_b Den_a,  B = S_a Den_b,  C = -S_b Den_a;
+// P and Q of one sign: the sum has it; of opposite signs, the larger in magnitude wins:
+//     sgn(P^2 - Q^2) = sgn((A^2 + B^2 D_a - C^2 D_b) + 2 A B sqrt(D_a)).
+// The scene's exact order (fast/, BigFloat) and the oracle's (robust/, Mpzf) are this.
+template <class NT>
+int compare_roots(SurdView<NT> a, SurdView<NT> b) {
+    int sigma = sign(a.Den) * sign(b.Den);
+    NT A = a.N * b.Den - b.N * a.Den;
+    NT B = NT(double(a.S)) * b.Den, C = NT(double(-b.S)) * a.Den;
+    int sp = sign_surd(A, B, a.D);
+    int sq = sign(b.D) == 0 ? 0 : int(sign(C));
+    if (sq == 0) return sigma * sp;
+    if (sp == 0 || sp == sq) return sigma * sq;
+    int larger = sign_surd(NT(A * A + B * B * a.D - C * C * b.D), NT(NT(2.0) * A * B), a.D);
+    return sigma * (larger == 0 ? 0 : larger > 0 ? sp : sq);
+}
+
 // sgn(X + Y sqrt(D)) for one D. Exact types compare squares (sign_surd); a filtered type may
 // specialise it to evaluate X + Y sqrt(D) with sqrt(D) computed once.
 template <class NT>

@@ -188,6 +188,32 @@ LINEQUAD_INLINE LineFormT<T> quick_elliptic_form(const AdjugateRowsDD& rows,
     return f;
 }
 
+// An elliptic shape's line form through the adjugate rows of its frame, whose origin is `origin`
+// (the cylinder's C, the cone's apex H): the Newton rung's (precise: U0 and U1 in double-double
+// from the exact differences L0 - origin) or the hit test's quick one (doubles with bounds). What
+// is the shape's own (sigma, K, the extent), own(f, |det|, its bound, square) sets from |det|,
+// square() giving |det|^2 in the form's precision where it needs it (the elliptic cylinder's K).
+template <bool precise, class T, class Own>
+LINEQUAD_INLINE LineFormT<T> elliptic_line_form(const AdjugateRowsDD& rows, Vec3T<T> L0,
+                                                Vec3 origin, Vec3T<T> v, int orientation,
+                                                Own&& own) {
+    bool negative_det = orientation < 0;
+    if constexpr (precise) {
+        LineFormT<T> f =
+            elliptic_form(rows, difference_exact(L0, lanes_of<T>(origin)), v, negative_det);
+        BoundedDD det = absolute_det(rows, negative_det);
+        own(f, det.hi, bound_of_hi(det), [&] { return product(det, det); });
+        return f;
+    } else {
+        QuickBounded d;
+        LineFormT<T> f =
+            quick_elliptic_form(rows, difference_bounded<QuickBoundedT<T>>(L0, lanes_of<T>(origin)),
+                                v, negative_det, d);
+        own(f, d.v, d.bound(), [&] { return quick(d * d); });
+        return f;
+    }
+}
+
 // BoundedDD as prepare() keeps it: value, low part, bound.
 inline BoundedDD bounded_dd(const double (&x)[3]) {
     return {x[0], x[1], x[2]};

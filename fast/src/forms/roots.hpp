@@ -64,14 +64,14 @@ RootsT<R> textbook_roots(R a, R b, R c) {
     return r;
 }
 
-// A s^2 + 2 B s + Cc = 0 where D > 0: the stable pair, smaller first, for any lane type (the
+// A s^2 + 2 B s + C_moved = 0 where D > 0: the stable pair, smaller first, for any lane type (the
 // batch kernels' lanes, and stable_roots' two roots).
 template <class T>
-void stable_pair(T A, T B, T Cc, T D, T s[2]) {
+void stable_pair(T A, T B, T C_moved, T D, T s[2]) {
     using std::copysign;
     using std::sqrt;
     T q = -(B + copysign(sqrt(D), B));
-    T t0 = q / A, t1 = Cc / q;
+    T t0 = q / A, t1 = C_moved / q;
     s[0] = lane_min(t0, t1), s[1] = lane_max(t0, t1);
 }
 

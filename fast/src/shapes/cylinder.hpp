@@ -63,7 +63,7 @@ struct CylinderStable {
     Vec3T<T> h, v, vh;
     T r, hh, r2, r2hh, A, inv_vv, dz;
     // From the moved origin.
-    T tc, B, Cc, D, zc;
+    T tc, B, C_moved, D, zc;
     Vec3T<T> wc;
 
     CylinderStable(Vec3T<T> C, Vec3T<T> H, Vec3T<T> L0, Vec3T<T> v_, T r_) : v(v_), r(r_) {
@@ -99,8 +99,8 @@ struct CylinderStable {
 
     // The origin moved to the line's closest approach to the axis' midpoint: never farther
     // than the caller's origin, so every later product is as small as the geometry allows.
-    // Then B, Cc and the discriminant in geometric form. The rounded products of Cc and D are
-    // no less accurate than a factored (sqrt - r|h|)(sqrt + r|h|) form would be: their inputs
+    // Then B, C_moved and the discriminant in geometric form. The rounded products of C_moved and D
+    // are no less accurate than a factored (sqrt - r|h|)(sqrt + r|h|) form would be: their inputs
     // are rounded already.
     LINEQUAD_INLINE void discriminant() {
         using std::fma;
@@ -109,7 +109,7 @@ struct CylinderStable {
         Vec3T<T> whc = cross_accurate(wc, hx);
         B = dot2(vh, whc);
         zc = dot(wc, h);
-        Cc = dot(whc, whc) - r2hh;
+        C_moved = dot(whc, whc) - r2hh;
         T det = dot2(vh, wc);
         D = hh * fma(-det, det, r2 * A);
     }
@@ -148,9 +148,9 @@ struct SeedAxisT {
     R length;
 };
 using SeedAxis = SeedAxisT<double>;
-template <class R = double, class Src>
-SeedAxisT<R> seed_axis(const Src& src, Vec3 from, Vec3 to) {
-    if constexpr (Src::prepared && in_double<R>) {
+template <class R = double, class Source>
+SeedAxisT<R> seed_axis(const Source& src, Vec3 from, Vec3 to) {
+    if constexpr (Source::prepared && in_double<R>) {
         return {src.facts.seed_axis, src.facts.seed_length};
     } else {
         Vec3T<R> h = in_real<R>(to) - in_real<R>(from);
@@ -192,17 +192,17 @@ struct ShapeTraits<Cylinder> {
 
     // ---- What prepare() keeps ----
 
-    template <class R = double, class Src>
-    static SeedAxisT<R> seed_axis(const Src& src) {
+    template <class R = double, class Source>
+    static SeedAxisT<R> seed_axis(const Source& src) {
         return linequad::detail::seed_axis<R>(src, src.shape.C, src.shape.H);
     }
     struct NewtonAxis {
         Vec3TwoTerm h;
         BoundedDD hh, K; // h.h and r^2 h.h
     };
-    template <class Src>
-    static NewtonAxis newton_axis(const Src& src) {
-        if constexpr (Src::prepared) {
+    template <class Source>
+    static NewtonAxis newton_axis(const Source& src) {
+        if constexpr (Source::prepared) {
             const Facts<Cylinder>& f = src.facts;
             return {{f.h_hi, f.h_lo}, bounded_dd(f.hh), bounded_dd(f.K)};
         } else {
@@ -232,8 +232,8 @@ struct ShapeTraits<Cylinder> {
 
     // ---- seed ----
 
-    template <class R, class Src>
-    static SeedFormT<R> seed_form(const Src& src, const Line& l) {
+    template <class R, class Source>
+    static SeedFormT<R> seed_form(const Source& src, const Line& l) {
         const Cylinder& s = src.shape;
         SeedAxisT<R> axis = seed_axis<R>(src);
         Vec3T<R> v = in_real<R>(l.v), w = in_real<R>(l.L0) - in_real<R>(s.C);
@@ -254,16 +254,16 @@ struct ShapeTraits<Cylinder> {
     template <class T>
     using Stable = CylinderStable<T>;
     // The core for the line L0 + t v (a lane type's values for the batch), prescaled by ps.
-    template <class T, class Src, class Scale>
-    static Stable<T> stable_core(const Src& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
+    template <class T, class Source, class Scale>
+    static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
         const Cylinder& s = src.shape;
         return {ps.pos(s.C), ps.pos(s.H), ps.pos(L0), ps.dir(v), ps.len(s.r)};
     }
 
     // ---- certified ----
 
-    template <class B, class Src>
-    static CertifiedForm<B> certified_form(const Src& src, const Prescale& ps, const Line& l) {
+    template <class B, class Source>
+    static CertifiedForm<B> certified_form(const Source& src, const Prescale& ps, const Line& l) {
         const Cylinder& s = src.shape;
         Vec3 C = ps.pos(s.C), v = ps.dir(l.v);
         Vec3TwoTerm w = difference_exact(ps.pos(l.L0), C);
@@ -319,8 +319,8 @@ struct ShapeTraits<Cylinder> {
     // ---- correct: the Newton rung's line form ----
 
     // For the line L0 + t v in T: double, or a lane type (a line per lane).
-    template <class T = double, class Src>
-    static LineFormT<T> line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
+    template <class T = double, class Source>
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
         const Cylinder& s = src.shape;
         NewtonAxis axis = newton_axis(src);
         Vec3TwoTermT<T> h{lanes_of<T>(axis.h.hi), lanes_of<T>(axis.h.lo)};
@@ -348,13 +348,13 @@ struct ShapeTraits<Cylinder> {
     // absolute values (Higham, (3.5)). cross: two inputs, a product, a difference (n = 4, 5u
     // covers gamma_4 with the magnitude's own rounding); with v exact, n = 3 (4u); h.h and
     // w.h: n = 5 (6u); v.h: 5u; K = r^2 h.h: n = 7 (8u).
-    template <class T = double, class Src>
-    static LineFormT<T> quick_line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v,
+    template <class T = double, class Source>
+    static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,
                                         int /*orientation*/) {
         using F = Binary64;
         const Cylinder& s = src.shape;
         Vec3 h_shape = [&] {
-            if constexpr (Src::prepared)
+            if constexpr (Source::prepared)
                 return src.facts.h_hi; // h.hi of the exact difference: within u
             else
                 return s.H - s.C;

@@ -75,7 +75,7 @@ struct ConeStable {
     DualFrameT<T> f;
     Vec3TwoTermT<T> w, c;
     Vec3T<T> a, b, v, vl;
-    T s, A, tc, B, Cc, D;
+    T s, A, tc, B, C_moved, D;
     Mask near_tangent; // D came from the double-double triple products (the scalar solver)
 
     // make_frame() gives the dual frame of the prescaled a, b, c (built in place), with c = H - C
@@ -113,7 +113,7 @@ struct ConeStable {
         Vec3T<T> wcw = moved_origin(w, tc, v), wc = f.scaled_local(wcw, s);
         const T vm[3] = {vl.x, vl.y, -vl.z}, wm[3] = {wc.x, wc.y, wc.z};
         B = dot2(vm, wm);
-        Cc = squares_difference(wc.x, wc.y, wc.z);
+        C_moved = squares_difference(wc.x, wc.y, wc.z);
         Vec3T<T> u = cross_accurate(vl, wc);
         D = squares_difference(u.x, u.y, u.z);
         T size = triple_product_magnitude(u, vl, wc);
@@ -179,8 +179,8 @@ struct ShapeTraits<EllipticCone> {
 
     // ---- seed ----
 
-    template <class R, class Src>
-    static SeedFormT<R> seed_form(const Src& src, const Line& l) {
+    template <class R, class Source>
+    static SeedFormT<R> seed_form(const Source& src, const Line& l) {
         const EllipticCone& s = src.shape;
         Vec3T<R> w, v;                                     // H' = 0
         Vec3T<R> axis = in_real<R>(s.H) - in_real<R>(s.C); // H - C, rounded to R
@@ -200,14 +200,14 @@ struct ShapeTraits<EllipticCone> {
     using Stable = ConeStable<T>;
     // The core for the line L0 + t v (a lane type's values for the batch), prescaled by ps; a
     // prepared shape's dual frame, when it rescales to ps exactly (frame.hpp).
-    template <class T, class Src, class Scale>
-    static Stable<T> stable_core(const Src& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
+    template <class T, class Source, class Scale>
+    static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
         const EllipticCone& s = src.shape;
         Vec3T<T> a = ps.pos(s.a), b = ps.pos(s.b), H = ps.pos(s.H);
         Vec3TwoTermT<T> c;
         bool rescaled = false;
         int delta = 0;
-        if constexpr (Src::prepared && in_double<T>) {
+        if constexpr (Source::prepared && in_double<T>) {
             const FrameFacts& f = src.facts;
             delta = ps.k - f.exponent;
             rescaled = dual_frame_rescales(f, delta);
@@ -218,7 +218,7 @@ struct ShapeTraits<EllipticCone> {
         }
         if (!rescaled) c = difference_exact(H, ps.pos(s.C)); // c = H - C exactly: not a double
         auto frame = [&]() -> DualFrameT<T> {
-            if constexpr (Src::prepared && in_double<T>)
+            if constexpr (Source::prepared && in_double<T>)
                 if (rescaled) return rescaled_dual_frame(src.facts, delta);
             return {a, b, c};
         };
@@ -227,8 +227,8 @@ struct ShapeTraits<EllipticCone> {
 
     // ---- certified ----
 
-    template <class B, class Src>
-    static CertifiedForm<B> certified_form(const Src& src, const Prescale& ps, const Line& l) {
+    template <class B, class Source>
+    static CertifiedForm<B> certified_form(const Source& src, const Prescale& ps, const Line& l) {
         const EllipticCone& s = src.shape;
         Vec3 H = ps.pos(s.H), v = ps.dir(l.v);
         Vec3TwoTerm w = difference_exact(ps.pos(l.L0), H);
@@ -291,9 +291,9 @@ struct ShapeTraits<EllipticCone> {
     // ---- correct: the Newton rung's line form ----
 
     // The rows of adj(M) and det in bounded double-double: what prepare() keeps, or computed.
-    template <class Src>
-    static AdjugateRowsDD adjugate_rows(const Src& src) {
-        if constexpr (Src::prepared) {
+    template <class Source>
+    static AdjugateRowsDD adjugate_rows(const Source& src) {
+        if constexpr (Source::prepared) {
             return adjugate_rows_dd(src.facts);
         } else {
             const EllipticCone& s = src.shape;
@@ -301,47 +301,35 @@ struct ShapeTraits<EllipticCone> {
         }
     }
 
-    // The upper end from the lower one, -|det|: Z <= 0, or with two nappes Z <= |det| when
-    // finite and no bound otherwise.
-    template <class T>
-    static void nappes(const EllipticCone& s, LineFormT<T>& f) {
-        bool two = s.nappes == 2;
-        f.hi = two ? -f.lo : 0, f.e_hi = two ? f.e_lo : 0;
-        f.lo_bounded = s.finite;
-        f.hi_bounded = !two || s.finite;
-    }
-
-    // For the line L0 + t v in T: double, or a lane type (a line per lane).
-    template <class T = double, class Src>
-    static LineFormT<T> line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
+    // For the line L0 + t v in T: double, or a lane type (a line per lane). precise: the Newton
+    // rung's, in double-double; else the hit test's quick form, in doubles with bounds.
+    template <bool precise, class T, class Source>
+    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         const EllipticCone& s = src.shape;
-        bool negative_det = orientation < 0;
-        AdjugateRowsDD rows = adjugate_rows(src);
-        LineFormT<T> f =
-            elliptic_form(rows, difference_exact(L0, lanes_of<T>(s.H)), v, negative_det);
-        BoundedDD det = absolute_det(rows, negative_det);
-        f.sigma_z = -1;
-        f.K = BoundedDD(0);
-        f.lo = -det.hi, f.e_lo = bound_of_hi(det); // -|det| <= Z <= 0: the nappe z <= 0
-        nappes(s, f);
-        return f;
+        return elliptic_line_form<precise>(adjugate_rows(src), L0, s.H, v, orientation,
+                                           [&](LineFormT<T>& f, double det, double e_det, auto) {
+                                               f.sigma_z = -1;
+                                               f.K = BoundedDD(0);
+                                               // -|det| <= Z <= 0: the nappe z <= 0; with two
+                                               // nappes Z <= |det| when finite, no bound otherwise.
+                                               bool two = s.nappes == 2;
+                                               f.lo = -det, f.e_lo = e_det;
+                                               f.hi = two ? det : 0, f.e_hi = two ? e_det : 0;
+                                               f.lo_bounded = s.finite;
+                                               f.hi_bounded = !two || s.finite;
+                                           });
+    }
+    template <class T = double, class Source>
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
+        return form<true, T>(src, L0, v, orientation);
     }
 
     // ---- correct: the hit test's quick line form (the same, in doubles with bounds) ----
 
-    template <class T = double, class Src>
-    static LineFormT<T> quick_line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
-        using Q = QuickBounded;
-        const EllipticCone& s = src.shape;
-        Q d; // |det|
-        LineFormT<T> f = quick_elliptic_form(
-            adjugate_rows(src), difference_bounded<QuickBoundedT<T>>(L0, lanes_of<T>(s.H)), v,
-            orientation < 0, d);
-        f.sigma_z = -1;
-        f.K = BoundedDD(0);
-        f.lo = -d.v, f.e_lo = d.bound(); // -|det| <= Z <= 0: the nappe z <= 0
-        nappes(s, f);
-        return f;
+    template <class T = double, class Source>
+    static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,
+                                        int orientation) {
+        return form<false, T>(src, L0, v, orientation);
     }
 };
 

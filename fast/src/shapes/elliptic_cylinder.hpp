@@ -48,7 +48,7 @@ struct EllipticStable {
     DualFrameT<T> f;
     Vec3TwoTermT<T> w;
     Vec3T<T> a, b, c, v, vl;
-    T A, tc, B, Cc, D;
+    T A, tc, B, C_moved, D;
 
     // make_frame() gives the dual frame of the prescaled a, b, c (built in place); prescaled a,
     // b, c, C, L0 and v.
@@ -82,7 +82,7 @@ struct EllipticStable {
         Vec3T<T> wcl = f.local(wc);
         const T vxy[2] = {vl.x, vl.y}, wxy[2] = {wcl.x, wcl.y};
         B = dot2(vxy, wxy);
-        Cc = squares_difference(wcl.x, wcl.y, T(1));
+        C_moved = squares_difference(wcl.x, wcl.y, T(1));
         T u = fabs(dot2(c, cross_dd(v, wc)) / f.det);
         T sA = sqrt(A);
         T gap = sA - u;
@@ -139,8 +139,8 @@ struct ShapeTraits<EllipticCylinder> {
 
     // ---- seed ----
 
-    template <class R, class Src>
-    static SeedFormT<R> seed_form(const Src& src, const Line& l) {
+    template <class R, class Source>
+    static SeedFormT<R> seed_form(const Source& src, const Line& l) {
         const EllipticCylinder& s = src.shape;
         Vec3T<R> w, v; // C' = 0
         to_seed_frame<R>(src, s.C, s.a, s.b, s.c, l, w, v);
@@ -161,12 +161,12 @@ struct ShapeTraits<EllipticCylinder> {
     using Stable = EllipticStable<T>;
     // The core for the line L0 + t v (a lane type's values for the batch), prescaled by ps; a
     // prepared shape's dual frame, when it rescales to ps exactly (frame.hpp).
-    template <class T, class Src, class Scale>
-    static Stable<T> stable_core(const Src& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
+    template <class T, class Source, class Scale>
+    static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
         const EllipticCylinder& s = src.shape;
         Vec3T<T> a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c);
         auto frame = [&]() -> DualFrameT<T> {
-            if constexpr (Src::prepared && in_double<T>) {
+            if constexpr (Source::prepared && in_double<T>) {
                 int delta = ps.k - src.facts.exponent;
                 if (dual_frame_rescales(src.facts, delta))
                     return rescaled_dual_frame(src.facts, delta);
@@ -178,8 +178,8 @@ struct ShapeTraits<EllipticCylinder> {
 
     // ---- certified ----
 
-    template <class B, class Src>
-    static CertifiedForm<B> certified_form(const Src& src, const Prescale& ps, const Line& l) {
+    template <class B, class Source>
+    static CertifiedForm<B> certified_form(const Source& src, const Prescale& ps, const Line& l) {
         const EllipticCylinder& s = src.shape;
         Vec3 c = ps.pos(s.c), v = ps.dir(l.v);
         Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
@@ -236,9 +236,9 @@ struct ShapeTraits<EllipticCylinder> {
     // ---- correct: the Newton rung's line form ----
 
     // The rows of adj(M) and det in bounded double-double: what prepare() keeps, or computed.
-    template <class Src>
-    static AdjugateRowsDD adjugate_rows(const Src& src) {
-        if constexpr (Src::prepared) {
+    template <class Source>
+    static AdjugateRowsDD adjugate_rows(const Source& src) {
+        if constexpr (Source::prepared) {
             return adjugate_rows_dd(src.facts);
         } else {
             const EllipticCylinder& s = src.shape;
@@ -246,39 +246,32 @@ struct ShapeTraits<EllipticCylinder> {
         }
     }
 
-    // For the line L0 + t v in T: double, or a lane type (a line per lane).
-    template <class T = double, class Src>
-    static LineFormT<T> line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
+    // For the line L0 + t v in T: double, or a lane type (a line per lane). precise: the Newton
+    // rung's, in double-double; else the hit test's quick form, in doubles with bounds.
+    template <bool precise, class T, class Source>
+    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         const EllipticCylinder& s = src.shape;
-        bool negative_det = orientation < 0;
-        AdjugateRowsDD rows = adjugate_rows(src);
-        LineFormT<T> f =
-            elliptic_form(rows, difference_exact(L0, lanes_of<T>(s.C)), v, negative_det);
-        BoundedDD det = absolute_det(rows, negative_det);
-        f.sigma_z = 0;
-        f.K = product(det, det);
-        f.lo = 0, f.e_lo = 0;
-        f.hi = det.hi, f.e_hi = bound_of_hi(det); // 0 <= Z <= |det|
-        f.lo_bounded = f.hi_bounded = s.finite;
-        return f;
+        return elliptic_line_form<precise>(
+            adjugate_rows(src), L0, s.C, v, orientation,
+            [&](LineFormT<T>& f, double det, double e_det, auto square) {
+                f.sigma_z = 0;
+                f.K = square();
+                f.lo = 0, f.e_lo = 0;
+                f.hi = det, f.e_hi = e_det; // 0 <= Z <= |det|
+                f.lo_bounded = f.hi_bounded = s.finite;
+            });
+    }
+    template <class T = double, class Source>
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
+        return form<true, T>(src, L0, v, orientation);
     }
 
     // ---- correct: the hit test's quick line form (the same, in doubles with bounds) ----
 
-    template <class T = double, class Src>
-    static LineFormT<T> quick_line_form(const Src& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
-        using Q = QuickBounded;
-        const EllipticCylinder& s = src.shape;
-        Q d; // |det|
-        LineFormT<T> f = quick_elliptic_form(
-            adjugate_rows(src), difference_bounded<QuickBoundedT<T>>(L0, lanes_of<T>(s.C)), v,
-            orientation < 0, d);
-        f.sigma_z = 0;
-        f.K = quick(d * d);
-        f.lo = 0, f.e_lo = 0;
-        f.hi = d.v, f.e_hi = d.bound(); // 0 <= Z <= |det|
-        f.lo_bounded = f.hi_bounded = s.finite;
-        return f;
+    template <class T = double, class Source>
+    static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,
+                                        int orientation) {
+        return form<false, T>(src, L0, v, orientation);
     }
 };
 

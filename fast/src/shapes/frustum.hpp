@@ -8,10 +8,10 @@
 // and P is on the surface iff its distance to the axis, |(P - C0) x h| / |h|, is rho. Squared
 // and multiplied by (h.h)^2 (no square root, no division), with R = (h.h) rho:
 //     (h.h) |(P - C0) x h|^2 - R^2 = 0,   R = r0 (h.h) + (r1 - r0) u.
-// Substituting P = L0 + t v, with X = v x h, Y = w x h, R(t) = R0 + t R1:
+// Substituting P = L0 + t v, with X = v x h, Y = w x h, R(t) = R0 + t dR:
 //     A t^2 + 2 B t + C0 = 0,
-//     A  = (h.h) |X|^2 - R1^2,        R1 = (r1 - r0) (v.h),
-//     B  = (h.h) X.Y - R0 R1,         R0 = r0 (h.h) + (r1 - r0) (w.h),
+//     A  = (h.h) |X|^2 - dR^2,        dR = (r1 - r0) (v.h),
+//     B  = (h.h) X.Y - R0 dR,         R0 = r0 (h.h) + (r1 - r0) (w.h),
 //     C0 = (h.h) |Y|^2 - R0^2.
 // For r0 = r1 = r this is (h.h) times the cylinder's quadratic. The quadratic is negative inside
 // the surface (nearer the axis than rho), in either nappe of the double cone it describes; the
@@ -23,15 +23,15 @@
 //
 // Discriminant in geometric form. (v x h) x (w x h) = det h with det = (v x h) . w (the triple
 // product), so Lagrange's identity gives
-//     D = B^2 - A C0 = (h.h) (|R0 X - R1 Y|^2 - ((h.h) det)^2),
+//     D = B^2 - A C0 = (h.h) (|R0 X - dR Y|^2 - ((h.h) det)^2),
 // a difference of two squares of accurate numbers (for r0 = r1: (h.h)^3 (r^2 |X|^2 - det^2),
-// the cylinder's). R0 X - R1 Y and det do not change when the origin moves along the line.
+// the cylinder's). R0 X - dR Y and det do not change when the origin moves along the line.
 //
 // seed: the textbook cone quadratic with the unit axis h^ = h / |h| and the slope
 // k = (r1 - r0) / |h|: |w + t v|^2 - (s(t))^2 - (r0 + k s(t))^2 = 0 with s = (P - C0) . h^.
 //
 // stable: the quantities above in double, h = C1 - C0 exactly (hi + lo) inside v x h and w x h
-// (Kahan's fma difference of products), R1^2, R0 R1, R0^2 and ((h.h) det)^2 exact inside fmas,
+// (Kahan's fma difference of products), dR^2, R0 dR, R0^2 and ((h.h) det)^2 exact inside fmas,
 // the stable root pair, and the scene prescaled by powers of two. Everything is measured from
 // an apex where the frustum has one (w = L0 - E, u_E = (P - E) . h, R = r_E (h.h) + (r1 - r0) u_E
 // with E the apex), so that near it R, Y and the discriminant are small rather than cancelled,
@@ -74,6 +74,13 @@ inline Reference reference(const Frustum& s) {
     return {s.r1 == 0, apex ? 0.0 : 0.5};
 }
 
+// A frustum's ends in a lane type (prescaled).
+template <class T>
+struct FrustumEnds {
+    Vec3T<T> C0, C1;
+    T r0, r1;
+};
+
 // stable's frustum solve for a lane type T (double, or the batch's lanes), as CylinderStable.
 template <class T>
 struct FrustumStable {
@@ -82,26 +89,26 @@ struct FrustumStable {
     using Mask = decltype(T() < T());
     Vec3TwoTermT<T> hx, w; // h = C1 - C0 and w = L0 - E exactly
     Vec3T<T> h, v, X;
-    T r0, r1, dr, hh, rEhh, dz, R1, A, inv_vv;
+    T r0, r1, dr, hh, R_end, dz, dR, A, inv_vv;
     T middle; // the origin moves to the closest approach to E + middle h
     bool top, finite;
     // From the moved origin.
-    T tc, B, Cc, D, zc;
+    T tc, B, C_moved, D, zc;
 
-    FrustumStable(Vec3T<T> C0, Vec3T<T> C1, T r0_, T r1_, Vec3T<T> L0, Vec3T<T> v_, Reference ref,
-                  bool finite_)
-        : v(v_), r0(r0_), r1(r1_), middle(ref.middle), top(ref.top), finite(finite_) {
+    FrustumStable(const FrustumEnds<T>& ends, Vec3T<T> L0, Vec3T<T> v_, Reference ref, bool finite_)
+        : v(v_), r0(ends.r0), r1(ends.r1), middle(ref.middle), top(ref.top), finite(finite_) {
         using std::fma;
+        const Vec3T<T>&C0 = ends.C0, &C1 = ends.C1;
         hx = difference_exact(C1, C0);
         h = hx.rounded();
         hh = dot(h, h);
-        rEhh = (top ? r1 : r0) * hh;
+        R_end = (top ? r1 : r0) * hh;
         w = difference_exact(L0, top ? C1 : C0);
         X = cross_accurate(v, hx);
         dr = r1 - r0;
         dz = dot(v, h);
-        R1 = dr * dz;
-        A = fma(-R1, R1, hh * dot(X, X));
+        dR = dr * dz;
+        A = fma(-dR, dR, hh * dot(X, X));
         inv_vv = T(1) / dot(v, v);
     }
 
@@ -116,11 +123,11 @@ struct FrustumStable {
     // R = rE (h.h) + (r1 - r0) u_E from u_E = (P - E) . h.
     T radius_times_hh(T u) const {
         using std::fma;
-        return fma(dr, u, rEhh);
+        return fma(dr, u, R_end);
     }
     // The extent's coordinate from u_E: u_E itself (finite), or R (the nappe R >= 0).
     T axial(T u) const { return finite ? u : radius_times_hh(u); }
-    T axial_rate() const { return finite ? dz : R1; }
+    T axial_rate() const { return finite ? dz : dR; }
 
     T C0_at_origin() const {
         using std::fma;
@@ -131,8 +138,8 @@ struct FrustumStable {
     }
 
     // The origin moved to the line's closest approach to the apex, or to the axis' middle; then
-    // B, Cc and the discriminant in geometric form (see the derivation). Not moved along a
-    // generator or a cylinder's axis (A = 0), where B and Cc are exact zeros for a line on the
+    // B, C_moved and the discriminant in geometric form (see the derivation). Not moved along a
+    // generator or a cylinder's axis (A = 0), where B and C_moved are exact zeros for a line on the
     // surface only at the caller's origin.
     void discriminant() {
         using std::fma;
@@ -141,10 +148,10 @@ struct FrustumStable {
         Vec3T<T> Y = cross_accurate(wc, hx);
         zc = dot(wc, h);
         T R0 = radius_times_hh(zc);
-        B = fma(-R0, R1, hh * dot2(X, Y));
-        Cc = fma(-R0, R0, hh * dot(Y, Y));
+        B = fma(-R0, dR, hh * dot2(X, Y));
+        C_moved = fma(-R0, R0, hh * dot(Y, Y));
         T K = hh * dot2(X, wc);
-        Vec3T<T> G = R0 * X - R1 * Y;
+        Vec3T<T> G = R0 * X - dR * Y;
         D = hh * fma(-K, K, dot(G, G));
     }
 
@@ -199,8 +206,8 @@ struct ShapeTraits<Frustum> {
 
     // s = (P - C0) . h^ along the unit axis, rho = r0 + k s: |P - C0|^2 - s^2 - rho^2 = 0; the
     // extent's coordinate is s (finite: 0 <= s <= |h|) or rho (the nappe rho >= 0).
-    template <class R, class Src>
-    static SeedFormT<R> seed_form(const Src& src, const Line& l) {
+    template <class R, class Source>
+    static SeedFormT<R> seed_form(const Source& src, const Line& l) {
         const Frustum& s = src.shape;
         SeedAxisT<R> axis = seed_axis<R>(src, s.C0, s.C1);
         R r0 = R(s.r0), k = (R(s.r1) - r0) / axis.length;
@@ -219,17 +226,17 @@ struct ShapeTraits<Frustum> {
 
     template <class T>
     using Stable = FrustumStable<T>;
-    template <class T, class Src, class Scale>
-    static Stable<T> stable_core(const Src& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
+    template <class T, class Source, class Scale>
+    static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
         const Frustum& s = src.shape;
-        return {ps.pos(s.C0), ps.pos(s.C1), ps.len(s.r0), ps.len(s.r1),
-                ps.pos(L0),   ps.dir(v),    reference(s), s.finite};
+        FrustumEnds<T> ends{ps.pos(s.C0), ps.pos(s.C1), ps.len(s.r0), ps.len(s.r1)};
+        return {ends, ps.pos(L0), ps.dir(v), reference(s), s.finite};
     }
 
     // ---- certified ----
 
-    template <class B, class Src>
-    static CertifiedForm<B> certified_form(const Src& src, const Prescale& ps, const Line& l) {
+    template <class B, class Source>
+    static CertifiedForm<B> certified_form(const Source& src, const Prescale& ps, const Line& l) {
         const Frustum& s = src.shape;
         auto [top, middle] = reference(s);
         Vec3 C0 = ps.pos(s.C0), C1 = ps.pos(s.C1), v = ps.dir(l.v);
@@ -238,8 +245,8 @@ struct ShapeTraits<Frustum> {
         B r0 = B::exact(ps.len(s.r0)), r1 = B::exact(ps.len(s.r1)), dr = r1 - r0;
         B hh = dot(h, h), rE = top ? r1 : r0;
         BoundedVec3<B> X = cross(V, h);
-        B dz = dot(V, h), R1 = dr * dz;
-        B A = hh * dot(X, X) - R1 * R1;
+        B dz = dot(V, h), dR = dr * dz;
+        B A = hh * dot(X, X) - dR * dR;
         // Not moved along a generator or a cylinder's axis, where exact zeros decide, nor across
         // the axis when a disc may hold the line (as the cylinder's). Otherwise to the closest
         // approach to the apex, or to the axis' middle.
@@ -248,11 +255,11 @@ struct ShapeTraits<Frustum> {
         double tc = keep ? 0 : -dot(v, w.rounded() - middle * hm) / dot(v, v);
         BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), Y = cross(wc, h);
         B u = dot(wc, h), R0 = rE * hh + dr * u, K = hh * dot(X, wc);
-        BoundedVec3<B> G = R0 * X - R1 * Y;
-        BoundedQuadratic<B> quad{A, hh * dot(X, Y) - R0 * R1, hh * dot(Y, Y) - R0 * R0,
+        BoundedVec3<B> G = R0 * X - dR * Y;
+        BoundedQuadratic<B> quad{A, hh * dot(X, Y) - R0 * dR, hh * dot(Y, Y) - R0 * R0,
                                  hh * (dot(G, G) - K * K)};
         // z = u_E / h.h in [0, 1] (from C0) or [-1, 0] (from C1), or the radius R / h.h >= 0.
-        if (!s.finite) return {quad, tc, R0 / hh, R1 / hh, {0, Binary64::inf}};
+        if (!s.finite) return {quad, tc, R0 / hh, dR / hh, {0, Binary64::inf}};
         return {quad, tc, u / hh, dz / hh, {top ? -1.0 : 0.0, top ? 0.0 : 1.0, frustum_closure(s)}};
     }
 
@@ -271,10 +278,10 @@ struct ShapeTraits<Frustum> {
         Vec3T<NT> v = lift<NT>(l.v);
         NT r0(s.r0), dr = NT(s.r1) - r0, hh = dot(h, h), vh = dot(v, h), wh = dot(w, h);
         Vec3T<NT> X = cross(v, h), Y = cross(w, h);
-        NT R0 = r0 * hh + dr * wh, R1 = dr * vh;
+        NT R0 = r0 * hh + dr * wh, dR = dr * vh;
         exact_form::LineQuadratic<NT> q;
-        q.A = hh * dot(X, X) - R1 * R1;
-        q.B = hh * dot(X, Y) - R0 * R1;
+        q.A = hh * dot(X, X) - dR * dR;
+        q.B = hh * dot(X, Y) - R0 * dR;
         q.C0 = hh * dot(Y, Y) - R0 * R0;
         q.lo = NT(0);
         if (s.finite) {
@@ -282,7 +289,7 @@ struct ShapeTraits<Frustum> {
             Closure c = frustum_closure(s);
             q.lo_capped = c.lo, q.hi_capped = c.hi;
         } else {
-            q.Z0 = R0, q.dZ = R1, q.hi = NT(0);
+            q.Z0 = R0, q.dZ = dR, q.hi = NT(0);
             q.hi_bounded = false;
         }
         return q;

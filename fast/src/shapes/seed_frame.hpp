@@ -21,10 +21,10 @@ void to_seed_frame(const R (&inverse)[16], const Line& l, Vec3T<R>& w, Vec3T<R>&
 
 // The same for the frame (origin, a, b, c) of a shape as a solver sees it: with the inverse
 // prepare() kept (in double), or with one built now.
-template <class R, class Src>
-void to_seed_frame(const Src& src, Vec3 origin, Vec3 a, Vec3 b, Vec3 c, const Line& l, Vec3T<R>& w,
-                   Vec3T<R>& v) {
-    if constexpr (Src::prepared && in_double<R>) {
+template <class R, class Source>
+void to_seed_frame(const Source& src, Vec3 origin, Vec3 a, Vec3 b, Vec3 c, const Line& l,
+                   Vec3T<R>& w, Vec3T<R>& v) {
+    if constexpr (Source::prepared && in_double<R>) {
         to_seed_frame(src.facts.seed_inverse, l, w, v);
     } else {
         R inverse[16];

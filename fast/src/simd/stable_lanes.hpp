@@ -48,7 +48,7 @@ void finish_lanes(const Core& k, MaskOf<L> generic, const LineLanes<L>& ln, Exte
     using R = Real<L>;
     L zero(R(0)), sm[2];
     auto two = k.D >= zero;
-    stable_pair(k.A, k.B, k.Cc, k.D, sm);
+    stable_pair(k.A, k.B, k.C_moved, k.D, sm);
     // The root of larger magnitude directly, the other from Vieta's product when it cancelled.
     L ta = k.tc + sm[0], tb = k.tc + sm[1];
     auto far_is_a = fabs(ta) >= fabs(tb);

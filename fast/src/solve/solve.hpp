@@ -1,6 +1,6 @@
 // The seed, stable and certified solvers, each written once over every shape: what differs from
 // shape to shape is the shape's derivation (ShapeTraits<S>, shapes/), what a solve does with it
-// is here. Src is the shape as the solver sees it: as given, or prepared (shapes/traits.hpp).
+// is here. Source is the shape as the solver sees it: as given, or prepared (shapes/traits.hpp).
 #pragma once
 
 #include "forms/certified.hpp"
@@ -17,15 +17,15 @@ namespace linequad::detail {
 // case in one test: every coordinate finite (0 times their sum is NaN otherwise; a sum that
 // merely overflows takes the slow path, which finds nothing), v nonzero, the range not empty.
 // Otherwise the checks one by one, which name the culprit.
-template <class Src>
-[[gnu::noinline]] Validity check_one_by_one(const Src& src, const Line& l) {
+template <class Source>
+[[gnu::noinline]] Validity check_one_by_one(const Source& src, const Line& l) {
     if (Error e = check_line(l); !e.ok()) return {e};
     return src.validity();
 }
-template <class Src>
-LINEQUAD_INLINE Validity check(const Src& src, const Line& l) {
+template <class Source>
+LINEQUAD_INLINE Validity check(const Source& src, const Line& l) {
     double sum = l.L0.x + l.L0.y + l.L0.z + l.v.x + l.v.y + l.v.z;
-    if constexpr (!Src::prepared) sum += field_sum(src.shape);
+    if constexpr (!Source::prepared) sum += field_sum(src.shape);
     const Interval& r = l.range;
     bool usual = (0 * sum == 0) & ((l.v.x != 0) | (l.v.y != 0) | (l.v.z != 0)) & (r.t0 <= r.t1) &
                  (r.t0 < Binary64::inf) & (r.t1 > -Binary64::inf);
@@ -34,8 +34,8 @@ LINEQUAD_INLINE Validity check(const Src& src, const Line& l) {
 }
 
 // The scene's size: the shape's and the line's origin's.
-template <class Src>
-LINEQUAD_INLINE double scene_extent(const Src& src, const Line& l) {
+template <class Source>
+LINEQUAD_INLINE double scene_extent(const Source& src, const Line& l) {
     return std::max(max_abs(l.L0), src.magnitude());
 }
 
@@ -43,12 +43,12 @@ LINEQUAD_INLINE double scene_extent(const Src& src, const Line& l) {
 
 // Stable's geometry with a rigorous bound on every quantity; certain or marked uncertain.
 struct Certified {
-    template <class Src>
-    static Result solve(const Src& src, const Line& l, Query q);
+    template <class Source>
+    static Result solve(const Source& src, const Line& l, Query q);
 };
-template <class Src>
-Result Certified::solve(const Src& src, const Line& l, Query q) {
-    using Traits = ShapeTraits<typename Src::Shape>;
+template <class Source>
+Result Certified::solve(const Source& src, const Line& l, Query q) {
+    using Traits = ShapeTraits<typename Source::Shape>;
     if (Validity valid = check(src, l); !valid.error.ok()) return Result::failure(valid.error);
     double extent = scene_extent(src, l);
     // Prescaling is exact unless a component is tiny enough to lose bits: refuse those.
@@ -58,13 +58,13 @@ Result Certified::solve(const Src& src, const Line& l, Query q) {
     return quick_then_bounded([&](auto number) {
         using B = decltype(number);
         CertifiedForm<B> f = Traits::template certified_form<B>(src, ps, l);
-        return certified_result(f.quad, f.tc, f.z0, f.dz, ps.t_scale(), f.extent, l, q);
+        return certified_result(f, ps.t_scale(), l, q);
     });
 }
 
 // The input checks of a solver computing in R: a float solver's inputs must be floats.
-template <class R, class Src>
-LINEQUAD_INLINE Error real_error(const Src& src, const Line& l) {
+template <class R, class Source>
+LINEQUAD_INLINE Error real_error(const Source& src, const Line& l) {
     if constexpr (std::is_same_v<R, float>)
         return binary32_error(src.shape, l);
     else
@@ -75,17 +75,17 @@ LINEQUAD_INLINE Error real_error(const Src& src, const Line& l) {
 // `seed`, float for `seed32`, as a renderer would).
 template <class R>
 struct SeedIn {
-    template <class Src>
-    static Result solve(const Src& src, const Line& l, Query q);
+    template <class Source>
+    static Result solve(const Source& src, const Line& l, Query q);
 };
 using Seed = SeedIn<double>;
 using Seed32 = SeedIn<float>;
 template <class R>
-template <class Src>
-Result SeedIn<R>::solve(const Src& src, const Line& l, Query q) {
+template <class Source>
+Result SeedIn<R>::solve(const Source& src, const Line& l, Query q) {
     if (Validity valid = check(src, l); !valid.error.ok()) return Result::failure(valid.error);
     if (Error e = real_error<R>(src, l); !e.ok()) return Result::failure(e);
-    SeedFormT<R> f = ShapeTraits<typename Src::Shape>::template seed_form<R>(src, l);
+    SeedFormT<R> f = ShapeTraits<typename Source::Shape>::template seed_form<R>(src, l);
     if (!f.usable) return Result::failure(ErrorCode::out_of_range, "coefficients");
     RootsT<R> roots = textbook_roots(f.a, f.b, f.c);
     auto magnitudes = [&] {
@@ -114,15 +114,15 @@ Result SeedIn<R>::solve(const Src& src, const Line& l, Query q) {
 // proof: the certified result stands for it.
 template <class R>
 struct StableIn {
-    template <class Src>
-    static Result solve(const Src& src, const Line& l, Query q);
+    template <class Source>
+    static Result solve(const Source& src, const Line& l, Query q);
 };
 using Stable = StableIn<double>;
 using Stable32 = StableIn<float>;
 template <class R>
-template <class Src>
-Result StableIn<R>::solve(const Src& src, const Line& l, Query q) {
-    using Traits = ShapeTraits<typename Src::Shape>;
+template <class Source>
+Result StableIn<R>::solve(const Source& src, const Line& l, Query q) {
+    using Traits = ShapeTraits<typename Source::Shape>;
     using Roots = RootsT<R>;
     if (Validity valid = check(src, l); !valid.error.ok()) return Result::failure(valid.error);
     if (Error e = real_error<R>(src, l); !e.ok()) return Result::failure(e);
@@ -150,7 +150,7 @@ Result StableIn<R>::solve(const Src& src, const Line& l, Query q) {
         roots = Roots{};
     } else {
         k.discriminant();
-        roots = stable_roots(k.A, k.B, k.Cc, k.D);
+        roots = stable_roots(k.A, k.B, k.C_moved, k.D);
         if (undecidable(roots, fragile, k.A, k.D) || (k.A == 0 && fragile()))
             return Result::failure(ErrorCode::out_of_range, Traits::fragile_fields);
         if (roots.kind == Roots::on_surface) return on_surface();
@@ -159,8 +159,8 @@ Result StableIn<R>::solve(const Src& src, const Line& l, Query q) {
     auto z_of = [&](const Roots& r, int i) { return k.z_of(r, i); };
     if (e.caps.any())
         return finish_closed(roots, z_of,
-                             AxialQuadratic<R>{k.A, 2 * k.B, k.Cc, k.axial_moved(), k.axial_rate(),
-                                               k.tc, ps.t_scale()},
+                             AxialQuadratic<R>{k.A, 2 * k.B, k.C_moved, k.axial_moved(),
+                                               k.axial_rate(), k.tc, ps.t_scale()},
                              e, l, q, on_surface);
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
 }
