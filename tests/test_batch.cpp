@@ -286,7 +286,7 @@ std::pair<long, long> lanes_against_scalar_rung() {
                             using S = std::decay_t<decltype(shape)>;
                             if constexpr (detail::ShapeTraits<S>::has_line_form) {
                                 Prepared<S> p = prepare(shape);
-                                if (!p.ok() || detail::closed(shape)) return;
+                                if (!p.ok() || detail::has_discs(shape)) return;
                                 for (Query q : {Query{}, Query{Need::nearest, false},
                                                 Query{Need::any, false}}) {
                                     unsigned bits = proven_lanes<N>(p, arrays, head.line.range, q);

@@ -36,7 +36,7 @@ audit::ExternalSolver correct_as(audit::Answers answers, audit::Parametrisation 
     e.name = "correct_as";
     e.answers = answers, e.parametrisation = p, e.surface = surface;
     Need need = answers == audit::Answers::nearest ? Need::nearest : Need::all;
-    e.cylinder = [need](const Cylinder& c, const Line& l) -> std::optional<Result> {
+    e.on<Cylinder>() = [need](const Cylinder& c, const Line& l) -> std::optional<Result> {
         return correct::intersect(c, l, {need, true});
     };
     return e;
@@ -173,7 +173,7 @@ TEST_CASE("an external solver that answers exactly what it declares grades perfe
 TEST_CASE("a solver that aborts is counted as crashed, and the run goes on", "[external]") {
     audit::ExternalSolver e;
     e.name = "aborts";
-    e.cylinder = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
+    e.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         if (c.r < 1) std::abort();
         return correct::intersect(c, l);
     };

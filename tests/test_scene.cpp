@@ -30,6 +30,7 @@ Shape translated(const Shape& s, Vec3 d) {
             } else if constexpr (std::is_same_v<S, EllipticCone>) {
                 x.C = x.C + d, x.H = x.H + d;
             } else {
+                static_assert(std::is_same_v<S, Frustum>, "a new shape: translate its points");
                 x.C0 = x.C0 + d, x.C1 = x.C1 + d;
             }
             return x;

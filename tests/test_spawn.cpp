@@ -36,7 +36,11 @@ bool well_separated(const Result& r) {
 
 // The whole quadric the shape is part of: no extent, no caps.
 Shape unbounded(Shape s) {
-    std::visit([](auto& x) { x.finite = false, x.caps = false; }, s);
+    std::visit(
+        [](auto& x) {
+            if constexpr (has_extent_options<std::decay_t<decltype(x)>>) x.finite = x.caps = false;
+        },
+        s);
     return s;
 }
 

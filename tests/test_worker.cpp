@@ -459,7 +459,7 @@ TEST_CASE("an in-process solver that changes the environment is reported, and pu
           "[worker]") {
     audit::ExternalSolver e;
     e.name = "upward";
-    e.cylinder = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
+    e.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         std::fesetround(FE_UPWARD);
         return correct::intersect(c, l);
     };

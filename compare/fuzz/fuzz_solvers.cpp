@@ -2,9 +2,9 @@
 // make (NaN, infinities, subnormals: the bytes are read as raw double bit patterns). The
 // invariants are in src/invariants.cpp; an input that breaks one aborts with the case line, and
 // belongs in tests/fuzz_regressions.jsonl once fixed.
+#include "io/shape_types.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/invariants.hpp"
-#include "io/shape_types.hpp"
 
 #include <cstdint>
 #include <cstdio>
@@ -44,7 +44,8 @@ void take_into(Vec3& x, const std::uint8_t*& p, const std::uint8_t* end) {
 
 // The shape of kind `kind` (its index in Shape), its fields from the bytes in the case format's
 // order: every shape is fuzzed, the ones added later too.
-// Options: finite, caps (refused when not finite), and the cone's nappes.
+// Options, for the shapes that have them: finite, caps (refused when not finite), the cone's
+// nappes.
 struct Options {
     bool finite, caps;
     int nappes;
@@ -54,8 +55,8 @@ Shape take_shape(std::size_t kind, Options o, const std::uint8_t*& p, const std:
         using S = typename decltype(tag)::type;
         S s{};
         detail::for_each_field<S>([&](const auto& f) { take_into(s.*f.member, p, end); });
-        s.finite = o.finite, s.caps = o.caps;
-        if constexpr (std::is_same_v<S, EllipticCone>) s.nappes = o.nappes;
+        if constexpr (has_extent_options<S>) s.finite = o.finite, s.caps = o.caps;
+        if constexpr (has_nappes<S>) s.nappes = o.nappes;
         return s;
     });
 }

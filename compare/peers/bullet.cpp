@@ -62,13 +62,13 @@ audit::ExternalSolver bullet() {
                 "collision margin (0.04). Cannot represent: open or infinite shapes (Bullet's "
                 "are solids), lines and rays (a ray test is a segment), frusta with two nonzero "
                 "radii, the elliptic shapes.";
-    s.cylinder = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
+    s.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         double h = norm(c.H - c.C);
         if (!(c.r > 0) || !(h > 0)) return std::nullopt;
         btCylinderShapeZ shape(btVector3(c.r, c.r, 0.5 * h));
         return ray_test(shape, placed(c.C, c.H), l);
     };
-    s.frustum = [](const Frustum& f, const Line& l) -> std::optional<Result> {
+    s.on<Frustum>() = [](const Frustum& f, const Line& l) -> std::optional<Result> {
         if ((f.r0 == 0) == (f.r1 == 0)) return std::nullopt;
         // btConeShapeZ has its apex at +z: z runs from the base disc to the apex.
         Vec3 base = f.r0 > 0 ? f.C0 : f.C1, apex = f.r0 > 0 ? f.C1 : f.C0;

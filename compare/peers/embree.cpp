@@ -100,11 +100,11 @@ audit::ExternalSolver embree() {
                 "ends). A cylinder is the frustum r0 = r1 = r. Time includes committing the "
                 "one-curve scene (a BVH build) per case. Cannot represent: lines (t0 < 0), "
                 "infinite shapes, the elliptic shapes.";
-    s.cylinder = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
+    s.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         if (!c.finite || !ray_like(l)) return std::nullopt;
         return curve().nearest(c.C, c.r, c.H, c.r, c.caps, l);
     };
-    s.frustum = [](const Frustum& f, const Line& l) -> std::optional<Result> {
+    s.on<Frustum>() = [](const Frustum& f, const Line& l) -> std::optional<Result> {
         if (!f.finite || !ray_like(l)) return std::nullopt;
         return curve().nearest(f.C0, f.r0, f.C1, f.r1, f.caps, l);
     };

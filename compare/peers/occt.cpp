@@ -76,19 +76,20 @@ audit::ExternalSolver occt() {
                 "its half-angle, which rounds. Cannot represent: finite extents and caps (OCCT "
                 "bounds faces elsewhere), oblique or elliptic frames (to 1e-12), frusta (one "
                 "nappe). Tangent or crossing is not told apart.";
-    s.cylinder = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
+    s.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         Vec3 axis = c.H - c.C;
         if (!(c.r > 0) || !(dot(axis, axis) > 0)) return std::nullopt;
         gp_Cylinder cyl(gp_Ax3(pnt(c.C), gp_Dir(axis.x, axis.y, axis.z)), c.r);
         return intersect(IntAna_Quadric(cyl), l);
     };
-    s.elliptic_cylinder = [](const EllipticCylinder& e, const Line& l) -> std::optional<Result> {
+    s.on<EllipticCylinder>() = [](const EllipticCylinder& e,
+                                  const Line& l) -> std::optional<Result> {
         if (!circular(e.a, e.b, e.c) || !(dot(e.a, e.a) > 0) || !(dot(e.c, e.c) > 0))
             return std::nullopt;
         gp_Ax3 frame(pnt(e.C), gp_Dir(e.c.x, e.c.y, e.c.z), gp_Dir(e.a.x, e.a.y, e.a.z));
         return intersect(IntAna_Quadric(gp_Cylinder(frame, norm(e.a))), l);
     };
-    s.elliptic_cone = [](const EllipticCone& k, const Line& l) -> std::optional<Result> {
+    s.on<EllipticCone>() = [](const EllipticCone& k, const Line& l) -> std::optional<Result> {
         Vec3 c = k.c();
         if (!circular(k.a, k.b, c) || !(dot(k.a, k.a) > 0) || !(dot(c, c) > 0)) return std::nullopt;
         gp_Ax3 frame(pnt(k.H), gp_Dir(c.x, c.y, c.z), gp_Dir(k.a.x, k.a.y, k.a.z));

@@ -43,7 +43,7 @@ audit::ExternalSolver ode() {
                 "rotation taking z to the axis (rounded). ODE's rays start at L0: lines and "
                 "ranges from t0 > 0 cannot be represented, nor open or infinite shapes, cones, "
                 "frusta, the elliptic shapes.";
-    s.cylinder = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
+    s.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         enter_ode();
         Vec3 axis = c.H - c.C;
         double h = norm(axis);

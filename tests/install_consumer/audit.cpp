@@ -11,7 +11,7 @@ int main() {
     mine.name = "mine";
     mine.answers = audit::Answers::nearest;
     mine.points = false;
-    mine.cylinder = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
+    mine.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         if (c.caps || !c.finite) return std::nullopt; // open finite cylinders only
         Vec3 axis = c.H - c.C;
         double h = norm(axis);

@@ -173,7 +173,7 @@ int solve_packet(void* self, int n, const lq_shape* shapes, const lq_line* lines
     return 0;
 }
 
-constexpr unsigned every_shape = 15u;
+constexpr unsigned every_shape = (1u << (LQ_FRUSTUM + 1)) - 1;
 constexpr int everything = LQ_POINTS | LQ_KINDS | LQ_PARTS;
 
 const lq_solver solvers[] = {

@@ -4,10 +4,9 @@
 //     linequad::audit::ExternalSolver mine;
 //     mine.name = "mine";
 //     mine.answers = linequad::audit::Answers::nearest;
-//     mine.cylinder = [](const linequad::Cylinder& c, const linequad::Line& l) { ... };
-//     linequad::audit::Options o;
-//     o.solvers = {"correct", "mine"};
-//     linequad::audit::run(o, {mine});
+//     mine.on<linequad::Cylinder>() = [](const linequad::Cylinder& c, const linequad::Line& l)
+//     {..}; linequad::audit::Options o; o.solvers = {"correct", "mine"}; linequad::audit::run(o,
+//     {mine});
 //
 // The case a library is graded on is the case it saw: the audit poses each case the way the
 // solver declares (its surfaces closed or infinite, its line as a unit direction or a from-to
@@ -21,6 +20,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace linequad::audit {
@@ -67,6 +67,15 @@ const char* start_inside_name(StartInside s);
 
 template <class S>
 using ShapeCallable = std::function<std::optional<Result>(const S&, const Line&)>;
+// A callable for every alternative of a shape variant.
+template <class Variant>
+struct ShapeCallablesOf;
+template <class... S>
+struct ShapeCallablesOf<std::variant<S...>> {
+    using type = std::tuple<ShapeCallable<S>...>;
+};
+template <class Variant>
+using ShapeCallables = typename ShapeCallablesOf<Variant>::type;
 
 // One answer of a solver from outside, with what the audit notes beside it. The texts are
 // stable strings (interned), so that an answer copies as plain data: the audit handles millions.
@@ -103,10 +112,17 @@ struct ExternalSolver {
     bool points = true, kinds = true, parts = true;
     std::string mapping; // for the report: how a case is handed over, what cannot be represented
     std::string plugin;  // the shared library it came from (an absolute path), if any
-    ShapeCallable<Cylinder> cylinder;
-    ShapeCallable<EllipticCylinder> elliptic_cylinder;
-    ShapeCallable<EllipticCone> elliptic_cone;
-    ShapeCallable<Frustum> frustum;
+    // Its callable for shape S; an empty one: the library has no such shape.
+    //     mine.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {..};
+    template <class S>
+    ShapeCallable<S>& on() {
+        return std::get<ShapeCallable<S>>(callables);
+    }
+    template <class S>
+    const ShapeCallable<S>& on() const {
+        return std::get<ShapeCallable<S>>(callables);
+    }
+    ShapeCallables<Shape> callables;
     // A plugin's solver: its worker process and its index there; the callables are then empty.
     std::shared_ptr<PluginWorker> worker;
     int worker_index = -1;

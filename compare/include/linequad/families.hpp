@@ -32,9 +32,14 @@ enum class Family {
     far_origin, // the line's origin 2^k shape sizes from the shape (k = 10..40; 10..24 in float),
                 // aimed through it, near tangency or just past it; the shape at the world origin
                 // or itself far out (what a renderer's or a physics engine's long rays meet)
+    // The closed solids by definition (sphere, ellipsoid, capsule):
+    through_centre, // through the centre (the capsule: a point of its axis), or 2^-k beside it
+    thin,           // an ellipsoid's axis, or a capsule's radius or length, 2^-k of the rest
+    seam,           // capsule: through a point of a seam circle exactly, or moved k ulps
+    poles,          // capsule: along the axis through both poles; tilted or moved by 2^-k
 };
 
-constexpr int family_count = 14;
+constexpr int family_count = 18;
 
 // The frames shapes are built on: any (the elliptic shapes' frames oblique and sheared), circular
 // (a, b orthogonal to the axis and of one length: a circular cross-section) or axis (circular,
@@ -48,14 +53,15 @@ bool parse_family(std::string_view name, Family* f);
 // The index in linequad::Shape of the shape named `name` (its case format name), or -1.
 int shape_named(std::string_view name);
 
-// apex and generator: the cone and the frustum; two_nappes: the cone only.
+// apex and generator: the cone and the frustum; two_nappes: the cone only; the closed solids'
+// own families for them alone.
 bool family_applies(Family f, int shape);
 
 // shape: its index in linequad::Shape (0 cylinder, 1 elliptic_cylinder, 2 elliptic_cone,
-// 3 frustum). The case's id names all of it, the frames unless they are any, and the precision
-// when it is binary32. A binary32 case has every input a float: the family's construction with
-// its offsets in float's reach (2^-k for k up to 24, the scale family within float's range, the
-// rim's ulps of float), rounded to float.
+// 3 frustum, 4 sphere). The case's id names all of it, the frames unless they are any, and the
+// precision when it is binary32. A binary32 case has every input a float: the family's construction
+// with its offsets in float's reach (2^-k for k up to 24, the scale family within float's range,
+// the rim's ulps of float), rounded to float.
 Case make_case(Family f, int shape, Range range, std::uint64_t seed, std::uint64_t index,
                Frames frames = Frames::any, Precision precision = Precision::binary64);
 

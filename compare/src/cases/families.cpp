@@ -4,6 +4,7 @@
 // decides what the resulting doubles really are.
 #include "linequad/families.hpp"
 
+#include "cases/case_maker.hpp"
 #include "cases/rng.hpp"
 #include "io/shape_types.hpp"
 
@@ -18,10 +19,12 @@ namespace linequad {
 
 namespace {
 
-const char* const names[family_count] = {
-    "generic",          "near_tangent", "axis_parallel", "apex",      "generator",
-    "degenerate_frame", "scale",        "extent_edge",   "rim",       "cap_plane",
-    "cap_axis",         "inside_start", "two_nappes",    "far_origin"};
+const char* const names[family_count] = {"generic",    "near_tangent", "axis_parallel",
+                                         "apex",       "generator",    "degenerate_frame",
+                                         "scale",      "extent_edge",  "rim",
+                                         "cap_plane",  "cap_axis",     "inside_start",
+                                         "two_nappes", "far_origin",   "through_centre",
+                                         "thin",       "seam",         "poles"};
 const char* const frame_names[3] = {"any", "circular", "axis"};
 
 // A frame: origin, a, b, c, and the shape's profile in it: points O + x a + y b + z c, the
@@ -436,16 +439,6 @@ std::pair<double, double> quarter(Rng& r) {
     return {c[q], c[(q + 3) % 4]};
 }
 
-// x moved by k ulps of its format, up or down (0 by k ulps of 1).
-double ulps_moved(double x, int k, bool up, Precision p) {
-    bool single = p == Precision::binary32;
-    if (x == 0) return (up ? k : -k) * (single ? 0x1p-23 : 0x1p-52);
-    for (int i = 0; i < k; ++i)
-        x = single ? std::nextafter(float(x), up ? INFINITY : -INFINITY)
-                   : std::nextafter(x, up ? INFINITY : -INFINITY);
-    return x;
-}
-
 template <class S>
 Case rim(Rng& r, int k, Frames frames, Precision p) {
     Frame f = frame_for<S>(r, true, frames);
@@ -558,7 +551,7 @@ Case two_nappes(Rng& r, int k, Frames frames) {
     Frame f = frame_for<S>(r, k == 0, frames);
     bool exact = k == 0;
     Shape shape = closed_from<S>(f, 2);
-    if (r.coin()) std::visit([](auto& s) { s.caps = false; }, shape);
+    if (r.coin()) std::get<S>(shape).caps = false;
     Vec3 P, d;
     if (r.coin()) {
         // Through the apex (inside both nappes, outside both, or along a generator), or 2^-k
@@ -627,7 +620,7 @@ Case far_origin(Rng& r, int k, Frames frames, Precision p) {
 
 // The family's difficulty for case `index`: 2^-k offsets up to 2^-60 in double, 2^-24 in float
 // (beyond, a float offset is lost in the rounding of the case); the scale family's 2^+-k within
-// each format's range; the rim's k in ulps of the case's own format.
+// each format's range; the rim's and the seam's k in ulps of the case's own format.
 int difficulty(Family fam, std::uint64_t index, Precision p) {
     bool single = p == Precision::binary32;
     int steps = single ? 25 : 61; // k = 0 .. 24 or 0 .. 60
@@ -635,6 +628,7 @@ int difficulty(Family fam, std::uint64_t index, Precision p) {
     case Family::generic:
         return 0;
     case Family::degenerate_frame:
+    case Family::thin:
         return 1 + int(index % std::uint64_t(steps - 1));
     case Family::scale:
         return int(index % (single ? 16 : 64)) * 8;
@@ -642,6 +636,7 @@ int difficulty(Family fam, std::uint64_t index, Precision p) {
         if (index % 3 == 0) return 0;
         return single ? 14 + int(index % 11) : 40 + int(index % 14);
     case Family::rim:
+    case Family::seam:
         return int(index % 17);
     case Family::far_origin: // the ray's origin 2^k shape sizes away
         return 10 + int(index % (single ? 15 : 31));
@@ -650,8 +645,9 @@ int difficulty(Family fam, std::uint64_t index, Precision p) {
     }
 }
 
+// The shapes with an axis: every family on a frame and a profile.
 template <class S>
-Case make(Family fam, Rng& r, int k, Frames frames, Precision p) {
+Case axial_case(Family fam, Rng& r, int k, Frames frames, Precision p) {
     switch (fam) {
     case Family::generic: {
         bool integer = r.integer(0, 9) == 0;
@@ -687,11 +683,57 @@ Case make(Family fam, Rng& r, int k, Frames frames, Precision p) {
         return two_nappes<S>(r, k, frames);
     case Family::far_origin:
         return far_origin<S>(r, k, frames, p);
+    default:
+        break;
     }
     return {};
 }
 
+// apex and generator: the shapes with generators; two_nappes: the cone; the closed solids'
+// own families: none of them.
+template <class S>
+bool axial_applies(Family f) {
+    switch (f) {
+    case Family::apex:
+    case Family::generator:
+        return Sampling<S>::conical;
+    case Family::two_nappes:
+        return std::is_same_v<S, EllipticCone>;
+    case Family::through_centre:
+    case Family::thin:
+    case Family::seam:
+    case Family::poles:
+        return false;
+    default:
+        return true;
+    }
+}
+
 } // namespace
+
+double ulps_moved(double x, int k, bool up, Precision p) {
+    bool single = p == Precision::binary32;
+    if (x == 0) return (up ? k : -k) * (single ? 0x1p-23 : 0x1p-52);
+    for (int i = 0; i < k; ++i)
+        x = single ? std::nextafter(float(x), up ? INFINITY : -INFINITY)
+                   : std::nextafter(x, up ? INFINITY : -INFINITY);
+    return x;
+}
+
+#define LINEQUAD_AXIAL_CASES(S)                                                                    \
+    template <>                                                                                    \
+    bool CaseMaker<S>::applies(Family f) {                                                         \
+        return axial_applies<S>(f);                                                                \
+    }                                                                                              \
+    template <>                                                                                    \
+    Case CaseMaker<S>::make(Family f, Rng& r, int k, Frames frames, Precision p) {                 \
+        return axial_case<S>(f, r, k, frames, p);                                                  \
+    }
+LINEQUAD_AXIAL_CASES(Cylinder)
+LINEQUAD_AXIAL_CASES(EllipticCylinder)
+LINEQUAD_AXIAL_CASES(EllipticCone)
+LINEQUAD_AXIAL_CASES(Frustum)
+#undef LINEQUAD_AXIAL_CASES
 
 const char* family_name(Family f) {
     return names[int(f)];
@@ -720,9 +762,7 @@ int shape_named(std::string_view name) {
 
 bool family_applies(Family f, int shape) {
     return with_shape_type(std::size_t(shape), [&](auto tag) {
-        using S = typename decltype(tag)::type;
-        if (f == Family::two_nappes) return std::is_same_v<S, EllipticCone>;
-        return (f != Family::apex && f != Family::generator) || Sampling<S>::conical;
+        return CaseMaker<typename decltype(tag)::type>::applies(f);
     });
 }
 
@@ -734,7 +774,7 @@ Case make_case(Family fam, int shape, Range range, std::uint64_t seed, std::uint
     Rng r{SplitMix64{splitmix(key ^ splitmix(index))}};
     int k = difficulty(fam, index, precision);
     Case c = with_shape_type(std::size_t(shape), [&](auto tag) {
-        return make<typename decltype(tag)::type>(fam, r, k, frames, precision);
+        return CaseMaker<typename decltype(tag)::type>::make(fam, r, k, frames, precision);
     });
     c.k = k;
     c.line.range = range;

@@ -45,14 +45,6 @@ namespace linequad {
 
 namespace {
 
-template <class S>
-int nappes(const S& s) {
-    if constexpr (std::is_same_v<S, EllipticCone>)
-        return s.nappes;
-    else
-        return 1;
-}
-
 bool same_bits(double a, double b) {
     return std::memcmp(&a, &b, sizeof a) == 0;
 }
@@ -86,8 +78,8 @@ struct Checker {
         if (!r.ok()) return;
         auto [closed, most] = std::visit(
             [](const auto& s) {
-                bool two_solids = detail::closed(s) && nappes(s) == 2;
-                return std::pair{detail::closed(s), two_solids ? max_hits : 2};
+                bool two_solids = has_caps(s) && nappes_of(s) == 2;
+                return std::pair{has_caps(s), two_solids ? max_hits : 2};
             },
             c.shape);
         require(r.count <= most, "at most two hits (four for a closed two-nappe cone)", name, r);

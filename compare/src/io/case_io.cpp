@@ -91,17 +91,15 @@ struct Reader {
 };
 
 // Fields every case may have, whatever its shape.
-const char* const common_fields[] = {"id",     "shape", "L0",     "v", "range", "t0",       "t1",
-                                     "finite", "caps",  "family", "k", "note",  "precision"};
-
-// Options some shapes take.
-template <class S>
-constexpr bool has_nappes = std::is_same_v<S, EllipticCone>;
+const char* const common_fields[] = {"id", "shape",  "L0", "v",    "range",    "t0",
+                                     "t1", "family", "k",  "note", "precision"};
 
 template <class S>
 bool known_field(const std::string& key) {
     for (const char* f : common_fields)
         if (key == f) return true;
+    // Options some shapes take (a closed solid by definition takes none).
+    if (key == "finite" || key == "caps") return has_extent_options<S>;
     if (key == "nappes") return has_nappes<S>;
     bool known = false;
     detail::for_each_field<S>([&](const auto& f) { known = known || key == f.name; });
@@ -138,7 +136,9 @@ bool read_shape(Reader& r, Shape* out) {
     bool ok = true;
     detail::for_each_field<S>(
         [&](const auto& f) { ok = ok && read_field(r, f.name, &(s.*f.member)); });
-    if (!ok || !read_bool(r, "finite", &s.finite) || !read_bool(r, "caps", &s.caps)) return false;
+    if (!ok) return false;
+    if constexpr (has_extent_options<S>)
+        if (!read_bool(r, "finite", &s.finite) || !read_bool(r, "caps", &s.caps)) return false;
     if constexpr (has_nappes<S>) {
         if (const Json* n = r.find("nappes")) {
             if (!n->is_number_integer() || (*n != 1 && *n != 2))
@@ -370,8 +370,11 @@ std::string put_shape(std::string& out, const Shape& shape) {
         [&](const auto& s) {
             using S = std::decay_t<decltype(s)>;
             detail::for_each_field<S>([&](const auto& f) { put_field(out, f.name, s.*f.member); });
-            std::string o = s.finite ? ",\"finite\":true" : ",\"finite\":false";
-            if (s.caps) o += ",\"caps\":true";
+            std::string o;
+            if constexpr (has_extent_options<S>) {
+                o = s.finite ? ",\"finite\":true" : ",\"finite\":false";
+                if (s.caps) o += ",\"caps\":true";
+            }
             if constexpr (has_nappes<S>)
                 if (s.nappes != 1) o += ",\"nappes\":" + std::to_string(s.nappes);
             return o;

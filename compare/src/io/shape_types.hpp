@@ -32,6 +32,31 @@ inline const char* shape_name_at(std::size_t index) {
         index, [](auto tag) { return detail::ShapeTraits<typename decltype(tag)::type>::name; });
 }
 
+// The shape closed by its discs (as a collision library holds it); false when it cannot be (not
+// finite). A closed solid by definition is closed already.
+template <class S>
+bool close_with_discs(S& s) {
+    if constexpr (has_extent_options<S>) {
+        if (!s.finite) return false;
+        s.caps = true;
+    }
+    return true;
+}
+inline bool close_with_discs(Shape& s) {
+    return std::visit([](auto& x) { return close_with_discs(x); }, s);
+}
+
+// The whole quadric the shape lies on (not finite, no caps) with `nappes` nappes for a cone; a
+// closed solid by definition is whole already.
+template <class S>
+void make_whole(S& s, int nappes) {
+    if constexpr (has_extent_options<S>) s.finite = false, s.caps = false;
+    if constexpr (has_nappes<S>) s.nappes = nappes;
+}
+inline void make_whole(Shape& s, int nappes) {
+    std::visit([&](auto& x) { make_whole(x, nappes); }, s);
+}
+
 // The index of the shape named `name`, or shape_count.
 inline std::size_t shape_index(std::string_view name) {
     for (std::size_t i = 0; i < shape_count; ++i)

@@ -8,6 +8,7 @@
 #include "linequad/exact.hpp"
 
 #include "io/process.hpp"
+#include "io/shape_types.hpp"
 #include "numeric/fp_environment.hpp"
 #include "run/plugin_worker.hpp"
 #include "shapes/all.hpp"
@@ -155,27 +156,11 @@ std::optional<Result> guarded(const ShapeCallable<S>& f, const S& s, const Line&
     return r;
 }
 
-// The callable an in-process solver has for shape S (a missing shape here is a compile error).
-template <class S>
-const ShapeCallable<S>& callable_for(const ExternalSolver& e) {
-    if constexpr (std::is_same_v<S, Cylinder>)
-        return e.cylinder;
-    else if constexpr (std::is_same_v<S, EllipticCylinder>)
-        return e.elliptic_cylinder;
-    else if constexpr (std::is_same_v<S, EllipticCone>)
-        return e.elliptic_cone;
-    else if constexpr (std::is_same_v<S, Frustum>)
-        return e.frustum;
-    else
-        static_assert(sizeof(S) == 0, "ExternalSolver has no callable for this shape");
-}
-
 } // namespace
 
 bool ExternalSolver::takes(const Shape& s) const {
     if (worker) return (worker_shapes >> s.index()) & 1u;
-    return std::visit(
-        [&](const auto& x) { return bool(callable_for<std::decay_t<decltype(x)>>(*this)); }, s);
+    return std::visit([&](const auto& x) { return bool(on<std::decay_t<decltype(x)>>()); }, s);
 }
 
 ExternalAnswer ExternalSolver::answer(const Shape& s, const Line& l) const {
@@ -191,7 +176,7 @@ ExternalAnswer ExternalSolver::answer(const Shape& s, const Line& l) const {
     ExternalAnswer a;
     a.result = std::visit(
         [&](const auto& x) -> std::optional<Result> {
-            const auto& f = callable_for<std::decay_t<decltype(x)>>(*this);
+            const auto& f = on<std::decay_t<decltype(x)>>();
             if (!f) return std::nullopt;
             return guarded(f, x, l);
         },
@@ -280,18 +265,12 @@ std::optional<Case> posed_for(const ExternalSolver& s, const Case& c, std::strin
     case Surface::as_posed:
         break;
     case Surface::closed: {
-        bool finite = std::visit([](const auto& x) { return x.finite; }, out.shape);
-        if (!finite) return refuse("a closed solid cannot be made of an infinite shape");
-        std::visit([](auto& x) { x.caps = true; }, out.shape);
+        if (!close_with_discs(out.shape))
+            return refuse("a closed solid cannot be made of an infinite shape");
         break;
     }
     case Surface::infinite:
-        std::visit(
-            [](auto& x) {
-                x.finite = false, x.caps = false;
-                if constexpr (std::is_same_v<std::decay_t<decltype(x)>, EllipticCone>) x.nappes = 2;
-            },
-            out.shape);
+        make_whole(out.shape, 2);
         break;
     }
     switch (s.parametrisation) {
@@ -346,9 +325,9 @@ Start start_of(const Case& c) {
     return inside_before(c) ? Start::inside : Start::outside;
 }
 
-// Whether the posed shape bounds a solid: closed by its discs, or not finite.
+// Whether the posed shape bounds a solid: closed, or not finite.
 bool solid(const Shape& s) {
-    return std::visit([](const auto& x) { return x.caps || !x.finite; }, s);
+    return bounds_solid(s);
 }
 
 // a + b (doubles whose sum is wanted in the format p) rounded once to p. In double, fl(a + b) is

@@ -479,24 +479,25 @@ void read_plugin_answer(const lq_answer& a, ExternalAnswer& out) {
     own("an answer status out of range");
 }
 
+// The shape's fields in the order of its table (linequad/audit_plugin.h lists them), a point as
+// three numbers, then its options (a closed solid by definition: finite, no caps, one nappe).
 lq_shape to_plugin_shape(const Shape& s) {
     lq_shape out{};
-    auto put = [&](int at, Vec3 v) {
-        for (int k = 0; k < 3; ++k)
-            out.p[at + k] = v[k];
-    };
     out.kind = int(s.index());
     std::visit(
         [&](const auto& x) {
             using S = std::decay_t<decltype(x)>;
-            out.finite = x.finite, out.caps = x.caps, out.nappes = 1;
-            if constexpr (std::is_same_v<S, Cylinder>) put(0, x.C), put(3, x.H), out.p[6] = x.r;
-            if constexpr (std::is_same_v<S, EllipticCylinder>)
-                put(0, x.C), put(3, x.a), put(6, x.b), put(9, x.c);
-            if constexpr (std::is_same_v<S, EllipticCone>)
-                put(0, x.C), put(3, x.H), put(6, x.a), put(9, x.b), out.nappes = x.nappes;
-            if constexpr (std::is_same_v<S, Frustum>)
-                put(0, x.C0), out.p[3] = x.r0, put(4, x.C1), out.p[7] = x.r1;
+            int at = 0;
+            auto put = [&](const auto& value) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(value)>, Vec3>) {
+                    for (int k = 0; k < 3; ++k)
+                        out.p[at++] = value[k];
+                } else {
+                    out.p[at++] = value;
+                }
+            };
+            detail::for_each_field<S>([&](const auto& f) { put(x.*f.member); });
+            out.finite = has_finite_extent(x), out.caps = has_caps(x), out.nappes = nappes_of(x);
         },
         s);
     return out;

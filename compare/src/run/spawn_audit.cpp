@@ -7,6 +7,7 @@
 #include "linequad/spawn.hpp"
 
 #include "io/escape.hpp"
+#include "io/shape_types.hpp"
 #include "numeric/big_float.hpp"
 #include "shapes/all.hpp"
 
@@ -68,7 +69,7 @@ int side_after(const Shape& shape, const Line& l, double t) {
 }
 
 bool closed(const Shape& s) {
-    return std::visit([](const auto& x) { return x.caps; }, s);
+    return is_closed(s);
 }
 
 // Grades one method's spawned ray from `left` (its solver's hit) in direction d, which should
@@ -106,8 +107,7 @@ bool simple_crossings(const Result& r) {
 }
 
 Shape whole(Shape s) {
-    std::visit([](auto& x) { x.finite = false, x.caps = false; }, s);
-    if (auto* cone = std::get_if<EllipticCone>(&s)) cone->nappes = 1;
+    make_whole(s, 1);
     return s;
 }
 

@@ -40,8 +40,9 @@ struct FrameFacts : CommonFacts {
     double rows[3][3][3] = {}, det[3] = {};
 };
 
+// A shape with nothing to keep beyond the common facts (the sphere) needs no specialisation.
 template <class S>
-struct Facts;
+struct Facts : CommonFacts {};
 // The circular shapes' axis as seed 001 normalises it: h / |h| and |h|.
 struct AxisFacts : CommonFacts {
     Vec3 seed_axis{};
@@ -82,5 +83,17 @@ class Prepared {
 // work that depends on the shape alone.
 template <class S>
 Prepared<S> prepare(const S& shape);
+
+namespace detail {
+// std::variant<Prepared<S>...> for std::variant<S...>: a prepared shape of any kind.
+template <class Variant>
+struct PreparedVariantOf;
+template <class... S>
+struct PreparedVariantOf<std::variant<S...>> {
+    using type = std::variant<Prepared<S>...>;
+};
+template <class Variant>
+using PreparedVariant = typename PreparedVariantOf<Variant>::type;
+} // namespace detail
 
 } // namespace linequad

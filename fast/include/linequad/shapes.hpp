@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <variant>
 
 namespace linequad {
@@ -102,6 +103,65 @@ struct Frustum {
 // Every shape. The solvers, the case format, the families and the benchmarks take their list
 // of shapes from here (and each shape's derivation from fast/src/shapes/).
 using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum>;
+
+// The options a shape may have: `finite` and `caps` (the shapes with an axis), `nappes` (the
+// cone). The closed solids by definition (the sphere) have none: they are finite, closed and
+// one solid.
+namespace detail {
+template <class S, class = void>
+struct HasExtentOptions : std::false_type {};
+template <class S>
+struct HasExtentOptions<S, std::void_t<decltype(&S::finite), decltype(&S::caps)>> : std::true_type {
+};
+template <class S, class = void>
+struct HasNappes : std::false_type {};
+template <class S>
+struct HasNappes<S, std::void_t<decltype(&S::nappes)>> : std::true_type {};
+} // namespace detail
+template <class S>
+inline constexpr bool has_extent_options = detail::HasExtentOptions<S>::value;
+template <class S>
+inline constexpr bool has_nappes = detail::HasNappes<S>::value;
+
+template <class S>
+bool has_finite_extent(const S& s) {
+    if constexpr (has_extent_options<S>)
+        return s.finite;
+    else
+        return true;
+}
+// Whether end discs close it.
+template <class S>
+bool has_caps(const S& s) {
+    if constexpr (has_extent_options<S>)
+        return s.caps;
+    else
+        return false;
+}
+template <class S>
+int nappes_of(const S& s) {
+    if constexpr (has_nappes<S>)
+        return s.nappes;
+    else
+        return 1;
+}
+// Whether the shape bounds a region a line can start inside: closed by its discs, a closed solid
+// by definition, or not finite (the inside of an infinite cylinder or cone).
+template <class S>
+bool bounds_solid(const S& s) {
+    return has_caps(s) || !has_finite_extent(s) || !has_extent_options<S>;
+}
+// Whether it is a closed solid: its surface bounds what it holds on every side.
+template <class S>
+bool is_closed(const S& s) {
+    return has_caps(s) || !has_extent_options<S>;
+}
+inline bool is_closed(const Shape& s) {
+    return std::visit([](const auto& x) { return is_closed(x); }, s);
+}
+inline bool bounds_solid(const Shape& s) {
+    return std::visit([](const auto& x) { return bounds_solid(x); }, s);
+}
 
 // The same shape and line with every input rounded to the nearest float (to pose a case in
 // binary32; range ends included).

@@ -90,7 +90,7 @@ struct CorrectTo {
         // The quick rung first, where the scene's products stay in double's normal range.
         using Traits = ShapeTraits<typename Source::Shape>;
         if constexpr (Traits::has_line_form) {
-            if (q.need == Need::any && !closed(src.shape) && moderate(extent, l)) {
+            if (q.need == Need::any && !has_discs(src.shape) && moderate(extent, l)) {
                 Result r;
                 LineForm form = Traits::quick_line_form(src, l.L0, l.v, valid.orientation);
                 if (hit_test_rung(form, Unit{1, 1, l}, r)) {
@@ -127,7 +127,7 @@ struct CorrectTo {
         // infinite), so a scene of moderate size is solved as given; others are scaled first,
         // so that tiny or huge scenes are not left to the slower rungs.
         bool as_given = moderate(extent, l);
-        bool lateral_only = Traits::has_line_form && !closed(src.shape);
+        bool lateral_only = Traits::has_line_form && !has_discs(src.shape);
         if constexpr (std::is_same_v<Target, Binary32> && Traits::has_line_form) {
             if (lateral_only && as_given) {
                 LineForm form = Traits::quick_line_form(src, l.L0, l.v, orientation);

@@ -244,16 +244,18 @@ inline Closure both_ends(bool caps) {
     return {caps, caps, false};
 }
 
-// Whether the shape is a closed solid (its discs are part of the surface).
+// Whether discs close the shape's ends: what the Newton rung's proof does not cover.
 template <class S>
-bool closed(const S& s) {
-    return s.caps;
+bool has_discs(const S& s) {
+    return has_caps(s);
 }
 
-// The options every shape checks before its geometry: caps close a finite shape only.
+// The options every shape with an axis checks before its geometry: caps close a finite shape
+// only.
 template <class S>
 Error check_caps(const S& s) {
-    if (s.caps && !s.finite) return {ErrorCode::bad_option, "caps"};
+    if constexpr (has_extent_options<S>)
+        if (s.caps && !s.finite) return {ErrorCode::bad_option, "caps"};
     return {};
 }
 

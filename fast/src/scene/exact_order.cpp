@@ -22,10 +22,7 @@ int compare_roots(const SurdRoot<BigFloat>& a, const BigFloat& Da, const SurdRoo
 
 #define LINEQUAD_EXACT_ROOTS(S)                                                                    \
     template exact_form::Classification<BigFloat> exact_roots(const Prepared<S>&, const Line&);
-LINEQUAD_EXACT_ROOTS(Cylinder)
-LINEQUAD_EXACT_ROOTS(EllipticCylinder)
-LINEQUAD_EXACT_ROOTS(EllipticCone)
-LINEQUAD_EXACT_ROOTS(Frustum)
+LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_EXACT_ROOTS)
 #undef LINEQUAD_EXACT_ROOTS
 
 } // namespace linequad::detail

@@ -9,6 +9,7 @@
 #include "numeric/fp_environment.hpp"
 #include "scene/bounds.hpp"
 #include "scene/exact_order.hpp"
+#include "shapes/all.hpp"
 
 #ifdef LINEQUAD_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -24,8 +25,16 @@ namespace linequad {
 
 namespace {
 
-using PreparedShape = std::variant<Prepared<Cylinder>, Prepared<EllipticCylinder>,
-                                   Prepared<EllipticCone>, Prepared<Frustum>>;
+using PreparedShape = detail::PreparedVariant<Shape>;
+
+template <class S>
+Box bounds_of(const S& s) {
+    return detail::ShapeTraits<S>::bounds(s);
+}
+template <class S>
+detail::BoundingCapsule bounding_capsule_of(const S& s) {
+    return detail::ShapeTraits<S>::bounding_capsule(s);
+}
 
 // A node's shapes are order[first, first + count) when it is a leaf (count > 0); otherwise its
 // children are the next node and node `second`.
@@ -283,9 +292,9 @@ struct Scene::Impl {
     SceneSolver solver;
     std::vector<PreparedShape> shapes;
     std::vector<Box> boxes;
-    std::vector<detail::Capsule> capsules; // of the bounded shapes (indexed like shapes)
-    std::vector<std::uint32_t> order;      // the bounded shapes, in the hierarchy's leaf order
-    std::vector<std::uint32_t> unbounded;  // shapes that are not finite: solved for every line
+    std::vector<detail::BoundingCapsule> capsules; // of the bounded shapes (indexed like shapes)
+    std::vector<std::uint32_t> order;     // the bounded shapes, in the hierarchy's leaf order
+    std::vector<std::uint32_t> unbounded; // shapes that are not finite: solved for every line
     std::vector<Node> nodes;
     int depth = 0; // the deepest node's level (the root's is 0)
 #ifdef LINEQUAD_HAVE_EMBREE
@@ -480,11 +489,11 @@ Scene::Scene(const std::vector<Shape>& shapes, SceneSolver solver, SceneTraversa
             std::visit([](const auto& s) { return PreparedShape(prepare(s)); }, shapes[i]));
         Error e = std::visit([](const auto& p) { return p.error(); }, m.shapes.back());
         if (!e.ok() && m.error.ok()) m.error = e, m.error_shape = i;
-        Box box = e.ok() ? std::visit([](const auto& s) { return detail::bounds_of(s); }, shapes[i])
+        Box box = e.ok() ? std::visit([](const auto& s) { return bounds_of(s); }, shapes[i])
                          : detail::everything();
         m.boxes.push_back(box);
         m.capsules.push_back(
-            std::visit([](const auto& s) { return detail::capsule_of(s); }, shapes[i]));
+            std::visit([](const auto& s) { return bounding_capsule_of(s); }, shapes[i]));
         (detail::bounded(box) ? m.order : m.unbounded).push_back(i);
     }
     if (!m.order.empty()) m.build(0, std::uint32_t(m.order.size()));

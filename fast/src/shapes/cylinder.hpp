@@ -42,6 +42,7 @@
 // by Lagrange's identity.
 #pragma once
 
+#include "forms/bounds.hpp"
 #include "forms/certified.hpp"
 #include "forms/exact_form.hpp"
 #include "forms/line_form.hpp"
@@ -189,6 +190,13 @@ struct ShapeTraits<Cylinder> {
         if (s.H == s.C) return {{ErrorCode::degenerate_axis, "H-C"}};
         return {};
     }
+
+    // ---- Bounds (a scene's culling) ----
+
+    static Box bounds(const Cylinder& s) {
+        return s.finite ? circular_box(s.C, s.r, s.H, s.r) : everything();
+    }
+    static BoundingCapsule bounding_capsule(const Cylinder& s) { return {s.C, s.H - s.C, s.r}; }
 
     // ---- What prepare() keeps ----
 

@@ -41,6 +41,7 @@
 // none; closed, each nappe is a solid of its own and they meet at the apex z = 0.
 #pragma once
 
+#include "forms/bounds.hpp"
 #include "forms/certified.hpp"
 #include "forms/exact_form.hpp"
 #include "forms/frame.hpp"
@@ -162,6 +163,21 @@ struct ShapeTraits<EllipticCone> {
         int orientation = cone_det_sign_exact(s.a, s.b, s.C, s.H);
         if (orientation == 0) return {{ErrorCode::singular_frame, "a,b,H-C"}};
         return {{}, orientation};
+    }
+
+    // ---- Bounds (a scene's culling) ----
+
+    // c = H - C is rounded here, by at most 2^-53 |c|: the slack, which counts |c|, covers it.
+    static Box bounds(const EllipticCone& s) {
+        if (!s.finite) return everything();
+        return frame_box(s.H, s.a, s.b, s.H - s.C, -1, s.nappes == 2 ? 1 : 0, false);
+    }
+    // The nappes reach from H - c (z = -1) to H + c (z = 1) with |z| (|a| + |b|) around the
+    // axis: within |a| + |b| of the segment.
+    static BoundingCapsule bounding_capsule(const EllipticCone& s) {
+        Vec3 c = s.H - s.C;
+        if (s.nappes == 2) return {s.H - c, 2 * c, spread_of(s.a, s.b)};
+        return {s.H - c, c, spread_of(s.a, s.b)};
     }
 
     // ---- What prepare() keeps ----

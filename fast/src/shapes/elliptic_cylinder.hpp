@@ -29,6 +29,7 @@
 // the exact form's W + t V.
 #pragma once
 
+#include "forms/bounds.hpp"
 #include "forms/certified.hpp"
 #include "forms/exact_form.hpp"
 #include "forms/frame.hpp"
@@ -121,6 +122,15 @@ struct ShapeTraits<EllipticCylinder> {
             s.a == Vec3{} || s.b == Vec3{} || s.c == Vec3{} ? 0 : det3_sign_exact(s.a, s.b, s.c);
         if (orientation == 0) return {{ErrorCode::singular_frame, "a,b,c"}};
         return {{}, orientation};
+    }
+
+    // ---- Bounds (a scene's culling) ----
+
+    static Box bounds(const EllipticCylinder& s) {
+        return s.finite ? frame_box(s.C, s.a, s.b, s.c, 0, 1, true) : everything();
+    }
+    static BoundingCapsule bounding_capsule(const EllipticCylinder& s) {
+        return {s.C, s.c, spread_of(s.a, s.b)};
     }
 
     // ---- What prepare() keeps ----

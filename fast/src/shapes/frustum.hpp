@@ -47,6 +47,7 @@
 // starts at the double-double rung.
 #pragma once
 
+#include "forms/bounds.hpp"
 #include "forms/certified.hpp"
 #include "forms/exact_form.hpp"
 #include "forms/roots.hpp"
@@ -195,6 +196,13 @@ struct ShapeTraits<Frustum> {
         if (s.r0 == 0 && s.r1 == 0) return {{ErrorCode::bad_radius, "r0,r1"}};
         if (s.C1 == s.C0) return {{ErrorCode::degenerate_axis, "C1-C0"}};
         return {};
+    }
+
+    static Box bounds(const Frustum& s) {
+        return s.finite ? circular_box(s.C0, s.r0, s.C1, s.r1) : everything();
+    }
+    static BoundingCapsule bounding_capsule(const Frustum& s) {
+        return {s.C0, s.C1 - s.C0, std::max(s.r0, s.r1)};
     }
 
     static void prepare(const Frustum& s, Facts<Frustum>& f) {

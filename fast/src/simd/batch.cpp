@@ -114,7 +114,7 @@ void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* o
     // shape's discs are the scalar solver's.
     auto src = detail::source(shape);
     Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
-    bool shape_ok = src.validity().error.ok() && !detail::closed(src.shape) &&
+    bool shape_ok = src.validity().error.ok() && !detail::has_discs(src.shape) &&
                     detail::check_line(probe).ok() && detail::real_error<R>(src, probe).ok();
     lanes = std::min(lanes, batch_lanes());
     if (shape_ok && lanes != Lanes::scalar) {
@@ -161,7 +161,7 @@ void correct_batch(const Prepared<S>& shape, const LineArrays& lines, Query q, R
     if constexpr (detail::ShapeTraits<S>::has_line_form) {
         Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
         bool rung_applies =
-            shape.ok() && !detail::closed(shape.shape()) && detail::check_line(probe).ok();
+            shape.ok() && !detail::has_discs(shape.shape()) && detail::check_line(probe).ok();
         lanes = std::min(lanes, batch_lanes());
         if (rung_applies && lanes != Lanes::scalar) {
 #if defined(LINEQUAD_HAVE_AVX512_KERNELS)
