@@ -52,6 +52,14 @@ struct Generic<Frustum> {
     }
 };
 
+template <>
+struct Generic<Sphere> {
+    template <class Real>
+    static Sphere make(Vec3 C, Vec3, Vec3, Vec3 c, Real& real) {
+        return {C + 0.5 * c, real(0.5, 2)};
+    }
+};
+
 // The generic instance of the shape with index `index` in Shape.
 template <std::size_t I = 0, class Real>
 Shape generic_shape(int index, Vec3 C, Vec3 a, Vec3 b, Vec3 c, Real& real) {

@@ -20,7 +20,9 @@ struct Generic : RandomReals {
         for (;;) {
             Vec3 C = vec(2), a = vec(2), b = vec(2), c = vec(2);
             if (!well_shaped(a, b, c)) continue;
-            switch (rng() % 4) {
+            switch (rng() % 5) {
+            case 4:
+                return Sphere{C, real(0.5, 2)};
             case 0:
                 return Cylinder{C, C + c, real(0.5, 2), true};
             case 1:
@@ -68,6 +70,8 @@ TEST_CASE("fast solvers agree with the oracle on well-conditioned generic cases"
                     return x.C + 0.5 * x.c;
                 else if constexpr (std::is_same_v<T, Frustum>)
                     return 0.5 * (x.C0 + x.C1);
+                else if constexpr (std::is_same_v<T, Sphere>)
+                    return x.C;
                 else
                     return 0.5 * (x.C + x.H);
             },

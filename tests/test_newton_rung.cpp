@@ -162,6 +162,12 @@ struct ExactForm {
     Q K, Z0, dZ, end; // end: h.h or |det|, the finite extent's nonzero end
 };
 
+// The sphere: U0 = w, U1 = v, K = r^2; no extent (its ends 0).
+ExactForm exact_form_of(const Sphere& s, const Line& l) {
+    Q r(s.r);
+    return {qvec(l.L0) - qvec(s.C), qvec(l.v), r * r, Q(), Q(), Q()};
+}
+
 ExactForm exact_form_of(const Cylinder& s, const Line& l) {
     QVec h = qvec(s.H) - qvec(s.C), w = qvec(l.L0) - qvec(s.C), v = qvec(l.v);
     Q hh = dot(h, h), r(s.r);
@@ -222,6 +228,13 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
                 if (const auto* p = std::get_if<Cylinder>(&c.shape)) {
                     Cylinder s{f * p->C, f * p->H, f * p->r, true};
                     check_form(ShapeTraits<Cylinder>::line_form(AsGiven<Cylinder>{s}, l.L0, l.v, 0),
+                               exact_form_of(s, l), false);
+                } else if (const auto* p = std::get_if<Sphere>(&c.shape)) {
+                    Sphere s{f * p->C, f * p->r};
+                    auto as_given = AsGiven<Sphere>{s};
+                    check_form(ShapeTraits<Sphere>::line_form(as_given, l.L0, l.v, 0),
+                               exact_form_of(s, l), false);
+                    check_form(ShapeTraits<Sphere>::quick_line_form(as_given, l.L0, l.v, 0),
                                exact_form_of(s, l), false);
                 } else if (const auto* p = std::get_if<EllipticCylinder>(&c.shape)) {
                     EllipticCylinder s{f * p->C, f * p->a, f * p->b, f * p->c, true};

@@ -29,9 +29,11 @@ Shape translated(const Shape& s, Vec3 d) {
                 x.C = x.C + d;
             } else if constexpr (std::is_same_v<S, EllipticCone>) {
                 x.C = x.C + d, x.H = x.H + d;
-            } else {
-                static_assert(std::is_same_v<S, Frustum>, "a new shape: translate its points");
+            } else if constexpr (std::is_same_v<S, Frustum>) {
                 x.C0 = x.C0 + d, x.C1 = x.C1 + d;
+            } else {
+                static_assert(std::is_same_v<S, Sphere>, "a new shape: translate its points");
+                x.C = x.C + d;
             }
             return x;
         },

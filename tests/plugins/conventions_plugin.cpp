@@ -28,8 +28,10 @@ Shape shape_of(const lq_shape& s) {
         c.nappes = s.nappes;
         return c;
     }
-    default:
+    case LQ_FRUSTUM:
         return Frustum{vec(s.p), s.p[3], vec(s.p + 4), s.p[7], finite, caps};
+    default:
+        return Sphere{vec(s.p), s.p[3]};
     }
 }
 
@@ -173,7 +175,7 @@ int solve_packet(void* self, int n, const lq_shape* shapes, const lq_line* lines
     return 0;
 }
 
-constexpr unsigned every_shape = (1u << (LQ_FRUSTUM + 1)) - 1;
+constexpr unsigned every_shape = (1u << (LQ_SPHERE + 1)) - 1;
 constexpr int everything = LQ_POINTS | LQ_KINDS | LQ_PARTS;
 
 const lq_solver solvers[] = {

@@ -29,7 +29,8 @@ enum lq_shape_kind {
     LQ_CYLINDER = 0,          /* p: C[3], H[3], r */
     LQ_ELLIPTIC_CYLINDER = 1, /* p: C[3], a[3], b[3], c[3] */
     LQ_ELLIPTIC_CONE = 2,     /* p: C[3], H[3], a[3], b[3] (apex H, base centre C) */
-    LQ_FRUSTUM = 3            /* p: C0[3], r0, C1[3], r1 */
+    LQ_FRUSTUM = 3,           /* p: C0[3], r0, C1[3], r1 */
+    LQ_SPHERE = 4             /* p: C[3], r; a closed solid: finite 1, caps 0, nappes 1 */
 };
 typedef struct {
     int kind; /* lq_shape_kind */

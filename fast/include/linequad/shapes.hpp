@@ -100,9 +100,16 @@ struct Frustum {
     bool caps = false;
 };
 
+// The sphere of radius r > 0 around C: a closed solid by definition (no options), whose one
+// part is its surface (Part::lateral).
+struct Sphere {
+    Vec3 C{};
+    double r = 0;
+};
+
 // Every shape. The solvers, the case format, the families and the benchmarks take their list
 // of shapes from here (and each shape's derivation from fast/src/shapes/).
-using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum>;
+using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum, Sphere>;
 
 // The options a shape may have: `finite` and `caps` (the shapes with an axis), `nappes` (the
 // cone). The closed solids by definition (the sphere) have none: they are finite, closed and
@@ -168,7 +175,7 @@ inline bool bounds_solid(const Shape& s) {
 Shape rounded_to_binary32(const Shape& s);
 Line rounded_to_binary32(const Line& l);
 
-// "cylinder", "elliptic_cylinder", "elliptic_cone", "frustum".
+// "cylinder", "elliptic_cylinder", "elliptic_cone", "frustum", "sphere".
 const char* shape_name(const Shape& s);
 template <class S>
 const char* shape_name();

@@ -7,12 +7,15 @@
 #include "shapes/elliptic_cone.hpp"
 #include "shapes/elliptic_cylinder.hpp"
 #include "shapes/frustum.hpp"
+#include "shapes/sphere.hpp"
 
 #include <variant>
 
-#define LINEQUAD_FOR_EACH_SHAPE(X) X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum)
+#define LINEQUAD_FOR_EACH_SHAPE(X)                                                                 \
+    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere)
 // The shapes whose quadratic has the Newton rung's form (ShapeTraits<S>::has_line_form).
-#define LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X) X(Cylinder) X(EllipticCylinder) X(EllipticCone)
+#define LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X)                                                       \
+    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Sphere)
 
 namespace linequad::detail {
 #define LINEQUAD_COUNT_SHAPE(S) +1

@@ -1,0 +1,200 @@
+// Line against a sphere {C, r}: every derivation of it, once.
+//
+// Derivation (checked against the surface equation). P is on the sphere iff |P - C|^2 = r^2.
+// Substituting P = L0 + t v, with w = L0 - C:
+//     A t^2 + 2 B t + C0 = 0,   A = v.v,   B = v.w,   C0 = w.w - r^2.
+// The quadratic is negative inside, and the sphere is a closed solid with no extent: a line meets
+// it in [t1, t2] (two crossings), touches it (a double root: tangent) or misses it. A = 0 only for
+// v = 0, which every solver refuses first.
+//
+// seed: the textbook quadratic a = v.v, b = 2 v.w, c = w.w - r^2, solved as written.
+//
+// stable: w = L0 - C exactly (hi + lo); the origin moved to the line's closest approach to C,
+// tc = -v.w / v.v (B is then nearly 0 and C0 = |wc|^2 - r^2, r^2 exact inside an fma); and the
+// discriminant in geometric form. Lagrange's identity, |v|^2 |w|^2 - (v.w)^2 = |v x w|^2, gives
+//     D = B^2 - A C0 = r^2 (v.v) - |v x w|^2,
+// a difference of two accurate numbers (v x w by Kahan's cross product, the same at any origin
+// on the line: |v x w| / |v| is the line's distance from C), not of the large squares B^2 and
+// A C0. Then the stable root pair, and the scene prescaled by powers of two.
+//
+// certified: the same quantities in bounded arithmetic (QuickBounded, then Bounded).
+//
+// exact: the quadratic above in any exact number type; no extent (Z unbounded).
+//
+// correct (the Newton rung): g(t) = |w + t v|^2 - r^2: U0 = w (exact, in double-double), U1 = v,
+// K = r^2 (exact), sigma = (1, 1, 1).
+#pragma once
+
+#include "forms/bounds.hpp"
+#include "forms/certified.hpp"
+#include "forms/exact_form.hpp"
+#include "forms/line_form.hpp"
+#include "forms/roots.hpp"
+#include "forms/traits.hpp"
+
+namespace linequad::detail {
+
+// The arithmetic of stable's sphere solve, once, for a lane type T (as CylinderStable).
+template <class T>
+struct SphereStable {
+    static constexpr bool parallel_is_miss = true; // A = v.v = 0 only for v = 0 (refused)
+    using Mask = decltype(T() < T());
+    Vec3TwoTermT<T> w;
+    Vec3T<T> v;
+    T r, A, inv_vv;
+    // From the moved origin.
+    T tc, B, C_moved, D;
+
+    SphereStable(Vec3T<T> C, Vec3T<T> L0, Vec3T<T> v_, T r_)
+        : w(difference_exact(L0, C)), v(v_), r(r_) {
+        A = dot(v, v);
+        inv_vv = T(1) / A;
+    }
+
+    Mask smaller_than(Real<T> size) const { return r < T(size); }
+    // A zero of D may be underflow when the sphere is tiny: D is a product of up to four sizes.
+    Mask zero_may_underflow() const { return smaller_than(Guards<Real<T>>::min_zero_size); }
+    Mask scalar_only() const { return Mask{}; }
+    // |w|^2 - r^2 at the caller's origin (for Vieta's product).
+    T C0_at_origin() const {
+        using std::fma;
+        Vec3T<T> w0 = w.rounded();
+        return fma(-r, r, dot(w0, w0));
+    }
+    LINEQUAD_INLINE void discriminant() {
+        using std::fma;
+        tc = -dot(v, w.rounded()) * inv_vv; // any tc is an exact move
+        Vec3T<T> wc = moved_origin(w, tc, v);
+        B = dot2(v, wc);
+        C_moved = fma(-r, r, dot(wc, wc));
+        Vec3T<T> u = cross_accurate(v, wc);
+        D = fma(r * r, A, -dot(u, u));
+    }
+    // No extent: every root is on the surface.
+    template <class Roots>
+    T z_of(const Roots&, int) const {
+        return T(0.0);
+    }
+    T z_lanes(T, T, Mask) const { return T(0.0); }
+    T axial_moved() const { return T(0.0); }
+    T axial_rate() const { return T(0.0); }
+    ExtentT<T> extent(const Sphere&) const { return {T(-Binary64::inf), T(Binary64::inf)}; }
+};
+
+template <>
+struct ShapeTraits<Sphere> {
+    static constexpr const char* name = "sphere";
+    static constexpr auto fields = std::make_tuple(field("C", &Sphere::C), field("r", &Sphere::r));
+    static constexpr const char* scale_fields = "r";
+    static constexpr const char* fragile_fields = "v";
+    static constexpr bool has_line_form = true;
+
+    static Validity validate(const Sphere& s) {
+        if (!(s.r > 0)) return {{ErrorCode::bad_radius, "r"}};
+        return {};
+    }
+
+    // ---- Bounds (a scene's culling) ----
+
+    static Box bounds(const Sphere& s) { return circular_box(s.C, s.r, s.C, s.r); }
+    static BoundingCapsule bounding_capsule(const Sphere& s) { return {s.C, {}, s.r}; }
+
+    // Nothing to keep beyond the common facts.
+    static void prepare(const Sphere&, Facts<Sphere>&) {}
+
+    // ---- seed ----
+
+    template <class R, class Source>
+    static SeedFormT<R> seed_form(const Source& src, const Line& l) {
+        const Sphere& s = src.shape;
+        Vec3T<R> v = in_real<R>(l.v), w = in_real<R>(l.L0) - in_real<R>(s.C);
+        R r = R(s.r);
+        R a = dot(v, v), b = 2 * dot(v, w), c = dot(w, w) - r * r;
+        bool usable = std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
+        return {a, b, c, R(0), R(0), Extent{-Binary64::inf, Binary64::inf}, usable};
+    }
+
+    // ---- stable ----
+
+    template <class T>
+    using Stable = SphereStable<T>;
+    template <class T, class Source, class Scale>
+    static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
+        const Sphere& s = src.shape;
+        return {ps.pos(s.C), ps.pos(L0), ps.dir(v), ps.len(s.r)};
+    }
+
+    // ---- certified ----
+
+    template <class B, class Source>
+    static CertifiedForm<B> certified_form(const Source& src, const Prescale& ps, const Line& l) {
+        const Sphere& s = src.shape;
+        Vec3 v = ps.dir(l.v);
+        Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
+        BoundedVec3<B> V = exact<B>(v);
+        B R = B::exact(ps.len(s.r)), A = dot(V, V);
+        double tc = -dot(v, w.rounded()) / dot(v, v);
+        BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), u = cross(V, wc);
+        BoundedQuadratic<B> quad{A, dot(V, wc), dot(wc, wc) - R * R, R * R * A - dot(u, u)};
+        return {quad, tc, B::exact(0), B::exact(0), {-Binary64::inf, Binary64::inf}};
+    }
+
+    // ---- exact ----
+
+    template <class NT>
+    static int exact_orientation(const Sphere&) {
+        return 0;
+    }
+
+    // |P - C|^2 = r^2 with P = L0 + t v, w = L0 - C; no extent.
+    template <class NT>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const Sphere& s, const Line& l,
+                                                         int /*orientation*/) {
+        using exact_form::lift;
+        Vec3T<NT> w = lift<NT>(l.L0) - lift<NT>(s.C), v = lift<NT>(l.v);
+        NT r(s.r);
+        exact_form::LineQuadratic<NT> q;
+        q.A = dot(v, v);
+        q.B = dot(v, w);
+        q.C0 = dot(w, w) - r * r;
+        q.Z0 = q.dZ = q.lo = q.hi = NT(0);
+        q.lo_bounded = q.hi_bounded = false;
+        return q;
+    }
+
+    // ---- correct: the Newton rung's line form, and the hit test's quick one ----
+
+    // g(t) = |w + t v|^2 - r^2. precise: w exact in double-double; else w rounded, its bound the
+    // low part it dropped. v and K = r^2 are exact either way (K from two_prod).
+    template <bool precise, class T, class Source>
+    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v) {
+        using std::fabs;
+        const Sphere& s = src.shape;
+        Vec3TwoTermT<T> w = difference_exact(L0, lanes_of<T>(s.C));
+        LineFormT<T> f;
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; ++k) {
+            f.U0[k] = precise ? BoundedDDT<T>{w.hi[k], w.lo[k], T(0.0)}
+                              : BoundedDDT<T>{w.hi[k], T(0.0), fabs(w.lo[k])};
+            f.U1[k] = {v[k], T(0.0), T(0.0)};
+        }
+        f.sigma_z = 1;
+        TwoTerm r2 = two_prod(s.r, s.r);
+        f.K = precise ? BoundedDD{r2.hi, r2.lo, 0} : BoundedDD{r2.hi, 0, std::fabs(r2.lo)};
+        f.Z0 = f.e_Z0 = f.dZ = f.e_dZ = T(0.0);
+        f.lo = f.e_lo = f.hi = f.e_hi = 0;
+        f.lo_bounded = f.hi_bounded = false;
+        return f;
+    }
+    template <class T = double, class Source>
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
+        return form<true, T>(src, L0, v);
+    }
+    template <class T = double, class Source>
+    static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,
+                                        int /*orientation*/) {
+        return form<false, T>(src, L0, v);
+    }
+};
+
+} // namespace linequad::detail
