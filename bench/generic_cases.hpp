@@ -60,6 +60,14 @@ struct Generic<Sphere> {
     }
 };
 
+template <>
+struct Generic<Ellipsoid> {
+    template <class Real>
+    static Ellipsoid make(Vec3 C, Vec3 a, Vec3 b, Vec3 c, Real&) {
+        return {C + 0.5 * c, a, b, c};
+    }
+};
+
 // The generic instance of the shape with index `index` in Shape.
 template <std::size_t I = 0, class Real>
 Shape generic_shape(int index, Vec3 C, Vec3 a, Vec3 b, Vec3 c, Real& real) {

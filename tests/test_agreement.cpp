@@ -20,7 +20,9 @@ struct Generic : RandomReals {
         for (;;) {
             Vec3 C = vec(2), a = vec(2), b = vec(2), c = vec(2);
             if (!well_shaped(a, b, c)) continue;
-            switch (rng() % 5) {
+            switch (rng() % 6) {
+            case 5:
+                return Ellipsoid{C, a, b, c};
             case 4:
                 return Sphere{C, real(0.5, 2)};
             case 0:
@@ -70,7 +72,7 @@ TEST_CASE("fast solvers agree with the oracle on well-conditioned generic cases"
                     return x.C + 0.5 * x.c;
                 else if constexpr (std::is_same_v<T, Frustum>)
                     return 0.5 * (x.C0 + x.C1);
-                else if constexpr (std::is_same_v<T, Sphere>)
+                else if constexpr (std::is_same_v<T, Sphere> || std::is_same_v<T, Ellipsoid>)
                     return x.C;
                 else
                     return 0.5 * (x.C + x.H);

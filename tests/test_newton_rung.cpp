@@ -48,6 +48,9 @@ bool negative_frame(Vec3 a, Vec3 b, const QVec& c) {
 bool negative_frame(const EllipticCylinder& s) {
     return negative_frame(s.a, s.b, qvec(s.c));
 }
+bool negative_frame(const Ellipsoid& s) {
+    return negative_frame(s.a, s.b, qvec(s.c));
+}
 bool negative_frame(const EllipticCone& s) {
     return negative_frame(s.a, s.b, qvec(s.H) - qvec(s.C));
 }
@@ -236,6 +239,17 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
                                exact_form_of(s, l), false);
                     check_form(ShapeTraits<Sphere>::quick_line_form(as_given, l.L0, l.v, 0),
                                exact_form_of(s, l), false);
+                } else if (const auto* p = std::get_if<Ellipsoid>(&c.shape)) {
+                    Ellipsoid s{f * p->C, f * p->a, f * p->b, f * p->c};
+                    if (validate(s, l).code != ErrorCode::none) continue;
+                    bool negative = negative_frame(s);
+                    ExactForm x =
+                        exact_elliptic(qvec(s.a), qvec(s.b), qvec(s.c), qvec(l.L0) - qvec(s.C),
+                                       qvec(l.v), negative, false);
+                    x.end = Q(); // no extent
+                    check_form(ShapeTraits<Ellipsoid>::line_form(AsGiven<Ellipsoid>{s}, l.L0, l.v,
+                                                                 negative ? -1 : 1),
+                               x, false);
                 } else if (const auto* p = std::get_if<EllipticCylinder>(&c.shape)) {
                     EllipticCylinder s{f * p->C, f * p->a, f * p->b, f * p->c, true};
                     if (validate(s, l).code != ErrorCode::none) continue;

@@ -32,7 +32,8 @@ Shape translated(const Shape& s, Vec3 d) {
             } else if constexpr (std::is_same_v<S, Frustum>) {
                 x.C0 = x.C0 + d, x.C1 = x.C1 + d;
             } else {
-                static_assert(std::is_same_v<S, Sphere>, "a new shape: translate its points");
+                static_assert(std::is_same_v<S, Sphere> || std::is_same_v<S, Ellipsoid>,
+                              "a new shape: translate its points");
                 x.C = x.C + d;
             }
             return x;

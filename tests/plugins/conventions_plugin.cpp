@@ -30,8 +30,10 @@ Shape shape_of(const lq_shape& s) {
     }
     case LQ_FRUSTUM:
         return Frustum{vec(s.p), s.p[3], vec(s.p + 4), s.p[7], finite, caps};
-    default:
+    case LQ_SPHERE:
         return Sphere{vec(s.p), s.p[3]};
+    default:
+        return Ellipsoid{vec(s.p), vec(s.p + 3), vec(s.p + 6), vec(s.p + 9)};
     }
 }
 
@@ -175,7 +177,7 @@ int solve_packet(void* self, int n, const lq_shape* shapes, const lq_line* lines
     return 0;
 }
 
-constexpr unsigned every_shape = (1u << (LQ_SPHERE + 1)) - 1;
+constexpr unsigned every_shape = (1u << (LQ_ELLIPSOID + 1)) - 1;
 constexpr int everything = LQ_POINTS | LQ_KINDS | LQ_PARTS;
 
 const lq_solver solvers[] = {

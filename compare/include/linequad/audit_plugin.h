@@ -30,7 +30,8 @@ enum lq_shape_kind {
     LQ_ELLIPTIC_CYLINDER = 1, /* p: C[3], a[3], b[3], c[3] */
     LQ_ELLIPTIC_CONE = 2,     /* p: C[3], H[3], a[3], b[3] (apex H, base centre C) */
     LQ_FRUSTUM = 3,           /* p: C0[3], r0, C1[3], r1 */
-    LQ_SPHERE = 4             /* p: C[3], r; a closed solid: finite 1, caps 0, nappes 1 */
+    LQ_SPHERE = 4,            /* p: C[3], r; a closed solid: finite 1, caps 0, nappes 1 */
+    LQ_ELLIPSOID = 5          /* p: C[3], a[3], b[3], c[3]; a closed solid, as the sphere */
 };
 typedef struct {
     int kind; /* lq_shape_kind */

@@ -60,6 +60,8 @@ template <>
 struct Facts<EllipticCone> : FrameFacts {};
 template <>
 struct Facts<Frustum> : AxisFacts {};
+template <>
+struct Facts<Ellipsoid> : FrameFacts {};
 
 struct PreparedAccess;
 

@@ -107,12 +107,18 @@ struct Sphere {
     double r = 0;
 };
 
+// The ellipsoid: points C + x a + y b + z c with x^2 + y^2 + z^2 = 1, a, b, c any linearly
+// independent vectors (as the elliptic cylinder's frame); a closed solid by definition.
+struct Ellipsoid {
+    Vec3 C{}, a{}, b{}, c{};
+};
+
 // Every shape. The solvers, the case format, the families and the benchmarks take their list
 // of shapes from here (and each shape's derivation from fast/src/shapes/).
-using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum, Sphere>;
+using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum, Sphere, Ellipsoid>;
 
 // The options a shape may have: `finite` and `caps` (the shapes with an axis), `nappes` (the
-// cone). The closed solids by definition (the sphere) have none: they are finite, closed and
+// cone). The closed solids by definition (sphere, ellipsoid) have none: they are finite, closed and
 // one solid.
 namespace detail {
 template <class S, class = void>
@@ -175,7 +181,7 @@ inline bool bounds_solid(const Shape& s) {
 Shape rounded_to_binary32(const Shape& s);
 Line rounded_to_binary32(const Line& l);
 
-// "cylinder", "elliptic_cylinder", "elliptic_cone", "frustum", "sphere".
+// "cylinder", "elliptic_cylinder", "elliptic_cone", "frustum", "sphere", "ellipsoid".
 const char* shape_name(const Shape& s);
 template <class S>
 const char* shape_name();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "shapes/cylinder.hpp"
+#include "shapes/ellipsoid.hpp"
 #include "shapes/elliptic_cone.hpp"
 #include "shapes/elliptic_cylinder.hpp"
 #include "shapes/frustum.hpp"
@@ -12,10 +13,10 @@
 #include <variant>
 
 #define LINEQUAD_FOR_EACH_SHAPE(X)                                                                 \
-    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere)
+    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid)
 // The shapes whose quadratic has the Newton rung's form (ShapeTraits<S>::has_line_form).
 #define LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X)                                                       \
-    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Sphere)
+    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Sphere) X(Ellipsoid)
 
 namespace linequad::detail {
 #define LINEQUAD_COUNT_SHAPE(S) +1
