@@ -68,6 +68,14 @@ struct Generic<Ellipsoid> {
     }
 };
 
+template <>
+struct Generic<Capsule> {
+    template <class Real>
+    static Capsule make(Vec3 C, Vec3, Vec3, Vec3 c, Real& real) {
+        return {C, C + c, real(0.5, 2)};
+    }
+};
+
 // The generic instance of the shape with index `index` in Shape.
 template <std::size_t I = 0, class Real>
 Shape generic_shape(int index, Vec3 C, Vec3 a, Vec3 b, Vec3 c, Real& real) {

@@ -23,7 +23,7 @@ Shape translated(const Shape& s, Vec3 d) {
     return std::visit(
         [&](auto x) -> Shape {
             using S = decltype(x);
-            if constexpr (std::is_same_v<S, Cylinder>) {
+            if constexpr (std::is_same_v<S, Cylinder> || std::is_same_v<S, Capsule>) {
                 x.C = x.C + d, x.H = x.H + d;
             } else if constexpr (std::is_same_v<S, EllipticCylinder>) {
                 x.C = x.C + d;

@@ -473,11 +473,13 @@ Result hits_of(const exact_form::Classification<NT>& c, const double* rounded, b
     return r;
 }
 
-// roots, when given, receives the exact classification the answer was rounded from.
+// One quadric (a shape, or a patch of a composite one). roots, when given, receives the exact
+// classification the answer was rounded from.
 template <class NT, class ShapeT>
-Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
-             exact_form::Classification<NT>* roots = nullptr) {
-    if (Error e = validate(shape, l); !e.ok()) return Result::failure(e);
+Result solve_quadric(const ShapeT& shape, const Line& l, Query query, Precision target,
+                     exact_form::Classification<NT>* roots = nullptr) {
+    if (Error e = detail::check_line(l); !e.ok()) return Result::failure(e);
+    if (Error e = detail::validity_of(shape).error; !e.ok()) return Result::failure(e);
     if (target == Precision::binary32)
         if (Error e = detail::binary32_error(shape, l); !e.ok()) return Result::failure(e);
     // The filter, on the oracle's own number type only (Gmpq stays unfiltered: the cross-check).
@@ -569,6 +571,61 @@ Result solve(const ShapeT& shape, const Line& l, Query query, Precision target,
     return hits_of(c, rounded, points);
 }
 
+// A shape made of patches (the capsule): each patch solved exactly, the hits named by their
+// patches' parts and merged in exact order; a line along a patch's surface is the answer.
+template <class NT, class ShapeT>
+Result solve_patches(const ShapeT& shape, const Line& l, Query query, Precision target) {
+    using Traits = detail::ShapeTraits<ShapeT>;
+    if (Error e = validate(shape, l); !e.ok()) return Result::failure(e);
+    if (target == Precision::binary32)
+        if (Error e = detail::binary32_error(shape, l); !e.ok()) return Result::failure(e);
+    struct Found {
+        Hit hit;
+        exact_form::SurdRoot<NT> root;
+        NT D;
+    };
+    std::vector<Found> found;
+    Result along;
+    int i = 0;
+    std::apply(
+        [&](const auto&... patch) {
+            auto add = [&](const auto& p) {
+                Part part = Traits::parts[i++];
+                if (along.on_surface || !along.ok()) return;
+                exact_form::Classification<NT> c;
+                Result r = solve_quadric<NT>(p, l, query, target, &c);
+                if (!r.ok() || r.on_surface) {
+                    along = r, along.surface_part = part;
+                    return;
+                }
+                for (int k = 0; k < r.count; ++k) {
+                    found.push_back({r.hits[k], c.roots[k], c.D});
+                    found.back().hit.part = part;
+                }
+            };
+            (add(patch), ...);
+        },
+        Traits::patches(shape));
+    if (along.on_surface || !along.ok()) return along;
+    std::stable_sort(found.begin(), found.end(), [](const Found& a, const Found& b) {
+        return exact_form::compare_roots<NT>({a.root.N, a.root.S, a.root.Den, a.D},
+                                             {b.root.N, b.root.S, b.root.Den, b.D}) < 0;
+    });
+    Result r;
+    std::size_t keep = query.need == Need::all ? found.size() : std::min<std::size_t>(found.size(), 1);
+    for (std::size_t k = 0; k < keep && r.count < max_hits; ++k)
+        r.hits[r.count++] = found[k].hit;
+    return r;
+}
+
+template <class NT, class ShapeT>
+Result solve(const ShapeT& shape, const Line& l, Query query, Precision target) {
+    if constexpr (detail::is_composite<ShapeT>)
+        return solve_patches<NT>(shape, l, query, target);
+    else
+        return solve_quadric<NT>(shape, l, query, target);
+}
+
 // A scene hit's exact t: (N + S sqrt(D)) / Den, or minus infinity (a line along a surface from
 // the start of an unbounded range).
 struct ExactT {
@@ -594,29 +651,61 @@ constexpr std::uint8_t on_surface_index = 255; // as Scene numbers a line along 
 // a tangent hit), with its exact t.
 template <class ShapeT>
 void shape_hits(const ShapeT& shape, std::uint32_t index, const Line& l, bool points,
-                std::vector<ExactHit>& out) {
-    exact_form::Classification<CGAL::Mpzf> c;
-    Result r = solve<CGAL::Mpzf>(shape, l, {Need::all, points}, Precision::binary64, &c);
-    for (int k = 0; k < r.count; ++k) {
-        const exact_form::SurdRoot<CGAL::Mpzf>& root = c.roots[k];
-        out.push_back({{r.hits[k], index, std::uint8_t(k), false}, {}});
-        ExactT& t = out.back().t;
-        t.N = root.N, t.Den = root.Den, t.S = root.S, t.D = c.D;
-    }
-    if (r.on_surface) {
-        Hit h{};
-        h.t = r.s0;
-        h.kind = HitKind::tangent, h.part = r.surface_part;
-        h.bound = std::numeric_limits<double>::quiet_NaN();
-        // Scene's definition of the point (the interval's end is not a root to round from).
-        h.p = points && std::isfinite(r.s0) ? detail::point_at(l, r.s0) : Vec3{};
-        out.push_back({{h, index, on_surface_index, false}, {}});
-        ExactT& t = out.back().t;
-        if (!c.s0.bounded) {
-            t.minus_infinity = true;
-        } else {
-            t.N = c.s0.num, t.Den = c.s0.den, t.S = c.s0.S;
-            t.D = c.s0.S != 0 ? c.D : CGAL::Mpzf(0);
+                std::vector<ExactHit>& out, Part part = Part::lateral, int first = 0) {
+    if constexpr (detail::is_composite<ShapeT>) {
+        // Each patch's hits, named by its part (a scene's order is exact anyway); a line along a
+        // patch's surface is the shape's answer, as solve_patches has it.
+        if (!validate(shape, l).ok()) return;
+        std::vector<ExactHit> mine;
+        int i = 0;
+        bool along = false;
+        std::apply(
+            [&](const auto&... patch) {
+                auto add = [&](const auto& p) {
+                    std::vector<ExactHit> hits;
+                    Part named = detail::ShapeTraits<ShapeT>::parts[i];
+                    shape_hits(p, index, l, points, hits, named, 2 * i++);
+                    bool on = std::any_of(hits.begin(), hits.end(), [](const ExactHit& h) {
+                        return h.hit.index == on_surface_index;
+                    });
+                    if (along) return;
+                    if (on) mine.clear(), along = true;
+                    mine.insert(mine.end(), hits.begin(), hits.end());
+                };
+                (add(patch), ...);
+            },
+            detail::ShapeTraits<ShapeT>::patches(shape));
+        out.insert(out.end(), mine.begin(), mine.end());
+    } else {
+        exact_form::Classification<CGAL::Mpzf> c;
+        Result r = solve_quadric<CGAL::Mpzf>(shape, l, {Need::all, points}, Precision::binary64, &c);
+        constexpr bool patch = !detail::is_alternative<ShapeT, Shape>::value;
+        if (patch) {
+            for (int k = 0; k < r.count; ++k)
+                r.hits[k].part = part;
+            r.surface_part = part;
+        }
+        for (int k = 0; k < r.count; ++k) {
+            const exact_form::SurdRoot<CGAL::Mpzf>& root = c.roots[k];
+            out.push_back({{r.hits[k], index, std::uint8_t(first + k), false}, {}});
+            ExactT& t = out.back().t;
+            t.N = root.N, t.Den = root.Den, t.S = root.S, t.D = c.D;
+        }
+        if (r.on_surface) {
+            Hit h{};
+            h.t = r.s0;
+            h.kind = HitKind::tangent, h.part = r.surface_part;
+            h.bound = std::numeric_limits<double>::quiet_NaN();
+            // Scene's definition of the point (the interval's end is not a root to round from).
+            h.p = points && std::isfinite(r.s0) ? detail::point_at(l, r.s0) : Vec3{};
+            out.push_back({{h, index, on_surface_index, false}, {}});
+            ExactT& t = out.back().t;
+            if (!c.s0.bounded) {
+                t.minus_infinity = true;
+            } else {
+                t.N = c.s0.num, t.Den = c.s0.den, t.S = c.s0.S;
+                t.D = c.s0.S != 0 ? c.D : CGAL::Mpzf(0);
+            }
         }
     }
 }

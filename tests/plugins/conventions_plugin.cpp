@@ -32,8 +32,10 @@ Shape shape_of(const lq_shape& s) {
         return Frustum{vec(s.p), s.p[3], vec(s.p + 4), s.p[7], finite, caps};
     case LQ_SPHERE:
         return Sphere{vec(s.p), s.p[3]};
-    default:
+    case LQ_ELLIPSOID:
         return Ellipsoid{vec(s.p), vec(s.p + 3), vec(s.p + 6), vec(s.p + 9)};
+    default:
+        return Capsule{vec(s.p), vec(s.p + 3), s.p[6]};
     }
 }
 
@@ -177,7 +179,7 @@ int solve_packet(void* self, int n, const lq_shape* shapes, const lq_line* lines
     return 0;
 }
 
-constexpr unsigned every_shape = (1u << (LQ_ELLIPSOID + 1)) - 1;
+constexpr unsigned every_shape = (1u << (LQ_CAPSULE + 1)) - 1;
 constexpr int everything = LQ_POINTS | LQ_KINDS | LQ_PARTS;
 
 const lq_solver solvers[] = {

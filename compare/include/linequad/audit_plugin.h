@@ -31,7 +31,9 @@ enum lq_shape_kind {
     LQ_ELLIPTIC_CONE = 2,     /* p: C[3], H[3], a[3], b[3] (apex H, base centre C) */
     LQ_FRUSTUM = 3,           /* p: C0[3], r0, C1[3], r1 */
     LQ_SPHERE = 4,            /* p: C[3], r; a closed solid: finite 1, caps 0, nappes 1 */
-    LQ_ELLIPSOID = 5          /* p: C[3], a[3], b[3], c[3]; a closed solid, as the sphere */
+    LQ_ELLIPSOID = 5,         /* p: C[3], a[3], b[3], c[3]; a closed solid, as the sphere */
+    LQ_CAPSULE = 6            /* p: C[3], H[3], r; a closed solid; parts: LQ_LATERAL, and the
+                                 hemispheres LQ_BASE (around C) and LQ_TOP (around H) */
 };
 typedef struct {
     int kind; /* lq_shape_kind */

@@ -432,13 +432,6 @@ bool is_base(const Closed& k, double z) {
     return z == k.ends[0] && z < k.middle;
 }
 
-// One of the four exact quarter turns: (cos, sin) of 0, 90, 180, 270 degrees.
-std::pair<double, double> quarter(Rng& r) {
-    static const double c[4] = {1, 0, -1, 0};
-    int q = r.integer(0, 3);
-    return {c[q], c[(q + 3) % 4]};
-}
-
 template <class S>
 Case rim(Rng& r, int k, Frames frames, Precision p) {
     Frame f = frame_for<S>(r, true, frames);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <utility>
 
 namespace linequad {
 
@@ -45,6 +46,13 @@ struct Rng {
         return std::ldexp(double(integer(0, (1 << bits) - 1)), -bits);
     } // [0, 1)
 };
+
+// One of the four exact quarter turns: (cos, sin) of 0, 90, 180, 270 degrees.
+inline std::pair<double, double> quarter(Rng& r) {
+    static const double c[4] = {1, 0, -1, 0};
+    int q = r.integer(0, 3);
+    return {c[q], c[(q + 3) % 4]};
+}
 
 // The rotation of an integer quaternion q times N = |q|^2: an integer matrix whose columns are
 // orthogonal and of length N, so that dyadic multiples of them stay exact.

@@ -30,8 +30,8 @@
 #include "linequad/registry.hpp"
 #include "linequad/scene.hpp"
 
-#include "forms/traits.hpp"
 #include "numeric/format.hpp"
+#include "shapes/all.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -76,17 +76,19 @@ struct Checker {
     }
     void shape(const std::string& name, const Result& r) {
         if (!r.ok()) return;
-        auto [closed, most] = std::visit(
+        // Parts beyond the lateral surface: a closed shape's discs, a capsule's round ends.
+        auto [parts, most] = std::visit(
             [](const auto& s) {
+                using S = std::decay_t<decltype(s)>;
                 bool two_solids = has_caps(s) && nappes_of(s) == 2;
-                return std::pair{has_caps(s), two_solids ? max_hits : 2};
+                return std::pair{has_caps(s) || detail::is_composite<S>, two_solids ? max_hits : 2};
             },
             c.shape);
         require(r.count <= most, "at most two hits (four for a closed two-nappe cone)", name, r);
         for (int i = 0; i < r.count; ++i)
-            require(closed || r.hits[i].part == Part::lateral, "caps only on a closed shape", name,
+            require(parts || r.hits[i].part == Part::lateral, "caps only on a closed shape", name,
                     r);
-        require(closed || r.surface_part == Part::lateral, "caps only on a closed shape", name, r);
+        require(parts || r.surface_part == Part::lateral, "caps only on a closed shape", name, r);
         require(!(r.on_surface && r.count), "hits or an interval, not both", name, r);
         // Infinities are correct roundings beyond the format's range.
         bool oracle = name == "exact" || name == "correct" || name == "correct32";

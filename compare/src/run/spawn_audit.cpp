@@ -33,25 +33,51 @@ Result solve_with(SpawnMethod m, const Shape& s, const Line& l, Query q) {
     return uses_stable(m) ? stable::intersect(s, l, q) : correct::intersect(s, l, q);
 }
 
-// The shape's exact form along l (the oracle's arithmetic is not needed: big floats suffice).
-exact_form::LineQuadratic<BigFloat> form_along(const Shape& shape, const Line& l) {
+// The exact form along l of the shape, or of the patch of a shape made of patches that holds
+// `part` (the oracle's arithmetic is not needed: big floats suffice).
+template <class S>
+exact_form::LineQuadratic<BigFloat> form_of(const S& s, const Line& l) {
+    using detail::ShapeTraits;
+    int orientation = ShapeTraits<S>::template exact_orientation<BigFloat>(s);
+    return ShapeTraits<S>::template exact_quadratic<BigFloat>(s, l, orientation);
+}
+exact_form::LineQuadratic<BigFloat> form_along(const Shape& shape, const Line& l,
+                                               Part part = Part::lateral) {
     return std::visit(
         [&](const auto& s) {
             using S = std::decay_t<decltype(s)>;
-            using detail::ShapeTraits;
-            int orientation = ShapeTraits<S>::template exact_orientation<BigFloat>(s);
-            return ShapeTraits<S>::template exact_quadratic<BigFloat>(s, l, orientation);
+            if constexpr (detail::is_composite<S>) {
+                return detail::with_patch(s, part, [&](const auto& p) { return form_of(p, l); });
+            } else {
+                return form_of(s, l);
+            }
         },
         shape);
+}
+
+BigFloat value_at(const exact_form::LineQuadratic<BigFloat>& q, const BigFloat& T) {
+    return q.A * T * T + BigFloat(2.0) * q.B * T + q.C0;
+}
+
+// A capsule's side of the point at t, exactly: the sign of its distance to the axis segment minus
+// r, read from the patch whose part of the axis its projection falls on.
+int capsule_side_at(const Shape& shape, const Line& l, double t) {
+    BigFloat T(t);
+    auto side = form_along(shape, l, Part::lateral);
+    BigFloat u = side.Z0 + T * side.dZ; // (P - C).h, 0 at C and h.h at H
+    Part part = sign(u) < 0 ? Part::base : sign(BigFloat(u - side.hi)) > 0 ? Part::top
+                                                                          : Part::lateral;
+    return sign(value_at(part == Part::lateral ? side : form_along(shape, l, part), T));
 }
 
 // Which side of the surface the point at t on line l is, exactly: +1 outside, -1 inside, 0 on
 // it. solid: of the closed shape (inside: within the lateral surface, strictly between its
 // bounded ends, off a two-solid cone's apex plane); else of the quadric alone (the sign of Q).
 int side_at(const Shape& shape, const Line& l, double t, bool solid) {
+    if (std::holds_alternative<Capsule>(shape)) return capsule_side_at(shape, l, t);
     auto q = form_along(shape, l);
     BigFloat T(t);
-    int sq = sign(BigFloat(q.A * T * T + BigFloat(2.0) * q.B * T + q.C0));
+    int sq = sign(value_at(q, T));
     if (!solid || sq >= 0) return sq;
     BigFloat Z = q.Z0 + T * q.dZ;
     int worst = -1; // the largest of the signs of lo - Z, Z - hi, -|Z| (two solids)
@@ -63,8 +89,8 @@ int side_at(const Shape& shape, const Line& l, double t, bool solid) {
 
 // The side a crossing of the quadric at t on l goes into: the sign of Q'(t) = 2 (A t + B), for
 // t a root's correctly rounded value (right unless the two roots are within its rounding).
-int side_after(const Shape& shape, const Line& l, double t) {
-    auto q = form_along(shape, l);
+int side_after(const Shape& shape, const Line& l, double t, Part part) {
+    auto q = form_along(shape, l, part);
     return sign(BigFloat(q.A * BigFloat(t) + q.B));
 }
 
@@ -162,7 +188,7 @@ std::vector<SpawnRow> run_spawn_audit(const SpawnAuditOptions& o) {
                     for (int k = 0; k < p.exact.count; ++k) {
                         // A closed shape's crossings enter and leave its solids in turn.
                         int into = closed(c.shape) ? (k % 2 == 0 ? -1 : 1)
-                                                   : side_after(c.shape, line, p.exact.hits[k].t);
+                                                   : side_after(c.shape, line, p.exact.hits[k].t, p.exact.hits[k].part);
                         bool next = k + 1 < p.exact.count;
                         for (int m = 0; m < spawn_method_count; ++m) {
                             if (!p.usable[m])

@@ -113,12 +113,23 @@ struct Ellipsoid {
     Vec3 C{}, a{}, b{}, c{};
 };
 
+// The capsule: the points within distance r > 0 of the segment from C to H (H != C), a closed
+// solid by definition. Its parts: Part::lateral, the cylinder strictly between the planes through
+// C and H perpendicular to the axis; Part::base and Part::top, the hemispheres around C and H,
+// each with its seam circle (as a rim belongs to its disc). A line along the lateral surface has
+// no hits: the interval where it lies on it, ends included.
+struct Capsule {
+    Vec3 C{}, H{};
+    double r = 0;
+};
+
 // Every shape. The solvers, the case format, the families and the benchmarks take their list
 // of shapes from here (and each shape's derivation from fast/src/shapes/).
-using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum, Sphere, Ellipsoid>;
+using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum, Sphere, Ellipsoid,
+                           Capsule>;
 
 // The options a shape may have: `finite` and `caps` (the shapes with an axis), `nappes` (the
-// cone). The closed solids by definition (sphere, ellipsoid) have none: they are finite, closed and
+// cone). The closed solids by definition (sphere, ellipsoid, capsule) have none: they are finite, closed and
 // one solid.
 namespace detail {
 template <class S, class = void>
@@ -181,7 +192,7 @@ inline bool bounds_solid(const Shape& s) {
 Shape rounded_to_binary32(const Shape& s);
 Line rounded_to_binary32(const Line& l);
 
-// "cylinder", "elliptic_cylinder", "elliptic_cone", "frustum", "sphere", "ellipsoid".
+// "cylinder", "elliptic_cylinder", "elliptic_cone", "frustum", "sphere", "ellipsoid", "capsule".
 const char* shape_name(const Shape& s);
 template <class S>
 const char* shape_name();

@@ -137,12 +137,12 @@ Result finish_certified(CertifiedCandidate<BT>* c, int n, bool classification_ce
         // Each test is a sign: certain when the bound excludes zero (or the value is exactly 0).
         bool certain = c[i].certain;
         bool inside = true;
-        auto test = [&](BT x) {
-            inside = inside && x.v >= 0;
+        auto test = [&](BT x, bool strict = false) {
+            inside = inside && (strict ? x.v > 0 : x.v >= 0);
             certain = certain && (x.certain_sign() != 0 || exactly_zero(x));
         };
-        if (std::isfinite(e.lo)) test(c[i].z - BT::exact(e.lo));
-        if (std::isfinite(e.hi)) test(BT::exact(e.hi) - c[i].z);
+        if (std::isfinite(e.lo)) test(c[i].z - BT::exact(e.lo), e.caps.open_lo);
+        if (std::isfinite(e.hi)) test(BT::exact(e.hi) - c[i].z, e.caps.open_hi);
         // t >= 0 is the sign of t itself: subtracting an exact zero would only widen its bound.
         if (range.has_t0()) test(range.t0 == 0 ? c[i].t : c[i].t - BT::exact(range.t0));
         if (range.has_t1()) test(BT::exact(range.t1) - c[i].t);

@@ -52,6 +52,9 @@ struct LineQuadratic {
     bool lo_bounded = true, hi_bounded = true;
     // Discs at the bounded ends (lo: base, hi: top), and two solids meeting at Z = 0.
     bool lo_capped = false, hi_capped = false, two_solids = false;
+    // Bounded ends that another part owns (a capsule's side at its seams): a root exactly there
+    // is not kept, as at a capped end, but no disc closes it.
+    bool lo_open = false, hi_open = false;
 };
 
 template <class NT>
@@ -172,7 +175,7 @@ struct Classification {
 namespace detail {
 
 // Z(t) within [lo, hi]: Z(t) - lo = (Den (Z0 - lo) + dZ N + S dZ sqrt(D)) / Den, and so on; a
-// capped end excludes its rim (it belongs to the disc).
+// capped end excludes its rim (it belongs to the disc), an open end its seam.
 template <class NT>
 int in_extent(const SurdRoot<NT>& r, const SurdSign<NT>& surd, const LineQuadratic<NT>& q,
               int sden) {
@@ -180,12 +183,12 @@ int in_extent(const SurdRoot<NT>& r, const SurdSign<NT>& surd, const LineQuadrat
     if (q.lo_bounded) {
         int s = surd(NT(r.Den * (q.Z0 - q.lo) + q.dZ * r.N), SdZ);
         if (s == undecided) return undecided;
-        if (s * sden < 0 || (q.lo_capped && s == 0)) return 0;
+        if (s * sden < 0 || ((q.lo_capped || q.lo_open) && s == 0)) return 0;
     }
     if (q.hi_bounded) {
         int s = surd(NT(r.Den * (q.hi - q.Z0) - q.dZ * r.N), NT(-SdZ));
         if (s == undecided) return undecided;
-        if (s * sden < 0 || (q.hi_capped && s == 0)) return 0;
+        if (s * sden < 0 || ((q.hi_capped || q.hi_open) && s == 0)) return 0;
     }
     return 1;
 }

@@ -26,6 +26,7 @@
 
 #include <cmath>
 #include <tuple>
+#include <type_traits>
 
 namespace linequad::detail {
 
@@ -236,12 +237,53 @@ AsPrepared<S> source(const Prepared<S>& p) {
 struct Closure {
     bool lo = false, hi = false;
     bool two_solids = false;
+    // Ends owned by another part of a composite shape (a capsule's side ends at its seams, which
+    // belong to the round ends): a root exactly there is not this part's. No disc.
+    bool open_lo = false, open_hi = false;
     bool any() const { return lo || hi; }
 };
 
 // A cylinder's discs: one at each end, when it has caps.
 inline Closure both_ends(bool caps) {
     return {caps, caps, false};
+}
+
+// Whether the shape is made of patches, each a quadric piece solved as a shape of its own
+// (ShapeTraits<S>::patches; the capsule's side and round ends): every solver merges them
+// (solve/solve.hpp, solve_shape).
+template <class S, class = void>
+struct IsComposite : std::false_type {};
+template <class S>
+struct IsComposite<S, std::void_t<decltype(ShapeTraits<S>::composite)>>
+    : std::bool_constant<ShapeTraits<S>::composite> {};
+// A shape's traits must be complete where this is asked (shapes/all.hpp included): an incomplete
+// one would read as "not composite".
+template <class S>
+constexpr bool composite_shape() {
+    static_assert(sizeof(ShapeTraits<S>) > 0, "include shapes/all.hpp");
+    return IsComposite<S>::value;
+}
+template <class S>
+inline constexpr bool is_composite = composite_shape<S>();
+
+// f(patch) for the patch of a shape made of patches whose part is `part` (the first patch when
+// none is).
+template <class S, class F>
+auto with_patch(const S& shape, Part part, F&& f) {
+    auto patches = ShapeTraits<S>::patches(shape);
+    constexpr std::size_t n = std::tuple_size_v<decltype(patches)>;
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < n; ++i)
+        if (ShapeTraits<S>::parts[i] == part) at = i, i = n;
+    return std::apply(
+        [&](const auto& first, const auto&... rest) {
+            using R = decltype(f(first));
+            R out = f(first);
+            std::size_t i = 1;
+            ((i++ == at ? void(out = f(rest)) : void()), ...);
+            return out;
+        },
+        patches);
 }
 
 // Whether discs close the shape's ends: what the Newton rung's proof does not cover.

@@ -12,9 +12,18 @@
 namespace linequad::detail {
 
 // Every root of the shape on the line within its range, in increasing t, as the exact rung finds
-// them (a shape's correct hits for Need::all are these, rounded, in this order).
+// them (a shape's correct hits for Need::all are these, rounded, in this order), each with the D
+// of its quadratic (a shape made of patches has one per patch); or the on-surface interval.
+struct ExactRoots {
+    exact_form::Outcome outcome = exact_form::Outcome::none;
+    int count = 0;
+    exact_form::SurdRoot<BigFloat> roots[max_hits];
+    BigFloat D[max_hits];
+    exact_form::Fraction<BigFloat> s0; // on_surface: the interval's first end
+    BigFloat s0_D;
+};
 template <class S>
-exact_form::Classification<BigFloat> exact_roots(const Prepared<S>& p, const Line& l);
+ExactRoots exact_roots(const Prepared<S>& p, const Line& l);
 
 // sign(t_a - t_b) for t_a = (a.N + a.S sqrt(Da)) / a.Den and t_b likewise.
 int compare_roots(const exact_form::SurdRoot<BigFloat>& a, const BigFloat& Da,

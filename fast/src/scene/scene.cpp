@@ -596,17 +596,17 @@ int compare_exact(const ExactT& a, const ExactT& b) {
 
 // The exact t of hit h from its shape's exact classification c, if c has it (it always should:
 // the correct solver's exact rung found the hit).
-std::optional<ExactT> exact_t(const exact_form::Classification<BigFloat>& c, const SceneHit& h) {
+std::optional<ExactT> exact_t(const detail::ExactRoots& c, const SceneHit& h) {
     ExactT t;
     if (h.index == on_surface_index) {
         if (c.outcome != exact_form::Outcome::on_surface) return std::nullopt;
         t.minus_infinity = !c.s0.bounded;
         t.root.N = c.s0.num, t.root.Den = c.s0.den, t.root.S = c.s0.S;
-        t.D = c.s0.S != 0 ? c.D : BigFloat(0.0);
+        t.D = c.s0_D;
         return t;
     }
     if (c.outcome != exact_form::Outcome::hits || h.index >= c.count) return std::nullopt;
-    t.root = c.roots[h.index], t.D = c.D;
+    t.root = c.roots[h.index], t.D = c.D[h.index];
     return t;
 }
 
@@ -615,7 +615,7 @@ std::optional<ExactT> exact_t(const exact_form::Classification<BigFloat>& c, con
 // are equal on two shapes or more; with nearest, only the exactly nearest are kept.
 void refine_ties(const std::vector<PreparedShape>& shapes, const Line& line, bool nearest,
                  std::vector<SceneHit>& hits, std::uint32_t& comparisons) {
-    using Roots = exact_form::Classification<BigFloat>;
+    using Roots = detail::ExactRoots;
     for (std::size_t i = 0; i < hits.size();) {
         std::size_t j = i + 1;
         while (j < hits.size() && hits[j].hit.t == hits[i].hit.t)

@@ -3,6 +3,7 @@
 // which C++17 cannot generate from a type list.
 #pragma once
 
+#include "shapes/capsule.hpp"
 #include "shapes/cylinder.hpp"
 #include "shapes/ellipsoid.hpp"
 #include "shapes/elliptic_cone.hpp"
@@ -13,6 +14,9 @@
 #include <variant>
 
 #define LINEQUAD_FOR_EACH_SHAPE(X)                                                                 \
+    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid) X(Capsule)
+// The shapes that are one quadric (not made of patches: the batch kernels take them).
+#define LINEQUAD_FOR_EACH_QUADRIC_SHAPE(X)                                                         \
     X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid)
 // The shapes whose quadratic has the Newton rung's form (ShapeTraits<S>::has_line_form).
 #define LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X)                                                       \

@@ -44,6 +44,7 @@ struct SphereStable {
     T r, A, inv_vv;
     // From the moved origin.
     T tc, B, C_moved, D;
+    Vec3T<T> wc;
 
     SphereStable(Vec3T<T> C, Vec3T<T> L0, Vec3T<T> v_, T r_)
         : w(difference_exact(L0, C)), v(v_), r(r_) {
@@ -64,7 +65,7 @@ struct SphereStable {
     LINEQUAD_INLINE void discriminant() {
         using std::fma;
         tc = -dot(v, w.rounded()) * inv_vv; // any tc is an exact move
-        Vec3T<T> wc = moved_origin(w, tc, v);
+        wc = moved_origin(w, tc, v);
         B = dot2(v, wc);
         C_moved = fma(-r, r, dot(wc, wc));
         Vec3T<T> u = cross_accurate(v, wc);
@@ -80,6 +81,74 @@ struct SphereStable {
     T axial_rate() const { return T(0.0); }
     ExtentT<T> extent(const Sphere&) const { return {T(-Binary64::inf), T(Binary64::inf)}; }
 };
+
+// The pieces of a sphere around `centre` that the sphere and the capsule's round ends share.
+
+// The certified quantities with the origin moved to the closest approach to the centre.
+template <class B>
+struct SphereCertified {
+    BoundedQuadratic<B> quad;
+    double tc;
+    BoundedVec3<B> wc, V;
+};
+template <class B>
+SphereCertified<B> sphere_certified(Vec3 centre, double r, const Prescale& ps, const Line& l) {
+    Vec3 v = ps.dir(l.v);
+    Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(centre));
+    BoundedVec3<B> V = exact<B>(v);
+    B R = B::exact(ps.len(r)), A = dot(V, V);
+    double tc = -dot(v, w.rounded()) / dot(v, v);
+    BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), u = cross(V, wc);
+    return {{A, dot(V, wc), dot(wc, wc) - R * R, R * R * A - dot(u, u)}, tc, wc, V};
+}
+
+// |P - centre|^2 = r^2 with P = L0 + t v, w = L0 - centre; no extent (the caller sets one).
+template <class NT>
+exact_form::LineQuadratic<NT> sphere_quadratic(Vec3 centre, double r, const Line& l) {
+    using exact_form::lift;
+    Vec3T<NT> w = lift<NT>(l.L0) - lift<NT>(centre), v = lift<NT>(l.v);
+    NT R(r);
+    exact_form::LineQuadratic<NT> q;
+    q.A = dot(v, v);
+    q.B = dot(v, w);
+    q.C0 = dot(w, w) - R * R;
+    q.Z0 = q.dZ = q.lo = q.hi = NT(0);
+    q.lo_bounded = q.hi_bounded = false;
+    return q;
+}
+
+// g(t) = |w + t v|^2 - r^2, w = L0 - centre. precise: w exact in double-double; else w rounded,
+// its bound the low part it dropped. v and K = r^2 are exact either way (K from two_prod). No
+// extent (the caller sets one).
+template <bool precise, class T>
+LineFormT<T> sphere_line_form(Vec3 centre, double r, Vec3T<T> L0, Vec3T<T> v) {
+    using std::fabs;
+    Vec3TwoTermT<T> w = difference_exact(L0, lanes_of<T>(centre));
+    LineFormT<T> f;
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) {
+        f.U0[k] = precise ? BoundedDDT<T>{w.hi[k], w.lo[k], T(0.0)}
+                          : BoundedDDT<T>{w.hi[k], T(0.0), fabs(w.lo[k])};
+        f.U1[k] = {v[k], T(0.0), T(0.0)};
+    }
+    f.sigma_z = 1;
+    TwoTerm r2 = two_prod(r, r);
+    f.K = precise ? BoundedDD{r2.hi, r2.lo, 0} : BoundedDD{r2.hi, 0, std::fabs(r2.lo)};
+    f.Z0 = f.e_Z0 = f.dZ = f.e_dZ = T(0.0);
+    f.lo = f.e_lo = f.hi = f.e_hi = 0;
+    f.lo_bounded = f.hi_bounded = false;
+    return f;
+}
+
+// The textbook quadratic a t^2 + b t + c around `centre`, in R (the seed's).
+template <class R>
+SeedFormT<R> sphere_seed(Vec3 centre, double radius, const Line& l) {
+    Vec3T<R> v = in_real<R>(l.v), w = in_real<R>(l.L0) - in_real<R>(centre);
+    R r = R(radius);
+    R a = dot(v, v), b = 2 * dot(v, w), c = dot(w, w) - r * r;
+    bool usable = std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
+    return {a, b, c, R(0), R(0), Extent{-Binary64::inf, Binary64::inf}, usable};
+}
 
 template <>
 struct ShapeTraits<Sphere> {
@@ -106,12 +175,7 @@ struct ShapeTraits<Sphere> {
 
     template <class R, class Source>
     static SeedFormT<R> seed_form(const Source& src, const Line& l) {
-        const Sphere& s = src.shape;
-        Vec3T<R> v = in_real<R>(l.v), w = in_real<R>(l.L0) - in_real<R>(s.C);
-        R r = R(s.r);
-        R a = dot(v, v), b = 2 * dot(v, w), c = dot(w, w) - r * r;
-        bool usable = std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
-        return {a, b, c, R(0), R(0), Extent{-Binary64::inf, Binary64::inf}, usable};
+        return sphere_seed<R>(src.shape.C, src.shape.r, l);
     }
 
     // ---- stable ----
@@ -128,15 +192,8 @@ struct ShapeTraits<Sphere> {
 
     template <class B, class Source>
     static CertifiedForm<B> certified_form(const Source& src, const Prescale& ps, const Line& l) {
-        const Sphere& s = src.shape;
-        Vec3 v = ps.dir(l.v);
-        Vec3TwoTerm w = difference_exact(ps.pos(l.L0), ps.pos(s.C));
-        BoundedVec3<B> V = exact<B>(v);
-        B R = B::exact(ps.len(s.r)), A = dot(V, V);
-        double tc = -dot(v, w.rounded()) / dot(v, v);
-        BoundedVec3<B> wc = moved_origin_bounded<B>(w, tc, v), u = cross(V, wc);
-        BoundedQuadratic<B> quad{A, dot(V, wc), dot(wc, wc) - R * R, R * R * A - dot(u, u)};
-        return {quad, tc, B::exact(0), B::exact(0), {-Binary64::inf, Binary64::inf}};
+        SphereCertified<B> c = sphere_certified<B>(src.shape.C, src.shape.r, ps, l);
+        return {c.quad, c.tc, B::exact(0), B::exact(0), {-Binary64::inf, Binary64::inf}};
     }
 
     // ---- exact ----
@@ -146,54 +203,22 @@ struct ShapeTraits<Sphere> {
         return 0;
     }
 
-    // |P - C|^2 = r^2 with P = L0 + t v, w = L0 - C; no extent.
     template <class NT>
     static exact_form::LineQuadratic<NT> exact_quadratic(const Sphere& s, const Line& l,
                                                          int /*orientation*/) {
-        using exact_form::lift;
-        Vec3T<NT> w = lift<NT>(l.L0) - lift<NT>(s.C), v = lift<NT>(l.v);
-        NT r(s.r);
-        exact_form::LineQuadratic<NT> q;
-        q.A = dot(v, v);
-        q.B = dot(v, w);
-        q.C0 = dot(w, w) - r * r;
-        q.Z0 = q.dZ = q.lo = q.hi = NT(0);
-        q.lo_bounded = q.hi_bounded = false;
-        return q;
+        return sphere_quadratic<NT>(s.C, s.r, l);
     }
 
     // ---- correct: the Newton rung's line form, and the hit test's quick one ----
 
-    // g(t) = |w + t v|^2 - r^2. precise: w exact in double-double; else w rounded, its bound the
-    // low part it dropped. v and K = r^2 are exact either way (K from two_prod).
-    template <bool precise, class T, class Source>
-    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v) {
-        using std::fabs;
-        const Sphere& s = src.shape;
-        Vec3TwoTermT<T> w = difference_exact(L0, lanes_of<T>(s.C));
-        LineFormT<T> f;
-#pragma GCC unroll 3
-        for (int k = 0; k < 3; ++k) {
-            f.U0[k] = precise ? BoundedDDT<T>{w.hi[k], w.lo[k], T(0.0)}
-                              : BoundedDDT<T>{w.hi[k], T(0.0), fabs(w.lo[k])};
-            f.U1[k] = {v[k], T(0.0), T(0.0)};
-        }
-        f.sigma_z = 1;
-        TwoTerm r2 = two_prod(s.r, s.r);
-        f.K = precise ? BoundedDD{r2.hi, r2.lo, 0} : BoundedDD{r2.hi, 0, std::fabs(r2.lo)};
-        f.Z0 = f.e_Z0 = f.dZ = f.e_dZ = T(0.0);
-        f.lo = f.e_lo = f.hi = f.e_hi = 0;
-        f.lo_bounded = f.hi_bounded = false;
-        return f;
-    }
     template <class T = double, class Source>
     static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
-        return form<true, T>(src, L0, v);
+        return sphere_line_form<true, T>(src.shape.C, src.shape.r, L0, v);
     }
     template <class T = double, class Source>
     static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,
                                         int /*orientation*/) {
-        return form<false, T>(src, L0, v);
+        return sphere_line_form<false, T>(src.shape.C, src.shape.r, L0, v);
     }
 };
 

@@ -111,19 +111,21 @@ void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* o
     std::size_t i = 0;
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
     // The shape is checked once, and the range (for float lines: that they are floats). A closed
-    // shape's discs are the scalar solver's.
+    // shape's discs, and a shape made of patches, are the scalar solver's.
     auto src = detail::source(shape);
-    Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
-    bool shape_ok = src.validity().error.ok() && !detail::has_discs(src.shape) &&
-                    detail::check_line(probe).ok() && detail::real_error<R>(src, probe).ok();
-    lanes = std::min(lanes, batch_lanes());
-    if (shape_ok && lanes != Lanes::scalar) {
+    if constexpr (!detail::is_composite<typename decltype(src)::Shape>) {
+        Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
+        bool shape_ok = src.validity().error.ok() && !detail::has_discs(src.shape) &&
+                        detail::check_line(probe).ok() && detail::real_error<R>(src, probe).ok();
+        lanes = std::min(lanes, batch_lanes());
+        if (shape_ok && lanes != Lanes::scalar) {
 #if defined(LINEQUAD_HAVE_AVX512_KERNELS)
-        if (lanes == Lanes::avx512 && std::is_same_v<R, double>)
-            i = run_lanes<R, 8>(shape, lines, q, out);
-        else
+            if (lanes == Lanes::avx512 && std::is_same_v<R, double>)
+                i = run_lanes<R, 8>(shape, lines, q, out);
+            else
 #endif
-            i = run_lanes < R, std::is_same_v<R, float> ? 8 : 4 > (shape, lines, q, out);
+                i = run_lanes < R, std::is_same_v<R, float> ? 8 : 4 > (shape, lines, q, out);
+        }
     }
 #endif
     for (; i < lines.count; ++i)

@@ -25,7 +25,7 @@ void stable32_x8(const S& s, double shape_extent, const float* const soa[6], std
                             Query, LaneBlock<double, 4>&);                                         \
     template void stable32_x8(const S&, double, const float* const[6], std::size_t, Interval,      \
                               Query, LaneBlock<float, 8>&);
-LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_INSTANTIATE_KERNEL)
+LINEQUAD_FOR_EACH_QUADRIC_SHAPE(LINEQUAD_INSTANTIATE_KERNEL)
 
 template <class S>
 void correct_x4(const Prepared<S>& s, int orientation, const double* const soa[6], std::size_t i,

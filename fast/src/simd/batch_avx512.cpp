@@ -17,7 +17,7 @@ void stable_x8(const S& s, double shape_extent, const double* const soa[6], std:
 #define LINEQUAD_INSTANTIATE_KERNEL(S)                                                             \
     template void stable_x8(const S&, double, const double* const[6], std::size_t, Interval,       \
                             Query, LaneBlock<double, 8>&);
-LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_INSTANTIATE_KERNEL)
+LINEQUAD_FOR_EACH_QUADRIC_SHAPE(LINEQUAD_INSTANTIATE_KERNEL)
 
 template <class S>
 void correct_x8(const Prepared<S>& s, int orientation, const double* const soa[6], std::size_t i,

@@ -16,7 +16,7 @@
     template <class S, if_solvable<S>>                                                             \
     Result intersect(const S& shape, const Line& line, Query query) {                              \
         numeric::StandardEnvironment standard;                                                     \
-        return detail::Solver::solve(detail::source(shape), line, query);                          \
+        return detail::solve_shape<detail::Solver>(detail::source(shape), line, query);            \
     }                                                                                              \
     Result intersect(const Shape& shape, const Line& line, Query query) {                          \
         return std::visit([&](const auto& s) { return intersect(s, line, query); }, shape);        \

@@ -7,7 +7,12 @@
 #include "forms/closure.hpp"
 #include "forms/finish.hpp"
 #include "forms/roots.hpp"
+#include "numeric/big_float.hpp"
 #include "shapes/all.hpp"
+
+#include <array>
+#include <optional>
+#include <tuple>
 
 #include <type_traits>
 
@@ -163,6 +168,123 @@ Result StableIn<R>::solve(const Source& src, const Line& l, Query q) {
                                                k.axial_rate(), k.tc, ps.t_scale()},
                              e, l, q, on_surface);
     return finish_roots(roots, ps.t_scale(), z_of, e, l, q);
+}
+
+// ---- Shapes made of patches (the capsule) ----
+
+// A patch's roots, exactly (the exact rung's form and classification): for ordering two hits
+// of different patches that round to the same t.
+template <class P>
+exact_form::Classification<BigFloat> patch_roots(const P& patch, const Line& l) {
+    auto q = ShapeTraits<P>::template exact_quadratic<BigFloat>(patch, l, 0);
+    return exact_form::classify(q, exact_form::parameter_range<BigFloat>(l.range), Need::all);
+}
+
+// One patch's hit in the merge: its patch, and its place among the patch's hits.
+struct PatchHit {
+    Hit hit;
+    int patch, index;
+};
+
+// The hits of every patch, merged: each named by its patch's part, in the order of t; two on one
+// double from different patches ordered by their exact roots; two at most (the shape is convex). A patch's error is the answer
+// (the first patch, the side, names the capsule's fields), and so is a line along a patch's
+// surface (only the side has one). Certain when every patch's answer is; the correct solver's
+// rung, the highest any patch took.
+template <class S, class... P>
+Result merge_patches(const std::tuple<P...>& patches, const Result (&each)[sizeof...(P)],
+                     const Line& l, Query q) {
+    constexpr int n = int(sizeof...(P));
+    for (const Result& r : each)
+        if (!r.ok()) return r;
+    for (int i = 0; i < n; ++i)
+        if (each[i].on_surface) {
+            Result r = each[i];
+            r.surface_part = ShapeTraits<S>::parts[i];
+            return r;
+        }
+    PatchHit hits[2 * n];
+    int count = 0;
+    Result r;
+    bool certain = true, unknown = false;
+    for (int i = 0; i < n; ++i) {
+        certain = certain && each[i].certainty == Certainty::certain;
+        unknown = unknown || each[i].certainty == Certainty::unknown;
+        r.rung = std::max(r.rung, each[i].rung);
+        for (int k = 0; k < each[i].count; ++k) {
+            hits[count] = {each[i].hits[k], i, k};
+            hits[count++].hit.part = ShapeTraits<S>::parts[i];
+        }
+    }
+    r.certainty = unknown ? Certainty::unknown : certain ? Certainty::certain : Certainty::uncertain;
+    // The patches' exact roots, worked out only where two hits share one double.
+    std::array<std::optional<exact_form::Classification<BigFloat>>, sizeof...(P)> exact;
+    auto roots_of = [&](int i) -> const exact_form::Classification<BigFloat>& {
+        if (!exact[std::size_t(i)]) {
+            int at = 0;
+            std::apply(
+                [&](const auto&... p) {
+                    ((at++ == i ? void(exact[std::size_t(i)] = patch_roots(p, l)) : void()), ...);
+                },
+                patches);
+        }
+        return *exact[std::size_t(i)];
+    };
+    auto before = [&](const PatchHit& a, const PatchHit& b) {
+        if (a.hit.t != b.hit.t || a.patch == b.patch) return a.hit.t < b.hit.t;
+        const auto &x = roots_of(a.patch), &y = roots_of(b.patch);
+        if (a.index >= x.count || b.index >= y.count) return a.patch < b.patch; // not exact roots
+        const auto &p = x.roots[a.index], &s = y.roots[b.index];
+        return exact_form::compare_roots<BigFloat>({p.N, p.S, p.Den, x.D},
+                                                   {s.N, s.S, s.Den, y.D}) < 0;
+    };
+    for (int i = 1; i < count; ++i) // a few hits: insertion
+        for (int j = i; j > 0 && before(hits[j], hits[j - 1]); --j)
+            std::swap(hits[j], hits[j - 1]);
+    // A seam point that two patches each claim without proof (a certified solver whose seam test
+    // is uncertain): their proven enclosures meet. It is one point, the round end's.
+    int kept = 0;
+    for (int i = 0; i < count; ++i) {
+        if (kept > 0) {
+            const Hit &a = hits[kept - 1].hit, &b = hits[i].hit;
+            bool unproven = !(a.certain && b.certain);
+            if (hits[kept - 1].patch != hits[i].patch && unproven &&
+                std::fabs(b.t - a.t) <= a.bound + b.bound) {
+                if (a.part == Part::lateral) hits[kept - 1] = hits[i];
+                continue;
+            }
+        }
+        hits[kept++] = hits[i];
+    }
+    count = kept;
+    // A shape of patches is convex: its surface meets a line at two points at most. More (from a
+    // solver that is not exact about the seams) keep the outermost: where it enters and leaves.
+    if (count > 2) hits[1] = hits[count - 1], count = 2;
+    int keep = q.need == Need::all ? count : std::min(count, 1);
+    for (int k = 0; k < keep; ++k)
+        r.hits[r.count++] = hits[k].hit;
+    return r;
+}
+
+// Solver's answer for a shape as given or prepared: its own solve, or for a shape made of patches
+// each patch's (as given: a patch keeps no facts), merged.
+template <class Solver, class Source>
+Result solve_shape(const Source& src, const Line& l, Query q) {
+    using S = typename Source::Shape;
+    if constexpr (is_composite<S>) {
+        if (Validity valid = check(src, l); !valid.error.ok()) return Result::failure(valid.error);
+        auto patches = ShapeTraits<S>::patches(src.shape);
+        Result each[std::tuple_size_v<decltype(patches)>];
+        int i = 0;
+        std::apply(
+            [&](const auto&... p) {
+                ((each[i++] = Solver::solve(AsGiven<std::decay_t<decltype(p)>>{p}, l, q)), ...);
+            },
+            patches);
+        return merge_patches<S>(patches, each, l, q);
+    } else {
+        return Solver::solve(src, l, q);
+    }
 }
 
 } // namespace linequad::detail

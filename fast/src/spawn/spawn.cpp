@@ -16,6 +16,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
+#include <tuple>
 
 namespace linequad {
 
@@ -180,21 +182,42 @@ Error field_error(Vec3 x, const char* field) {
 // than any hit's rounding error, and a bounded number of exact tests.
 constexpr int max_doublings = 60;
 
+// f(surface, part on it): the patch of a shape made of patches that holds the hit's part, as a
+// surface of its own (its one part, lateral); the shape itself otherwise.
+template <class S, class F>
+auto on_surface_of(const S& shape, Part part, F&& f) {
+    if constexpr (detail::is_composite<S>)
+        return detail::with_patch(shape, part, [&](const auto& p) { return f(p, Part::lateral); });
+    else
+        return f(shape, part);
+}
+
+template <class S>
+SpawnedRay spawn_from(const S& shape, int orientation, Part part, const Hit& hit, Vec3 d);
+
 template <class S>
 SpawnedRay spawn(const detail::AsPrepared<S>& src, const Hit& hit, Vec3 d) {
+    SpawnedRay out;
+    detail::Validity valid = src.validity();
+    if (!valid.error.ok()) {
+        out.error = valid.error;
+        return out;
+    }
+    return on_surface_of(src.shape, hit.part, [&](const auto& surface, Part part) {
+        return spawn_from(surface, valid.orientation, part, hit, d);
+    });
+}
+
+template <class S>
+SpawnedRay spawn_from(const S& shape, int orientation, Part part, const Hit& hit, Vec3 d) {
     SpawnedRay out;
     auto refuse = [&](Error e) {
         out.error = e;
         return out;
     };
-    detail::Validity valid = src.validity();
-    if (!valid.error.ok()) return refuse(valid.error);
     if (Error e = field_error(hit.p, "p"); !e.ok()) return refuse(e);
     if (Error e = field_error(d, "direction"); !e.ok()) return refuse(e);
     if (d.x == 0 && d.y == 0 && d.z == 0) return refuse({ErrorCode::zero_direction, "direction"});
-    const S& shape = src.shape;
-    int orientation = valid.orientation;
-    Part part = hit.part;
     Vec3 p = hit.p;
     // Which discs the shape has, as its exact form sets them (the form's values are not used).
     auto ends = ShapeTraits<S>::template exact_quadratic<double>(shape, Line{p, d}, orientation);
@@ -245,7 +268,9 @@ template <class S>
 Vec3 outward_normal(const detail::AsPrepared<S>& src, const Hit& hit) {
     detail::Validity valid = src.validity();
     if (!valid.error.ok() || !finite(hit.p)) return {};
-    Vec3 g = gradient(src.shape, valid.orientation, hit.part, hit.p);
+    Vec3 g = on_surface_of(src.shape, hit.part, [&](const auto& surface, Part part) {
+        return gradient(surface, valid.orientation, part, hit.p);
+    });
     if (!finite(g)) return {};
     return unit(g);
 }
