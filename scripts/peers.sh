@@ -28,7 +28,7 @@ if command -v valgrind >/dev/null; then
     echo "# instructions per solve (bash scripts/peers.sh; posed generic segments, axis frames)"
     printf '%-8s %-18s %10s\n' solver shape instructions
     for peer in ${peers//,/ }; do
-      for shape in cylinder elliptic_cylinder elliptic_cone frustum; do
+      for shape in cylinder elliptic_cylinder elliptic_cone frustum sphere ellipsoid capsule; do
         base=$(ir "$peer" "$shape" 0)
         [ "$base" = "-" ] && continue
         full=$(ir "$peer" "$shape" "$n")

@@ -1,12 +1,14 @@
 // Bullet 3.24 (double precision build): btCollisionWorld::rayTestSingle, the ray test a physics
-// scene's rayTest runs for each object, against a btCylinderShapeZ or a btConeShapeZ with
-// Bullet's default collision margin.
+// scene's rayTest runs for each object, against a btCylinderShapeZ, a btConeShapeZ, a
+// btSphereShape or a btCapsuleShapeZ with Bullet's default collision margin.
 #include "peers/peers.hpp"
 
 #include <BulletCollision/CollisionDispatch/btCollisionObject.h>
 #include <BulletCollision/CollisionDispatch/btCollisionWorld.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btConeShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
 
 #include <cmath>
 
@@ -54,14 +56,17 @@ audit::ExternalSolver bullet() {
     s.parametrisation = audit::Parametrisation::segment;
     s.surface = audit::Surface::closed;
     s.kinds = false, s.parts = false;
-    s.mapping = "btCollisionWorld::rayTestSingle(from, to) with a ClosestRayResultCallback; the "
-                "answer is m_closestHitFraction and m_hitPointWorld. Cylinder: "
-                "btCylinderShapeZ(r, r, |H - C|/2); frustum with one radius 0: "
-                "btConeShapeZ(r, |C1 - C0|), its apex at the end of radius 0; each placed by a "
-                "rotation taking z to the axis (rounded) and its midpoint, with Bullet's default "
-                "collision margin (0.04). Cannot represent: open or infinite shapes (Bullet's "
-                "are solids), lines and rays (a ray test is a segment), frusta with two nonzero "
-                "radii, the elliptic shapes.";
+    s.mapping =
+        "btCollisionWorld::rayTestSingle(from, to) with a ClosestRayResultCallback; the "
+        "answer is m_closestHitFraction and m_hitPointWorld. Cylinder: "
+        "btCylinderShapeZ(r, r, |H - C|/2); frustum with one radius 0: "
+        "btConeShapeZ(r, |C1 - C0|), its apex at the end of radius 0; each placed by a "
+        "rotation taking z to the axis (rounded) and its midpoint, with Bullet's default "
+        "collision margin (0.04). Sphere: btSphereShape(r) at C (its margin is its radius). "
+        "Capsule: btCapsuleShapeZ(r, |H - C|) placed as the cylinder. Cannot represent: open or "
+        "infinite shapes (Bullet's "
+        "are solids), lines and rays (a ray test is a segment), frusta with two nonzero "
+        "radii, the elliptic shapes.";
     s.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         double h = norm(c.H - c.C);
         if (!(c.r > 0) || !(h > 0)) return std::nullopt;
@@ -76,6 +81,17 @@ audit::ExternalSolver bullet() {
         if (!(h > 0)) return std::nullopt;
         btConeShapeZ shape(std::max(f.r0, f.r1), h);
         return ray_test(shape, placed(base, apex), l);
+    };
+    s.on<Sphere>() = [](const Sphere& k, const Line& l) -> std::optional<Result> {
+        btSphereShape shape(k.r);
+        btTransform at(btMatrix3x3::getIdentity(), btVector3(k.C.x, k.C.y, k.C.z));
+        return ray_test(shape, at, l);
+    };
+    s.on<Capsule>() = [](const Capsule& k, const Line& l) -> std::optional<Result> {
+        double h = norm(k.H - k.C);
+        if (!(h > 0)) return std::nullopt;
+        btCapsuleShapeZ shape(k.r, h);
+        return ray_test(shape, placed(k.C, k.H), l);
     };
     return s;
 }

@@ -1,5 +1,6 @@
 // OpenCascade 7.6: IntAna_IntConicQuad, the analytic intersection of a gp_Lin with the quadric of a
-// gp_Cylinder or gp_Cone (what BRep and GeomAPI intersections of lines with such faces rest on).
+// gp_Cylinder, gp_Cone or gp_Sphere (what BRep and GeomAPI intersections of lines with such faces
+// rest on).
 #include "peers/peers.hpp"
 
 // IntAna's headers use the gp types without including them.
@@ -68,14 +69,15 @@ audit::ExternalSolver occt() {
     s.parametrisation = audit::Parametrisation::unit_direction;
     s.surface = audit::Surface::infinite;
     s.kinds = false, s.parts = false;
-    s.mapping = "IntAna_IntConicQuad(gp_Lin(L0, gp_Dir(u)), IntAna_Quadric(surface)); hits are "
-                "its points whose distance ParamOnConic lies in the posed range. Cylinder: "
-                "gp_Cylinder(gp_Ax3(C, H - C), r). Elliptic cylinder with a circular frame: "
-                "gp_Cylinder(gp_Ax3(C, c, a), |a|). Elliptic cone with a circular frame: "
-                "gp_Cone(gp_Ax3(H, c, a), atan(|a|/|c|), 0), both nappes: OCCT holds a cone by "
-                "its half-angle, which rounds. Cannot represent: finite extents and caps (OCCT "
-                "bounds faces elsewhere), oblique or elliptic frames (to 1e-12), frusta (one "
-                "nappe). Tangent or crossing is not told apart.";
+    s.mapping =
+        "IntAna_IntConicQuad(gp_Lin(L0, gp_Dir(u)), IntAna_Quadric(surface)); hits are "
+        "its points whose distance ParamOnConic lies in the posed range. Cylinder: "
+        "gp_Cylinder(gp_Ax3(C, H - C), r). Elliptic cylinder with a circular frame: "
+        "gp_Cylinder(gp_Ax3(C, c, a), |a|). Elliptic cone with a circular frame: "
+        "gp_Cone(gp_Ax3(H, c, a), atan(|a|/|c|), 0), both nappes: OCCT holds a cone by "
+        "its half-angle, which rounds. Cannot represent: finite extents and caps (OCCT "
+        "bounds faces elsewhere), oblique or elliptic frames (to 1e-12), frusta (one "
+        "nappe). Sphere: gp_Sphere(gp_Ax3(C, z), r). Tangent or crossing is not told apart.";
     s.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         Vec3 axis = c.H - c.C;
         if (!(c.r > 0) || !(dot(axis, axis) > 0)) return std::nullopt;
@@ -96,6 +98,10 @@ audit::ExternalSolver occt() {
         double angle = std::atan(norm(k.a) / norm(c));
         if (!(angle > 0 && angle < M_PI / 2)) return std::nullopt;
         return intersect(IntAna_Quadric(gp_Cone(frame, angle, 0.0)), l);
+    };
+    s.on<Sphere>() = [](const Sphere& k, const Line& l) -> std::optional<Result> {
+        if (!(k.r > 0)) return std::nullopt;
+        return intersect(IntAna_Quadric(gp_Sphere(gp_Ax3(pnt(k.C), gp_Dir(0, 0, 1)), k.r)), l);
     };
     return s;
 }

@@ -1,5 +1,5 @@
-// ODE 0.16 (double precision): dCollide of a dRay with a dCylinder (flat caps), the ray query of
-// ODE's collision detection.
+// ODE 0.16 (double precision): dCollide of a dRay with a dCylinder (flat caps), a dSphere or a
+// dCapsule, the ray query of ODE's collision detection.
 #include "peers/peers.hpp"
 
 #include <ode/ode.h>
@@ -27,6 +27,35 @@ void enter_ode() {
 // length times a unit direction stays finite.
 constexpr double ray_length = 0x1p500;
 
+// g with its z axis along H - C (a rotation, rounded) and its centre at the axis' midpoint.
+dGeomID placed(dGeomID g, Vec3 C, Vec3 H) {
+    Basis b = basis_along(H - C);
+    dMatrix3 R = {b.x.x, b.y.x, b.z.x, 0, b.x.y, b.y.y, b.z.y, 0, b.x.z, b.y.z, b.z.z, 0};
+    Vec3 mid = 0.5 * (C + H);
+    dGeomSetPosition(g, mid.x, mid.y, mid.z);
+    dGeomSetRotation(g, R);
+    return g;
+}
+
+// The closest contact of the posed ray with g (which it then destroys): its depth (the distance
+// along u) and position.
+std::optional<Result> ray_against(dGeomID g, const Line& l) {
+    double length = std::isinf(l.range.t1) ? ray_length : l.range.t1;
+    dGeomID ray = dCreateRay(nullptr, length);
+    dGeomRaySet(ray, l.L0.x, l.L0.y, l.L0.z, l.v.x, l.v.y, l.v.z);
+    dGeomRaySetClosestHit(ray, 1);
+    dContactGeom contact;
+    int n = dCollide(ray, g, 1, &contact, sizeof contact);
+    dGeomDestroy(ray);
+    dGeomDestroy(g);
+    Result r;
+    if (n > 0)
+        r.hits[r.count++] = Hit{contact.depth, {contact.pos[0], contact.pos[1], contact.pos[2]},
+                                NAN,           HitKind::cross,
+                                Part::lateral, false};
+    return r;
+}
+
 } // namespace
 
 audit::ExternalSolver ode() {
@@ -36,38 +65,33 @@ audit::ExternalSolver ode() {
     s.parametrisation = audit::Parametrisation::unit_direction;
     s.surface = audit::Surface::closed;
     s.kinds = false, s.parts = false;
-    s.mapping = "dCollide(dCreateRay(0, length), dCreateCylinder(0, r, |H - C|), 1 contact) "
-                "with dGeomRaySetClosestHit; the ray from L0 along u = v/|v| (ODE normalises it "
-                "again), length t1 (2^500 for a ray); the answer is the contact's depth (the "
-                "distance along u) and pos. The cylinder placed at the axis' midpoint by a "
-                "rotation taking z to the axis (rounded). ODE's rays start at L0: lines and "
-                "ranges from t0 > 0 cannot be represented, nor open or infinite shapes, cones, "
-                "frusta, the elliptic shapes.";
+    s.mapping =
+        "dCollide(dCreateRay(0, length), dCreateCylinder(0, r, |H - C|), 1 contact) "
+        "with dGeomRaySetClosestHit; the ray from L0 along u = v/|v| (ODE normalises it "
+        "again), length t1 (2^500 for a ray); the answer is the contact's depth (the "
+        "distance along u) and pos. The cylinder placed at the axis' midpoint by a "
+        "rotation taking z to the axis (rounded). Sphere: dCreateSphere(r) at C. Capsule: "
+        "dCreateCapsule(r, |H - C|) placed as the cylinder. ODE's rays start at L0: lines and "
+        "ranges from t0 > 0 cannot be represented, nor open or infinite shapes, cones, "
+        "frusta, the elliptic shapes.";
     s.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         enter_ode();
-        Vec3 axis = c.H - c.C;
-        double h = norm(axis);
+        double h = norm(c.H - c.C);
         if (l.range.t0 != 0 || !(c.r > 0) || !(h > 0)) return std::nullopt;
-        double length = std::isinf(l.range.t1) ? ray_length : l.range.t1;
-        dGeomID ray = dCreateRay(nullptr, length);
-        dGeomID cyl = dCreateCylinder(nullptr, c.r, h);
-        Basis b = basis_along(axis);
-        dMatrix3 R = {b.x.x, b.y.x, b.z.x, 0, b.x.y, b.y.y, b.z.y, 0, b.x.z, b.y.z, b.z.z, 0};
-        Vec3 mid = 0.5 * (c.C + c.H);
-        dGeomSetPosition(cyl, mid.x, mid.y, mid.z);
-        dGeomSetRotation(cyl, R);
-        dGeomRaySet(ray, l.L0.x, l.L0.y, l.L0.z, l.v.x, l.v.y, l.v.z);
-        dGeomRaySetClosestHit(ray, 1);
-        dContactGeom contact;
-        int n = dCollide(ray, cyl, 1, &contact, sizeof contact);
-        dGeomDestroy(ray);
-        dGeomDestroy(cyl);
-        Result r;
-        if (n > 0)
-            r.hits[r.count++] = Hit{contact.depth, {contact.pos[0], contact.pos[1], contact.pos[2]},
-                                    NAN,           HitKind::cross,
-                                    Part::lateral, false};
-        return r;
+        return ray_against(placed(dCreateCylinder(nullptr, c.r, h), c.C, c.H), l);
+    };
+    s.on<Sphere>() = [](const Sphere& k, const Line& l) -> std::optional<Result> {
+        enter_ode();
+        if (l.range.t0 != 0 || !(k.r > 0)) return std::nullopt;
+        dGeomID sphere = dCreateSphere(nullptr, k.r);
+        dGeomSetPosition(sphere, k.C.x, k.C.y, k.C.z);
+        return ray_against(sphere, l);
+    };
+    s.on<Capsule>() = [](const Capsule& k, const Line& l) -> std::optional<Result> {
+        enter_ode();
+        double h = norm(k.H - k.C);
+        if (l.range.t0 != 0 || !(k.r > 0) || !(h > 0)) return std::nullopt;
+        return ray_against(placed(dCreateCapsule(nullptr, k.r, h), k.C, k.H), l);
     };
     return s;
 }
