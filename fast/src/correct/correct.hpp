@@ -80,6 +80,8 @@ inline bool moderate(double extent, const Line& l) {
 
 template <class Target>
 struct CorrectTo {
+    static constexpr Certainty says = Certainty::certain;
+    static constexpr Rung rung = Rung::newton; // a proof in double with its bounds
     template <class Source>
     static Result solve(const Source& src, const Line& l, Query q) {
         Validity valid = check(src, l);

@@ -48,6 +48,10 @@ LINEQUAD_INLINE double scene_extent(const Source& src, const Line& l) {
 
 // Stable's geometry with a rigorous bound on every quantity; certain or marked uncertain.
 struct Certified {
+    // What a proven answer says of itself (a patch of a composite shape shown empty without
+    // solving it): its certainty, and the correct solver's rung.
+    static constexpr Certainty says = Certainty::certain;
+    static constexpr Rung rung = Rung::none;
     template <class Source>
     static Result solve(const Source& src, const Line& l, Query q);
 };
@@ -80,6 +84,8 @@ LINEQUAD_INLINE Error real_error(const Source& src, const Line& l) {
 // `seed`, float for `seed32`, as a renderer would).
 template <class R>
 struct SeedIn {
+    static constexpr Certainty says = Certainty::unknown;
+    static constexpr Rung rung = Rung::none;
     template <class Source>
     static Result solve(const Source& src, const Line& l, Query q);
 };
@@ -119,6 +125,8 @@ Result SeedIn<R>::solve(const Source& src, const Line& l, Query q) {
 // proof: the certified result stands for it.
 template <class R>
 struct StableIn {
+    static constexpr Certainty says = Certainty::unknown;
+    static constexpr Rung rung = Rung::none;
     template <class Source>
     static Result solve(const Source& src, const Line& l, Query q);
 };
@@ -187,10 +195,10 @@ struct PatchHit {
 };
 
 // The hits of every patch, merged: each named by its patch's part, in the order of t; two on one
-// double from different patches ordered by their exact roots; two at most (the shape is convex). A patch's error is the answer
-// (the first patch, the side, names the capsule's fields), and so is a line along a patch's
-// surface (only the side has one). Certain when every patch's answer is; the correct solver's
-// rung, the highest any patch took.
+// double from different patches ordered by their exact roots; two at most (the shape is convex). A
+// patch's error is the answer (the first patch, the side, names the capsule's fields), and so is a
+// line along a patch's surface (only the side has one). Certain when every patch's answer is; the
+// correct solver's rung, the highest any patch took.
 template <class S, class... P>
 Result merge_patches(const std::tuple<P...>& patches, const Result (&each)[sizeof...(P)],
                      const Line& l, Query q) {
@@ -216,7 +224,9 @@ Result merge_patches(const std::tuple<P...>& patches, const Result (&each)[sizeo
             hits[count++].hit.part = ShapeTraits<S>::parts[i];
         }
     }
-    r.certainty = unknown ? Certainty::unknown : certain ? Certainty::certain : Certainty::uncertain;
+    r.certainty = unknown   ? Certainty::unknown
+                  : certain ? Certainty::certain
+                            : Certainty::uncertain;
     // The patches' exact roots, worked out only where two hits share one double.
     std::array<std::optional<exact_form::Classification<BigFloat>>, sizeof...(P)> exact;
     auto roots_of = [&](int i) -> const exact_form::Classification<BigFloat>& {
@@ -235,8 +245,8 @@ Result merge_patches(const std::tuple<P...>& patches, const Result (&each)[sizeo
         const auto &x = roots_of(a.patch), &y = roots_of(b.patch);
         if (a.index >= x.count || b.index >= y.count) return a.patch < b.patch; // not exact roots
         const auto &p = x.roots[a.index], &s = y.roots[b.index];
-        return exact_form::compare_roots<BigFloat>({p.N, p.S, p.Den, x.D},
-                                                   {s.N, s.S, s.Den, y.D}) < 0;
+        return exact_form::compare_roots<BigFloat>({p.N, p.S, p.Den, x.D}, {s.N, s.S, s.Den, y.D}) <
+               0;
     };
     for (int i = 1; i < count; ++i) // a few hits: insertion
         for (int j = i; j > 0 && before(hits[j], hits[j - 1]); --j)
@@ -276,11 +286,27 @@ Result solve_shape(const Source& src, const Line& l, Query q) {
         auto patches = ShapeTraits<S>::patches(src.shape);
         Result each[std::tuple_size_v<decltype(patches)>];
         int i = 0;
-        std::apply(
-            [&](const auto&... p) {
-                ((each[i++] = Solver::solve(AsGiven<std::decay_t<decltype(p)>>{p}, l, q)), ...);
-            },
-            patches);
+        // Every hit of a patch is asked for (but by a hit test), so that once the shape's most
+        // hits are found (it is convex: two), or a hit test has one, no other patch can add one:
+        // those are not solved, as a patch whose quadric the line provably misses is not. Each is
+        // then as certain as the solver says a proven answer is.
+        Query each_query = q;
+        if (q.need == Need::nearest) each_query.need = Need::all;
+        int found = 0;
+        bool done = false;
+        auto solve = [&](const auto& p) {
+            // The first patch is always solved: it makes the solver's own checks of the input
+            // (a float solver's, that every input is a float).
+            if (i > 0 && (done || ShapeTraits<S>::patch_misses(src.shape, i, l))) {
+                each[i].certainty = Solver::says, each[i++].rung = Solver::rung;
+                return;
+            }
+            const Result& r = each[i++] =
+                Solver::solve(AsGiven<std::decay_t<decltype(p)>>{p}, l, each_query);
+            found += r.ok() ? r.count : 0;
+            done = !r.ok() || r.on_surface || found >= (q.need == Need::any ? 1 : 2);
+        };
+        std::apply([&](const auto&... p) { (solve(p), ...); }, patches);
         return merge_patches<S>(patches, each, l, q);
     } else {
         return Solver::solve(src, l, q);
