@@ -13,7 +13,7 @@ if "$build/bench/linequad_stepcount" true 2>&1 | grep -q "not permitted"; then
   exit 77
 fi
 rows="seed:cylinder:all:points:direct correct:elliptic_cone:any:no_points:prepared"
-table() { ROWS="$rows" COUNTER="$1" bash "$here/instructions.sh" "$build" 64 | awk 'NR > 1 { print $6 }'; }
+table() { ROWS="$rows" COUNTER="$1" bash "$here/instructions.sh" "$build" 64 | awk '!/^#/ && ++n > 1 { print $6 }'; }
 callgrind=$(table callgrind)
 steps=$(table steps)
 echo "callgrind: $(echo $callgrind)"

@@ -5,10 +5,11 @@
 // solvers on the same cases rounded to float) | batch-LANES | batch32-LANES | batchcorrect-LANES
 // (stable's, stable32's and correct's batch on LANES = scalar, avx2 or avx512: 1024 generic lines
 // against one prepared shape, N lines in all, in batches of 1024); SHAPE: cylinder |
-// elliptic_cylinder | elliptic_cone | frustum; NEED: any | nearest | all; POINTS: points |
-// no_points; HOW: direct | prepared (each case's shape prepared before the solves, which are what
-// is counted). floor: the textbook cylinder quadratic (bench/floor.hpp), the unit the ratios are
-// quoted in.
+// elliptic_cylinder | elliptic_cone | frustum | sphere | ellipsoid | capsule, and SHAPE+caps for a
+// shape with an axis closed by its discs (the same shapes and lines); NEED: any | nearest | all;
+// POINTS: points | no_points; HOW: direct | prepared (each case's shape prepared before the solves,
+// which are what is counted). floor: the textbook cylinder quadratic (bench/floor.hpp), the unit
+// the ratios are quoted in.
 #include "floor.hpp"
 #include "generic_cases.hpp"
 
@@ -42,6 +43,9 @@ class Marked {
 };
 
 // Each case's shape as given, or prepared before the solves (which are what is counted).
+// Closed (SHAPE+caps): the same shapes with their discs.
+bool closed = false;
+
 template <class ShapeT, class Solve>
 void run(int shape_index, long n, Query q, bool prepared, Solve solve, Precision p) {
     auto cases = bench::generic_cases(shape_index, 1024, 1, p);
@@ -50,6 +54,7 @@ void run(int shape_index, long n, Query q, bool prepared, Solve solve, Precision
     std::vector<Line> lines;
     for (const auto& c : cases) {
         shapes.push_back(std::get<ShapeT>(c.shape)), lines.push_back(c.line);
+        if constexpr (has_extent_options<ShapeT>) shapes.back().caps = closed;
         if (prepared) ready.push_back(prepare(shapes.back()));
     }
     double acc = 0;
@@ -100,7 +105,9 @@ bool run_solver(const std::string& solver, int shape_index, long n, Query q, boo
 template <class R, class ShapeT>
 bool run_batch(int shape_index, long n, Query q, Lanes lanes, bool correct_solver = false) {
     bench::OneShape<R> o = bench::one_shape<R>(shape_index);
-    Prepared<ShapeT> p = prepare(std::get<ShapeT>(o.shape));
+    ShapeT shape = std::get<ShapeT>(o.shape);
+    if constexpr (has_extent_options<ShapeT>) shape.caps = closed;
+    Prepared<ShapeT> p = prepare(shape);
     LineArraysT<R> lines = o.lines();
     std::vector<Result> out(lines.count);
     double acc = 0;
@@ -146,6 +153,12 @@ int main(int argc, char** argv) {
         return 2;
     }
     std::string solver = argv[1], shape = argv[2], need = argv[3];
+    if (std::string caps = "+caps";
+        shape.size() > caps.size() &&
+        shape.compare(shape.size() - caps.size(), caps.size(), caps) == 0) {
+        shape.resize(shape.size() - caps.size());
+        closed = true;
+    }
     Query q{need == "any"       ? Need::any
             : need == "nearest" ? Need::nearest
                                 : Need::all,

@@ -4,7 +4,9 @@
 # and once with none, and (Ir(N) - Ir(0)) / N is printed, with its ratio to the floor (the
 # textbook cylinder quadratic, bench/floor.hpp).
 #   bash bench/instructions.sh [BUILD_DIR] [N]     (defaults: build, 2048)
-# ROWS="solver:shape:need:points:prepared ..." chooses the rows (default: the table).
+# ROWS="solver:shape:need:points:prepared ..." chooses the rows (default: the table);
+# shape+caps is the shape closed by its discs; ROWS=closed: each shape open and closed. The first
+# line printed is the command.
 # COUNTER=steps counts by single-stepping the solves under ptrace (bench/stepcount.cpp) instead:
 # the only counter here for the AVX-512 rows, which valgrind cannot run; about 15 s per 100k
 # instructions, so for a few rows with N of about 1024.
@@ -47,12 +49,30 @@ per_solve() {
   echo $(( (full - base) / n ))
 }
 
+# The command that made the table, as its first line.
+{
+  printf '#'
+  [ -n "${COUNTER:-}" ] && printf ' COUNTER=%s' "$COUNTER"
+  [ -n "${ROWS:-}" ] && printf ' ROWS="%s"' "$(echo $ROWS)"
+  printf ' bash bench/instructions.sh %s %s (%s; (Ir(N) - Ir(0)) / N over bench/generic_cases.hpp)\n' \
+    "$build" "$n" "$counter"
+}
 floor=$(per_solve floor cylinder all points direct)
 printf '%-10s %-18s %-8s %-10s %-9s %8s %7s\n' solver shape need points shape instr ratio
 printf '%-10s %-18s %-8s %-10s %-9s %8d %7s\n' floor cylinder all points - "$floor" 1.00
 # Default rows: the core redesign's table (the cylinder as given, the cone prepared), then the
 # same for the other shapes and the cone as given, for reference.
 rows=${ROWS:-}
+if [ "$rows" = closed ]; then
+  # Each shape with an axis open and closed by its discs, on the same shapes and lines.
+  rows=""
+  for shape in cylinder elliptic_cylinder elliptic_cone frustum; do
+    for s in "$shape" "$shape+caps"; do
+      rows="$rows correct:$s:all:points:direct correct:$s:any:no_points:direct"
+      rows="$rows stable:$s:all:points:direct"
+    done
+  done
+fi
 if [ -z "$rows" ]; then
   for solver in seed stable correct; do rows="$rows $solver:cylinder:all:points:direct"; done
   rows="$rows correct:cylinder:any:no_points:direct correct:cylinder:nearest:no_points:direct"
@@ -66,6 +86,10 @@ if [ -z "$rows" ]; then
     for solver in seed stable certified correct; do rows="$rows $solver:$shape:all:points:direct"; done
   done
   rows="$rows certified:cylinder:all:points:direct"
+  for shape in sphere ellipsoid capsule; do
+    for solver in seed stable certified correct; do rows="$rows $solver:$shape:all:points:direct"; done
+  done
+  rows="$rows correct:capsule:any:no_points:direct"
   # The batch solvers on AVX2 lanes (valgrind runs no AVX-512): 1024 lines against one prepared
   # shape, per line.
   rows="$rows batch-avx2:cylinder:all:points:prepared batchcorrect-avx2:cylinder:all:points:prepared"

@@ -194,7 +194,7 @@ def headline():
 
 
 def peer_families(report):
-    wanted = ["generic", "near_tangent", "scale", "rim", "inside_start", "far_origin"]
+    wanted = ["generic", "near_tangent", "scale", "far_origin", "rim", "inside_start", "seam"]
     return [f for f in wanted if f in report["families"]]
 
 
@@ -243,6 +243,27 @@ def verbatim(path):
 
 def instructions():
     return verbatim(LATEST / "instructions.txt")
+
+
+def instructions_closed():
+    """Each shape open and closed by its discs: correct, its hit test and stable, and the ratio."""
+    path = LATEST / "instructions_closed.txt"
+    rows = [l.split() for l in path.read_text(encoding="utf-8").splitlines()
+            if l and not l.startswith("#")][1:]
+    got = {(r[0], r[1], r[2]): int(r[5]) for r in rows}
+    columns = [("correct", "all", "`correct`, all hits"), ("correct", "any", "hit test"),
+               ("stable", "all", "`stable`, all hits")]
+    out = [source_line(path, commented_header(path)[0]) +
+           " Instructions per solve, open → closed (the same shapes and lines with `caps`):", "",
+           "| shape | " + " | ".join(c[2] for c in columns) + " |", "|---|" + "---:|" * len(columns)]
+    for shape in SHAPES:
+        cells = []
+        for solver, need, _ in columns:
+            o, c = got.get((solver, shape, need)), got.get((solver, shape + "+caps", need))
+            cells.append(f"{count(o)} → {count(c)} ({c / o:.2f}×)" if o and c else "-")
+        if any(c != "-" for c in cells):
+            out.append(f"| {shape} | " + " | ".join(cells) + " |")
+    return out
 
 
 def instructions_lanes():
@@ -300,7 +321,7 @@ def plugin():
 
 
 TABLES = {f.__name__: f for f in [solvers, bench, rungs, headline, peers, peer_instructions, instructions,
-                                  instructions_lanes, batch, scenes, plugin]}
+                                  instructions_closed, instructions_lanes, batch, scenes, plugin]}
 BEGIN = re.compile(r"^<!-- table: (\w+) -->$")
 END = "<!-- end table -->"
 # A measured figure: a time, a rate, a percentage, a ratio or a count of instructions.

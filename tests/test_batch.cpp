@@ -284,7 +284,7 @@ std::pair<long, long> lanes_against_scalar_rung() {
                     std::visit(
                         [&](const auto& shape) {
                             using S = std::decay_t<decltype(shape)>;
-                            if constexpr (detail::ShapeTraits<S>::has_line_form) {
+                            if constexpr (detail::line_form_in_lanes<S>) {
                                 Prepared<S> p = prepare(shape);
                                 if (!p.ok() || detail::has_discs(shape)) return;
                                 for (Query q : {Query{}, Query{Need::nearest, false},

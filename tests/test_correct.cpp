@@ -394,3 +394,58 @@ TEST_CASE("correct's hit test: proven on its quick rung almost always, never bey
     CHECK(generic_quick * 10 >= generic * 9);
     CHECK(checked > 4000);
 }
+
+TEST_CASE("correct answers convex closed shapes on the Newton rung: discs, sides, misses") {
+    // Lines through both discs, through a disc and the side (a cone's steep line: the rays of
+    // A < 0), through the side alone, and past an end: each answered on the Newton rung (a disc's
+    // t rounded from its rational value), as the oracle answers, for every query.
+    Vec3 C{0, 0, 0}, H{0, 0, 4};
+    struct Closed {
+        Shape shape;
+        Line line;
+        Part first, second; // the parts of the hits (Part::lateral twice; none when missed)
+        int hits;
+    };
+    // Lines whose hits are not at round t: a point L0 + t v at t = 1 can be a tie between two
+    // doubles, whose rounding no enclosure proves (the next rungs answer it).
+    Line discs{{0.1, 0.2, -1.3}, {0.05, 0.03, 1.1}, Range::line};
+    Line side{{-5, 0.1, 2}, {1, 0, 0.1}, Range::line};
+    Line past_top{{-5, 0.1, 6}, {1, 0, 0.1}, Range::line};
+    Line base_then_side{{0.2, 0, -1.3}, {0.5, 0.01, 1.1}, Range::line};
+    Cylinder cylinder{C, H, 1, true, true};
+    EllipticCylinder elliptic{C, {1, 0, 0}, {0, 1, 0}, {0, 0, 4}, true, true};
+    EllipticCone cone{C, H, {2, 0, 0}, {0, 2, 0}, true, true};
+    Frustum frustum{C, 2, H, 1, true, true};
+    const Closed cases[] = {
+        {cylinder, discs, Part::base, Part::top, 2},
+        {cylinder, side, Part::lateral, Part::lateral, 2},
+        {cylinder, past_top, Part::lateral, Part::lateral, 0},
+        {cylinder, base_then_side, Part::base, Part::lateral, 2},
+        {elliptic, discs, Part::base, Part::top, 2},
+        {elliptic, base_then_side, Part::base, Part::lateral, 2},
+        {elliptic, past_top, Part::lateral, Part::lateral, 0},
+        {frustum, discs, Part::base, Part::top, 2},
+        {frustum, side, Part::lateral, Part::lateral, 2},
+        {frustum, past_top, Part::lateral, Part::lateral, 0},
+        // A steep line (A < 0) into the base and out of the side; a shallow one through the side.
+        {cone, Line{{0.1, 0, -1.3}, {0.1, 0.01, 1}, Range::line}, Part::base, Part::lateral, 2},
+        {cone, Line{{-5, 0, 1}, {1, 0, 0}, Range::line}, Part::lateral, Part::lateral, 2},
+    };
+    for (const Closed& c : cases) {
+        for (Query q : {Query{Need::all, true}, Query{Need::nearest, true}, Query{Need::all, false}}) {
+            Result got = correct_solve(c.shape, c.line, q);
+            INFO(shape_name(c.shape) << " L0 " << c.line.L0.x << " " << c.line.L0.y << " "
+                                     << c.line.L0.z << " need " << int(q.need));
+            check_same_answer(got, exact::intersect(c.shape, c.line, q));
+            CHECK(got.rung == Rung::newton);
+            int want = q.need == Need::all ? c.hits : std::min(c.hits, 1);
+            REQUIRE(got.count == want);
+            if (want > 0) CHECK(got.hits[0].part == c.first);
+            if (want > 1) CHECK(got.hits[1].part == c.second);
+        }
+        // The hit test, on its quick rung: a hit where there are hits, none past the end.
+        Result any = correct_solve(c.shape, c.line, {Need::any, false});
+        check_hit_test(any, exact::intersect(c.shape, c.line));
+        CHECK(any.rung == Rung::newton);
+    }
+}

@@ -21,9 +21,10 @@
 // rounded to float directly from its enclosure or exactly (never through the nearest double,
 // which would round twice). Its first rung evaluates g in double from the quick line form (the
 // hit test's), whose enclosure is loose for a double but some 2^29 times tighter than a float's
-// rounding cell; the precise Newton rung, then the others, follow where it cannot prove. A closed
-// shape (caps on) starts at the double-double rung: the Newton rung's proof covers the lateral
-// roots only; so does a frustum, whose quadratic has no Newton form (shapes/frustum.hpp).
+// rounding cell; the precise Newton rung, then the others, follow where it cannot prove. On a
+// convex shape closed by discs the Newton rung answers from the lateral roots and the discs' t,
+// which is rational and rounded directly (newton_rung.cpp); on two solids (a closed two-nappe
+// cone) only where the line misses the quadric.
 #pragma once
 
 #include "correct/ladder.hpp"
@@ -92,7 +93,7 @@ struct CorrectTo {
         // The quick rung first, where the scene's products stay in double's normal range.
         using Traits = ShapeTraits<typename Source::Shape>;
         if constexpr (Traits::has_line_form) {
-            if (q.need == Need::any && !has_discs(src.shape) && moderate(extent, l)) {
+            if (q.need == Need::any && moderate(extent, l)) {
                 Result r;
                 LineForm form = Traits::quick_line_form(src, l.L0, l.v, valid.orientation);
                 if (hit_test_rung(form, Unit{1, 1, l}, r)) {
@@ -129,9 +130,8 @@ struct CorrectTo {
         // infinite), so a scene of moderate size is solved as given; others are scaled first,
         // so that tiny or huge scenes are not left to the slower rungs.
         bool as_given = moderate(extent, l);
-        bool lateral_only = Traits::has_line_form && !has_discs(src.shape);
         if constexpr (std::is_same_v<Target, Binary32> && Traits::has_line_form) {
-            if (lateral_only && as_given) {
+            if (as_given) {
                 LineForm form = Traits::quick_line_form(src, l.L0, l.v, orientation);
                 if (newton_rung<Target, Residual::quick>(form, Unit{1, 1, l}, l, q, r)) {
                     mark_certain<Target>(r, Rung::newton);
@@ -140,10 +140,10 @@ struct CorrectTo {
                 r = Result();
             }
         }
-        if (lateral_only && as_given && newton(src, Unit{1, 1, l})) return r;
+        if (as_given && newton(src, Unit{1, 1, l})) return r;
         if (std::optional<Unit> u = unit_scale(src, extent, l)) {
             S unit = scaled(src.shape, 1 / u->pos_factor);
-            if (lateral_only && !as_given && newton(AsGiven<S>{unit}, *u)) return r;
+            if (!as_given && newton(AsGiven<S>{unit}, *u)) return r;
             auto dd = Traits::template exact_quadratic<BoundedDD>(unit, u->line, orientation);
             if (double_double_rung<Target>(dd, *u, q, r)) {
                 mark_certain<Target>(r, Rung::double_double);

@@ -45,11 +45,17 @@ LINEQUAD_INLINE int kept(const LineForm& f, const Unit& unit, const Enclosure<do
     return k.outside ? 0 : k.inside ? 1 : -1;
 }
 
+// A coordinate of the hit point known exactly (a disc's plane perpendicular to its axis), or none.
+struct ExactCoordinate {
+    int axis = -1;
+    double value = 0;
+};
+
 // The hit, t and its point correctly rounded to Target in the caller's units; false when a bound
 // does not prove a rounding.
 template <class Target>
-LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, const Unit& unit, const Line& caller,
-                             Query q, Result& r) {
+LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, Part part, const Unit& unit,
+                             const Line& caller, Query q, Result& r, ExactCoordinate exact = {}) {
     if constexpr (std::is_same_v<Target, Binary32>) {
         // A float's rounding cell is 2^29 times a double's: t = c + x and each coordinate
         // fma(t, v_k, L0_k) in double, each with one rounding added to its bound, nearly always
@@ -59,11 +65,15 @@ LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, const Unit& unit, cons
             round_proven<Target>({t, 0, e_t * F::cover(4) + F::denorm_min}, unit.t_factor);
         if (!rounded) return false;
         Hit& h = r.hits[r.count];
-        h.t = *rounded, h.kind = HitKind::cross, h.part = Part::lateral, h.p = {};
+        h.t = *rounded, h.kind = HitKind::cross, h.part = part, h.p = {};
         if (q.points) {
             double p[3];
 #pragma GCC unroll 3
             for (int k = 0; k < 3; ++k) {
+                if (k == exact.axis) { // one rounding of the exact value, +0 for a zero
+                    p[k] = double(float(exact.value)) + 0.0;
+                    continue;
+                }
                 if (caller.v[k] == 0) { // an exact zero is +0, as the oracle's
                     p[k] = caller.L0[k] + 0.0;
                     continue;
@@ -85,12 +95,16 @@ LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, const Unit& unit, cons
         Hit& h = r.hits[r.count];
         h.t = t.value;
         h.kind = HitKind::cross;
-        h.part = Part::lateral;
+        h.part = part;
         h.p = {};
         if (q.points) {
             double p[3];
 #pragma GCC unroll 3
             for (int k = 0; k < 3; ++k) {
+                if (k == exact.axis) { // exact: +0 for a zero, as the oracle's
+                    p[k] = exact.value + 0.0;
+                    continue;
+                }
                 // L0_k + t v_k is L0_k exactly when v_k = 0 (an exact zero is +0, as the oracle's).
                 if (caller.v[k] == 0) {
                     p[k] = caller.L0[k] + 0.0;
@@ -106,6 +120,111 @@ LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, const Unit& unit, cons
         ++r.count;
         return true;
     }
+}
+
+// ---- Shapes closed by discs ----
+
+// Where a lateral root lies against the extent (a closed shape's is bounded at both ends).
+enum class Side { below, within, above, unknown };
+LINEQUAD_INLINE Side side_of(const LineForm& f, const Enclosure<double>& en) {
+    Axial<double> a = axial_at(f, en);
+    DifferenceTest<double> lo = difference_test(a.z, a.e_z, f.lo, f.e_lo);
+    if (lo.d < -lo.bound) return Side::below;
+    DifferenceTest<double> hi = difference_test(f.hi, f.e_hi, a.z, a.e_z);
+    if (hi.d < -hi.bound) return Side::above;
+    return lo.bound < lo.d && hi.bound < hi.d ? Side::within : Side::unknown;
+}
+
+// Where the line crosses the disc's plane Z = end: t = (end - Z0) / dZ, rational, in
+// double-double; none when dZ's sign is not proven.
+LINEQUAD_INLINE std::optional<Enclosure<double>> plane_crossing(const DiscPlanes& p,
+                                                                const BoundedDD& end) {
+    BoundedDD t = (end - p.Z0) / p.dZ;
+    if (!std::isfinite(t.hi) || !std::isfinite(t.e)) return std::nullopt;
+    return Enclosure<double>{t.hi, t.lo, t.e, true, true};
+}
+
+// For A < 0 (a line steeper than a cone's generators, one root on each nappe): the root on the
+// solid's nappe, 0 or 1, or -1 where the bounds cannot tell. The cone's nappe is Z <= 0 (the other
+// root above the apex, Z > 0); the frustum's is R >= 0, the sign of its fourth term.
+LINEQUAD_INLINE int root_on_nappe(const LineForm& f,
+                                  const std::optional<Enclosure<double>> (&root)[2]) {
+    auto side_of_nappe = [&](const Enclosure<double>& en) { // 1: on the solid's, -1: the other
+        Axial<double> a = f.sigma_z == four_terms
+                              ? linear_at(f.fourth->U0.hi, bound_of_hi(f.fourth->U0),
+                                          f.fourth->U1.hi, bound_of_hi(f.fourth->U1), en)
+                              : axial_at(f, en);
+        int sign = a.z > a.e_z ? 1 : a.z < -a.e_z ? -1 : 0;
+        return f.sigma_z == four_terms ? sign : -sign;
+    };
+    if (f.sigma_z != -1 && f.sigma_z != four_terms) return -1;
+    int s0 = side_of_nappe(*root[0]), s1 = side_of_nappe(*root[1]);
+    return s0 == 1 && s1 == -1 ? 0 : s0 == -1 && s1 == 1 ? 1 : -1;
+}
+
+// A convex solid closed by discs (a cylinder, a frustum, one nappe), the lateral roots t0 < t1
+// proven. The line is inside the quadric on (t0, t1) when A > 0, and on the rays before t0 and
+// after t1 when A < 0 (a line steeper than a cone's generators: one ray in each nappe). The solid
+// meets it there, cut to the extent (Z is linear in t): each end of that piece is a lateral root
+// strictly between the extent's ends, or a disc crossed strictly inside it (the quadric's inside
+// at the disc's plane is the disc); a piece beyond one end: no hit. Every hit crosses. A side the
+// bounds leave open, a disc the form has not (the quick form, the cone's apex end), a rounding not
+// proven: the next rungs.
+template <class Target>
+bool closed_hits(const LineForm& f, const Leading<double>& A,
+                 const std::optional<Enclosure<double>> (&root)[2], const Unit& unit,
+                 const Line& caller, Query query, Result& r) {
+    Side side[2] = {side_of(f, *root[0]), side_of(f, *root[1])};
+    if (side[0] == Side::unknown || side[1] == Side::unknown) return false;
+    Enclosure<double> at[2];
+    Part part[2];
+    ExactCoordinate exact[2];
+    // End k of the segment (0: entry, 1: exit): root i, or the disc beyond which it lies.
+    auto end_at = [&](int k, int i, Side s) {
+        if (s == Side::within) {
+            at[k] = *root[i], part[k] = Part::lateral;
+            return true;
+        }
+        bool low = s == Side::below;
+        if (!f.planes || !(low ? f.planes->at_lo : f.planes->at_hi)) return false;
+        std::optional<Enclosure<double>> t =
+            plane_crossing(*f.planes, low ? f.planes->lo : f.planes->hi);
+        if (!t) return false;
+        at[k] = *t, part[k] = low ? Part::base : Part::top;
+        // In the caller's units (a scaled scene's planes are not): the plane's coordinate.
+        if (f.planes->axis >= 0 && unit.pos_factor == 1)
+            exact[k] = {f.planes->axis, low ? f.planes->lo_at : f.planes->hi_at};
+        return true;
+    };
+    if (A.A > 0) {
+        if (side[0] == side[1] && side[0] != Side::within) return true;
+        if (!end_at(0, 0, side[0]) || !end_at(1, 1, side[1])) return false;
+    } else {
+        // The solid's nappe holds root i and the ray from it away from the other root: before t0
+        // (i = 0) or after t1. Along that ray Z runs to one side (`away`, from dZ's sign); the
+        // ray meets the extent from root i to the end on that side, or across both ends, or not.
+        int i = root_on_nappe(f, root);
+        if (i < 0 || !(std::fabs(f.dZ) > f.e_dZ)) return false;
+        Side away = (f.dZ > 0) == (i == 1) ? Side::above : Side::below;
+        Side first = f.dZ > 0 ? Side::below : Side::above; // the end crossed first in t
+        Side last = first == Side::below ? Side::above : Side::below;
+        if (side[i] == Side::within) {
+            int root_end = i == 0 ? 1 : 0;
+            if (!end_at(root_end, i, Side::within) || !end_at(1 - root_end, i, away)) return false;
+        } else {
+            if (side[i] == away) return true; // the ray runs away from the extent
+            if (!end_at(0, i, first) || !end_at(1, i, last)) return false;
+        }
+    }
+    for (int i = 0; i < 2; ++i) {
+        double t = at[i].c + at[i].x, e_t = at[i].e + u * std::fabs(t) + F::denorm_min;
+        Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
+        if (k.outside) continue;
+        if (!k.inside || !add_hit<Target>(at[i], part[i], unit, caller, query, r, exact[i]))
+            return false;
+        if (query.need != Need::all) break;
+    }
+    return true;
 }
 
 } // namespace
@@ -132,17 +251,26 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
     double estimate[2] = {est.root[0], est.root[1]};
     if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
     // Both roots at once when both are needed; otherwise the second only if the first is not kept.
+    // A closed shape needs both before any hit (closed_hits).
+    bool closed = f.discs != Discs::none;
+    if (f.discs == Discs::two_solids) return false;
     Local<double> local[2];
-    bool both = R == Residual::double_double && query.need == Need::all;
+    bool both = R == Residual::double_double && (query.need == Need::all || closed);
     if (both) newton::local_at<SigmaZ>(f, estimate, local);
-    for (int i = 0; i < 2; ++i) {
+    std::optional<Enclosure<double>> en[2];
+    auto prove = [&](int i) {
         if (!both) local[i] = local_near<SigmaZ, R>(f, estimate[i]);
-        std::optional<Enclosure<double>> en = root_near(local[i], A, estimate[i]);
-        if (!en || en->smaller != (i == 0)) return false;
-        int inside = kept(f, unit, *en);
+        en[i] = root_near(local[i], A, estimate[i]);
+        return en[i] && en[i]->smaller == (i == 0);
+    };
+    if (closed)
+        return prove(0) && prove(1) && closed_hits<Target>(f, A, en, unit, caller, query, r);
+    for (int i = 0; i < 2; ++i) {
+        if (!prove(i)) return false;
+        int inside = kept(f, unit, *en[i]);
         if (inside < 0) return false;
         if (inside == 0) continue;
-        if (!add_hit<Target>(*en, unit, caller, query, r)) return false;
+        if (!add_hit<Target>(*en[i], Part::lateral, unit, caller, query, r)) return false;
         if (query.need != Need::all) break; // the smaller root first: also the nearest
     }
     return true;
@@ -150,8 +278,46 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
 
 // ---- The hit test ----
 
+// A convex solid closed by discs whose lateral roots were proven but none inside the extent and
+// the range (hit_test): with A > 0, both roots beyond one end is no hit; one below and one above,
+// the line crosses both discs, at t = (end - Z0) / dZ, and the first in the range is the hit.
+// From the quick form's doubles: with n = end - Z0 and dZ each within their bounds, the quotient
+// is within (e_n + |t| e_dZ) / (|dZ| - e_dZ) of n / dZ, and its rounding adds u |t|.
+bool closed_hit_test(const LineForm& f, const Leading<double>& A,
+                     const std::optional<Enclosure<double>> (&root)[2], bool both_outside,
+                     const Unit& unit, Result& r) {
+    if (f.discs != Discs::convex || !(A.A > 0) || !root[0] || !root[1] ||
+        root[0]->smaller == root[1]->smaller)
+        return false;
+    Side side[2] = {side_of(f, *root[0]), side_of(f, *root[1])};
+    if (root[1]->smaller) std::swap(side[0], side[1]);
+    if (side[0] == Side::unknown || side[1] == Side::unknown) return false;
+    // Both beyond one end: no hit; both within: the hits, which the range dropped.
+    if (side[0] == side[1]) return side[0] != Side::within || both_outside;
+    if (side[0] == Side::within || side[1] == Side::within) return false; // out of the range
+    double gap = std::fabs(f.dZ) - f.e_dZ;
+    if (!(gap > 0)) return false;
+    for (Side s : side) {
+        bool low = s == Side::below;
+        double n = (low ? f.lo : f.hi) - f.Z0, t = n / f.dZ;
+        double e_n = (low ? f.e_lo : f.e_hi) + f.e_Z0 + u * std::fabs(n);
+        double e_t = (e_n + std::fabs(t) * F::cover(4) * f.e_dZ) / gap * F::cover(8) +
+                     2 * u * std::fabs(t) + F::denorm_min;
+        if (!std::isfinite(e_t)) return false;
+        Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
+        if (k.outside) continue;
+        if (!k.inside) return false;
+        r.hits[0] = {t, {}, e_t, HitKind::cross, low ? Part::base : Part::top, true};
+        r.count = 1;
+        return true;
+    }
+    return true; // both crossings outside the range
+}
+
 // Any root proven inside the extent and the range is a hit, whichever it is: the first one
-// found is the answer. No hit needs both roots proven outside, or none proven real.
+// found is the answer (on a closed shape too: the lateral surface between the discs is part of
+// it). No hit needs none proven real, or, on a shape without discs, both roots proven outside;
+// on a convex one closed by discs, closed_hit_test.
 template <int SigmaZ>
 bool hit_test(const LineForm& f, const Unit& unit, Result& r) {
     Leading<double> A = leading<SigmaZ>(f);
@@ -160,8 +326,10 @@ bool hit_test(const LineForm& f, const Unit& unit, Result& r) {
     Estimates<double> est = estimates<SigmaZ>(f, A);
     if (!est.real) return no_root_proven(A, est.vertex, local); // r has no hit
     bool outside[2] = {false, false}; // the smaller, the larger root proven outside
-    for (double c : est.root) {
-        std::optional<Enclosure<double>> en = root_near(local(c), A, c);
+    std::optional<Enclosure<double>> root[2];
+    for (int i = 0; i < 2; ++i) {
+        double c = est.root[i];
+        std::optional<Enclosure<double>> en = root[i] = root_near(local(c), A, c);
         if (!en) continue;
         int inside = kept(f, unit, *en);
         if (inside == 1) {
@@ -178,7 +346,8 @@ bool hit_test(const LineForm& f, const Unit& unit, Result& r) {
         }
         if (inside == 0) outside[en->smaller ? 0 : 1] = true;
     }
-    return outside[0] && outside[1];
+    if (f.discs == Discs::none) return outside[0] && outside[1];
+    return closed_hit_test(f, A, root, outside[0] && outside[1], unit, r);
 }
 
 } // namespace

@@ -28,18 +28,41 @@ LINEQUAD_INLINE M differ(M a, M b) {
     return (a & (!b)) | ((!a) & b);
 }
 
-// The components k of u that g uses: x and y always, z unless sigma_z = 0.
+// The components k of u that g uses: x and y always, z unless sigma_z = 0, and a fourth, with
+// sigma -1, for four_terms (the frustum's).
 template <int SigmaZ>
-constexpr int used_components = SigmaZ == 0 ? 2 : 3;
+constexpr int used_components = SigmaZ == 0            ? 2
+                                : SigmaZ == four_terms ? 4
+                                                       : 3;
 template <int SigmaZ>
 constexpr double sigma(int k) {
+    if constexpr (SigmaZ == four_terms) return k < 3 ? 1.0 : -1.0;
     return k < 2 ? 1.0 : double(SigmaZ);
 }
 
+// One more product and one more sum where there are four terms: the rounding bounds below are
+// written for three, and grow by this many u per term.
+template <int SigmaZ>
+constexpr double more_terms = SigmaZ == four_terms ? 1.0 : 0.0;
+
 // f(std::integral_constant<int, sigma_z>{}): each step is compiled for its sigma_z (1: the
-// cylinder, 0: the elliptic cylinder, -1: the cone).
+// cylinder, 0: the elliptic cylinder, -1: the cone, four_terms: the frustum, scalar only).
 template <class F>
 LINEQUAD_INLINE decltype(auto) with_sigma_z(int sigma_z, F&& f) {
+    switch (sigma_z) {
+    case 1:
+        return f(std::integral_constant<int, 1>{});
+    case 0:
+        return f(std::integral_constant<int, 0>{});
+    case four_terms:
+        return f(std::integral_constant<int, four_terms>{});
+    default:
+        return f(std::integral_constant<int, -1>{});
+    }
+}
+// The same for the batch kernels' lanes, which take no four-term form.
+template <class F>
+LINEQUAD_INLINE decltype(auto) with_sigma_z_of_lanes(int sigma_z, F&& f) {
     switch (sigma_z) {
     case 1:
         return f(std::integral_constant<int, 1>{});
@@ -53,8 +76,8 @@ LINEQUAD_INLINE decltype(auto) with_sigma_z(int sigma_z, F&& f) {
 // ---- g near a point ----
 
 // A = sum sigma_k U1_k^2, g's leading coefficient, in double: three products and two sums err
-// by at most gamma_3 sum U1_k^2 (4u covers it), and U1's own bounds move each square by
-// d (2 |U1_k| + d), d = |U1_k - hi|.
+// by at most gamma_3 sum U1_k^2 (4u covers it; four terms, 5u), and U1's own bounds move each
+// square by d (2 |U1_k| + d), d = |U1_k - hi|.
 template <class T>
 struct Leading {
     T A, e;
@@ -63,14 +86,15 @@ template <int SigmaZ, class T>
 LINEQUAD_INLINE Leading<T> leading(const LineFormT<T>& f) {
     using std::fabs;
     T A(0.0), squares(-0.0), propagated(-0.0); // -0 + x = x: see CompensatedSumT
-#pragma GCC unroll 3
+#pragma GCC unroll 4
     for (int k = 0; k < used_components<SigmaZ>; ++k) {
-        T h = f.U1[k].hi, d = bound_of_hi(f.U1[k]);
+        T h = U1_of(f, k).hi, d = bound_of_hi(U1_of(f, k));
         A = A + T(sigma<SigmaZ>(k)) * (h * h);
         squares = squares + h * h;
         propagated = propagated + d * (T(2.0) * fabs(h) + d);
     }
-    return {A, (T(4 * u) * squares + propagated) * T(F::cover(8192)) + T(F::underflow_floor)};
+    return {A, (T((4 + more_terms<SigmaZ>)*u) * squares + propagated) * T(F::cover(8192)) +
+                   T(F::underflow_floor)};
 }
 
 // g(c + x) = A x^2 + G' x + G: G = g(c) in double-double, read as a double with its bound, and
@@ -87,10 +111,10 @@ void local_at(const LineFormT<T>& f, const T (&c)[N], Local<T> (&out)[N]) {
     T propagated[N], Gp[N], products[N], e_Gp[N];
     for (int n = 0; n < N; ++n)
         propagated[n] = T(f.K.e), Gp[n] = T(0.0), products[n] = e_Gp[n] = T(-0.0);
-#pragma GCC unroll 3
+#pragma GCC unroll 4
     for (int k = 0; k < used_components<SigmaZ>; ++k) {
         const T sg(sigma<SigmaZ>(k)); // +-1: multiplying by it is exact
-        const BoundedDDT<T>&a = f.U0[k], &b = f.U1[k];
+        const BoundedDDT<T>&a = U0_of(f, k), &b = U1_of(f, k);
 #pragma GCC unroll 2
         for (int n = 0; n < N; ++n) {
             // u_k(c) = U0_k + c U1_k
@@ -106,7 +130,8 @@ void local_at(const LineFormT<T>& f, const T (&c)[N], Local<T> (&out)[N]) {
             g[n].add_small(T(2.0) * sh * uk.lo);
             g[n].add_small(sg * uk.lo * uk.lo);
             propagated[n] = propagated[n] + uk.e * (T(2.0) * (fabs(uk.hi) + fabs(uk.lo)) + uk.e);
-            // G': gamma_3 sum |u_k U1_k| for the rounding (4u covers it), and the parts left out
+            // G': gamma_3 sum |u_k U1_k| for the rounding (4u covers it; four terms, 5u), and the
+            // parts left out
             Gp[n] = Gp[n] + sh * b.hi;
             products[n] = products[n] + fabs(uk.hi * b.hi);
             e_Gp[n] = e_Gp[n] + (fabs(uk.hi) * bound_of_hi(b) +
@@ -118,7 +143,8 @@ void local_at(const LineFormT<T>& f, const T (&c)[N], Local<T> (&out)[N]) {
         g[n].add_small(T(-f.K.lo));
         BoundedDDT<T> G = g[n].rounded(propagated[n]);
         out[n] = {G.hi, G.e, T(2.0) * Gp[n],
-                  T(2.0) * (T(4 * u) * products[n] + e_Gp[n]) * T(F::cover(8192)) +
+                  T(2.0) * (T((4 + more_terms<SigmaZ>)*u) * products[n] + e_Gp[n]) *
+                          T(F::cover(8192)) +
                       T(F::underflow_floor)};
     }
 }
@@ -128,21 +154,22 @@ void local_at(const LineFormT<T>& f, const T (&c)[N], Local<T> (&out)[N]) {
 //   |u_k - u*_k| <= E_k = alpha_k + |c| beta_k + u |u_k| (1 + 2u),
 //   |u_k^2 - u*_k^2| <= E_k (2 |u_k| + E_k),
 // and G = sum sigma_k fl(u_k^2) - kappa rounds at most five times, each by u of a partial sum
-// no larger than S = sum u_k^2 + |kappa|: 6u S covers them with the squares' own rounding. G' =
-// 2 sum sigma_k u_k b_k as the precise rung's: |u_k b_k - u*_k U1*_k| <= E_k |b_k| +
-// (|u_k| + E_k) beta_k, and 4u sum |u_k b_k| for its roundings. Every bound is computed in a
-// dozen roundings of nonnegative terms (cover(32)), and may have underflowed (the floor).
+// no larger than S = sum u_k^2 + |kappa|: 6u S covers them with the squares' own rounding (four
+// terms: 8u). G' = 2 sum sigma_k u_k b_k as the precise rung's: |u_k b_k - u*_k U1*_k| <=
+// E_k |b_k| + (|u_k| + E_k) beta_k, and 4u sum |u_k b_k| for its roundings (four terms: 5u). Every
+// bound is computed in a dozen roundings of nonnegative terms (cover(32)), and may have underflowed
+// (the floor).
 template <int SigmaZ, class T>
 LINEQUAD_INLINE Local<T> quick_local_at(const LineFormT<T>& f, T c) {
     using std::fabs;
     using std::fma;
     T G(-f.K.hi), S(std::fabs(f.K.hi)), e_G(f.K.e), Gp(0.0), P(0.0), e_Gp(0.0);
     const T ac = fabs(c);
-#pragma GCC unroll 3
+#pragma GCC unroll 4
     for (int k = 0; k < used_components<SigmaZ>; ++k) {
-        const T a = f.U0[k].hi, b = f.U1[k].hi, beta = f.U1[k].e; // no low parts
+        const T a = U0_of(f, k).hi, b = U1_of(f, k).hi, beta = U1_of(f, k).e; // no low parts
         T uk = fma(c, b, a), au = fabs(uk);
-        T E = f.U0[k].e + ac * beta + T(u * F::cover(2)) * au;
+        T E = U0_of(f, k).e + ac * beta + T(u * F::cover(2)) * au;
         T sq = uk * uk, ub = uk * b;
         G = G + T(sigma<SigmaZ>(k)) * sq;
         Gp = Gp + T(sigma<SigmaZ>(k)) * ub;
@@ -151,8 +178,11 @@ LINEQUAD_INLINE Local<T> quick_local_at(const LineFormT<T>& f, T c) {
         e_G = e_G + E * (T(2.0) * au + E);
         e_Gp = e_Gp + (E * fabs(b) + (au + E) * beta);
     }
-    return {G, (e_G + T(6 * u) * S) * T(F::cover(32)) + T(F::underflow_floor), T(2.0) * Gp,
-            T(2.0) * (e_Gp + T(4 * u) * P) * T(F::cover(32)) + T(F::underflow_floor)};
+    return {G,
+            (e_G + T((6 + 2 * more_terms<SigmaZ>)*u) * S) * T(F::cover(32)) + T(F::underflow_floor),
+            T(2.0) * Gp,
+            T(2.0) * (e_Gp + T((4 + more_terms<SigmaZ>)*u) * P) * T(F::cover(32)) +
+                T(F::underflow_floor)};
 }
 
 // An upper bound of x y for upper bounds x, y >= 0 of two quantities: each may have underflowed
@@ -208,37 +238,53 @@ LINEQUAD_INLINE Mask<T> no_root_proven(const Leading<T>& A, T c, const Local<T>&
                      T(4.0) * G_min * T(F::shrink(32)) - T(F::denorm_min));
 }
 
-// Whether the root c + x +- e is inside the extent and the range: `outside` where one bound is
-// proven violated (outside, whatever the others say), `inside` where every bound is proven met;
-// neither where the bounds cannot tell.
+// The root's t = c + x rounded once, and a linear function of t at the root, Z(t*) = Z0 + t* dZ
+// (the axial coordinate, or a fourth term), from z = fma(t, dZ, Z0), each with its bound: the
+// bounds of Z0 and dZ, |t* - t|, and z's rounding.
 template <class T>
-struct Kept {
-    Mask<T> outside, inside;
+struct Axial {
+    T t, e_t, z, e_z;
 };
 template <class T>
-LINEQUAD_INLINE Kept<T> kept(const LineFormT<T>& f, Interval range, const Enclosure<T>& en) {
+LINEQUAD_INLINE Axial<T> linear_at(T Z0, T e_Z0, T dZ, T e_dZ, const Enclosure<T>& en) {
     using std::fabs;
     using std::fma;
     T t = en.c + en.x;
     T e_t = en.e + T(u) * fabs(t) + T(F::denorm_min);
-    // Z(t*) = Z0 + t* dZ from z = fma(t, dZ, Z0): the bounds of Z0 and dZ, |t* - t|, and z's
-    // rounding.
-    T z = fma(t, f.dZ, f.Z0);
-    T e_z = (f.e_Z0 + e_t * (fabs(f.dZ) + f.e_dZ) + fabs(t) * f.e_dZ + T(u) * fabs(z)) *
-                T(F::cover(32)) +
+    T z = fma(t, dZ, Z0);
+    T e_z = (e_Z0 + e_t * (fabs(dZ) + e_dZ) + fabs(t) * e_dZ + T(u) * fabs(z)) * T(F::cover(32)) +
             T(F::subnormal_slack);
-    Kept<T> k{T(0.0) < T(0.0), T(0.0) <= T(0.0)};
-    auto side = [&](DifferenceTest<T> s) LINEQUAD_INLINE_LAMBDA {
-        k.outside = k.outside | (s.d < -s.bound);
-        k.inside = k.inside & (s.bound < s.d);
-    };
-    T zero(0.0);
-    if (f.lo_bounded) side(difference_test(z, e_z, T(f.lo), T(f.e_lo)));
-    if (f.hi_bounded) side(difference_test(T(f.hi), T(f.e_hi), z, e_z));
-    if (range.has_t0()) side(difference_test(t, e_t, T(range.t0), zero)); // ends exact
-    if (range.has_t1()) side(difference_test(T(range.t1), zero, t, e_t));
-    k.inside = k.inside & !k.outside;
-    return k;
+    return {t, e_t, z, e_z};
+}
+template <class T>
+LINEQUAD_INLINE Axial<T> axial_at(const LineFormT<T>& f, const Enclosure<T>& en) {
+    return linear_at(f.Z0, f.e_Z0, f.dZ, f.e_dZ, en);
+}
+
+// Whether a root is inside the extent and the range: `outside` where one bound is proven
+// violated (outside, whatever the others say), `inside` where every bound is proven met; neither
+// where the bounds cannot tell. Each side is a difference `d` proven positive or negative.
+template <class T>
+struct Kept {
+    Mask<T> outside = T(0.0) < T(0.0), inside = T(0.0) <= T(0.0);
+    LINEQUAD_INLINE void side(DifferenceTest<T> s) {
+        outside = outside | (s.d < -s.bound);
+        inside = inside & (s.bound < s.d);
+    }
+    LINEQUAD_INLINE Kept& range(Interval r, T t, T e_t) { // the range's ends are exact
+        if (r.has_t0()) side(difference_test(t, e_t, T(r.t0), T(0.0)));
+        if (r.has_t1()) side(difference_test(T(r.t1), T(0.0), t, e_t));
+        inside = inside & !outside;
+        return *this;
+    }
+};
+template <class T>
+LINEQUAD_INLINE Kept<T> kept(const LineFormT<T>& f, Interval range, const Enclosure<T>& en) {
+    Axial<T> a = axial_at(f, en);
+    Kept<T> k;
+    if (f.lo_bounded) k.side(difference_test(a.z, a.e_z, T(f.lo), T(f.e_lo)));
+    if (f.hi_bounded) k.side(difference_test(T(f.hi), T(f.e_hi), a.z, a.e_z));
+    return k.range(range, a.t, a.e_t);
 }
 
 // t = c + x rounded to the nearest double in the caller's units (scale = t's factor).
@@ -277,10 +323,10 @@ LINEQUAD_INLINE Estimates<T> estimates(const LineFormT<T>& f, const Leading<T>& 
     using std::copysign;
     using std::sqrt;
     T B(0.0), C0(-f.K.hi);
-#pragma GCC unroll 3
+#pragma GCC unroll 4
     for (int k = 0; k < used_components<SigmaZ>; ++k) {
-        B = B + T(sigma<SigmaZ>(k)) * (f.U0[k].hi * f.U1[k].hi);
-        C0 = C0 + T(sigma<SigmaZ>(k)) * (f.U0[k].hi * f.U0[k].hi);
+        B = B + T(sigma<SigmaZ>(k)) * (U0_of(f, k).hi * U1_of(f, k).hi);
+        C0 = C0 + T(sigma<SigmaZ>(k)) * (U0_of(f, k).hi * U0_of(f, k).hi);
     }
     T D = difference_of_products(B, B, A.A, C0);
     if constexpr (std::is_same_v<T, double>) // one line: no root, no division by q

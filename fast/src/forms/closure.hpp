@@ -18,6 +18,7 @@
 #include "forms/traits.hpp"
 #include "numeric/bounded.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 #include <utility>
@@ -112,6 +113,26 @@ Part plane_holding(const AxialQuadratic<BT>& q, const Extent& e) {
     return Part::lateral;
 }
 
+// One solid's points (close() below): more than two (a rim found twice, through rounding) keep the
+// ends of its segment, the first and the last in t, in their order; two cross, one is tangent.
+template <class BT>
+ClosedPoints<BT> one_solid(ClosedPoints<BT> out) {
+    if (out.n > 2) {
+        out.certain = false;
+        int first = 0, last = 0;
+        for (int i = 1; i < out.n; ++i) {
+            if (value(out.p[i].t) < value(out.p[first].t)) first = i;
+            if (value(out.p[i].t) > value(out.p[last].t)) last = i;
+        }
+        BoundaryPoint<BT> a = out.p[std::min(first, last)], b = out.p[std::max(first, last)];
+        out.p[0] = a, out.p[1] = b;
+        out.n = first == last ? 1 : 2;
+    }
+    for (int i = 0; i < out.n; ++i)
+        out.p[i].kind = out.n == 2 ? HitKind::cross : HitKind::tangent;
+    return out;
+}
+
 // The boundary points of the closed shape: the lateral roots `lateral[0..n)` (z in the layer's
 // units) that its extent keeps, the discs the line crosses, and each point's kind.
 template <class BT>
@@ -147,6 +168,7 @@ ClosedPoints<BT> close(const BoundaryPoint<BT>* lateral, int n, const AxialQuadr
         if (e.caps.lo) disc(e.lo, Part::base);
         if (e.caps.hi) disc(e.hi, Part::top);
     }
+    if (!e.caps.two_solids) return one_solid(out);
     // Which solid each point is on: bit 0 the one at z <= 0 (or the only one), bit 1 z >= 0.
     int solids[max_hits];
     for (int i = 0; i < out.n; ++i) {

@@ -13,6 +13,7 @@
 #include "linequad/prepared.hpp"
 
 #include <cmath>
+#include <optional>
 #include <type_traits>
 
 namespace linequad::detail {
@@ -22,16 +23,71 @@ namespace linequad::detail {
 // the BoundedDD ones in e, the doubles in the e_ fields.
 // T: double, or a lane type for the line's parts (U0, U1, Z0, dZ; the batch correct solver's);
 // K, sigma and the extent are the shape's alone.
+//
+// What closes the extent's ends: nothing (the lateral surface alone), discs around one convex
+// solid (a cylinder, one nappe), or discs around two solids that meet at the apex (two nappes).
+// The rung answers a convex closed shape from its lateral roots and its discs' t, two solids
+// only where the line misses the quadric (newton_rung.cpp).
+enum class Discs : unsigned char { none, convex, two_solids };
+// Where the discs lie: a disc's t is (end - Z0) / dZ, rational, from Z0, dZ and the extent's ends
+// in double-double; at_lo, at_hi: whether that end has a disc (a cone's apex end has none).
+struct DiscPlanes {
+    BoundedDD Z0, dZ, lo, hi;
+    bool at_lo, at_hi;
+    // Where both planes are perpendicular to a coordinate axis: its index, and the planes'
+    // coordinates on it, exact doubles (a disc point's coordinate there is the plane's, exactly,
+    // which no enclosure proves when it is 0); else -1.
+    int axis = -1;
+    double lo_at = 0, hi_at = 0;
+};
+// The coordinate axis a direction runs along (its other two components exactly 0), or -1.
+inline int axis_along(Vec3 d) {
+    int nonzero = (d.x != 0) + (d.y != 0) + (d.z != 0);
+    return nonzero != 1 ? -1 : d.x != 0 ? 0 : d.y != 0 ? 1 : 2;
+}
+// The coordinate axis a plane spanned by a and b is perpendicular to (a_k = b_k = 0), or -1.
+inline int axis_across(Vec3 a, Vec3 b) {
+    for (int k = 0; k < 3; ++k)
+        if (a[k] == 0 && b[k] == 0) return k;
+    return -1;
+}
+// sigma = (1, 1, sigma_z), or with sigma_z = four_terms (the frustum's) four terms, (1, 1, 1, -1),
+// the fourth held apart (set only there: a form is built per line, and what it does not use is
+// not initialized).
+inline constexpr int four_terms = 2;
+template <class T>
+struct FourthTerm {
+    BoundedDDT<T> U0, U1;
+};
 template <class T>
 struct LineFormT {
     BoundedDDT<T> U0[3], U1[3];
+    std::optional<FourthTerm<T>> fourth;
     BoundedDD K;
-    int sigma_z; // sigma = (1, 1, sigma_z)
+    int sigma_z;
     T Z0, e_Z0, dZ, e_dZ;
     double lo, e_lo, hi, e_hi;
     bool lo_bounded, hi_bounded;
+    Discs discs = Discs::none;        // discs_of(shape), set by every form
+    std::optional<DiscPlanes> planes; // the precise form's, on a shape closed by discs
 };
 using LineForm = LineFormT<double>;
+
+// Term k's U0 and U1 (k = 3: the fourth term's).
+template <class T>
+LINEQUAD_INLINE const BoundedDDT<T>& U0_of(const LineFormT<T>& f, int k) {
+    return k < 3 ? f.U0[k] : f.fourth->U0;
+}
+template <class T>
+LINEQUAD_INLINE const BoundedDDT<T>& U1_of(const LineFormT<T>& f, int k) {
+    return k < 3 ? f.U1[k] : f.fourth->U1;
+}
+
+template <class S>
+Discs discs_of(const S& s) {
+    if (!has_caps(s)) return Discs::none;
+    return nappes_of(s) == 2 ? Discs::two_solids : Discs::convex;
+}
 
 // Vectors enter as values (Vec3T) or as exact two-term values (Vec3TwoTermT, a difference of two
 // points); the low parts only add small terms.
@@ -72,6 +128,21 @@ LINEQUAD_INLINE BoundedDDT<T> cross_component(const P& a, const Q& b, int k) {
     if constexpr (has_low_part<P> && has_low_part<Q>) {
         s.add_small(a.lo[i] * b.lo[j]);
         s.add_small(-a.lo[j] * b.lo[i]);
+    }
+    return s.result();
+}
+
+// a . b, in the same way.
+template <class P, class Q, class T = ComponentOf<P>>
+LINEQUAD_INLINE BoundedDDT<T> dot_dd(const P& a, const Q& b) {
+    Vec3T<T> ah = high(a), bh = high(b);
+    CompensatedSumT<T> s;
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) {
+        s.add_product(ah[k], bh[k]);
+        if constexpr (has_low_part<Q>) s.add_small(ah[k] * b.lo[k]);
+        if constexpr (has_low_part<P>) s.add_small(a.lo[k] * bh[k]);
+        if constexpr (has_low_part<P> && has_low_part<Q>) s.add_small(a.lo[k] * b.lo[k]);
     }
     return s.result();
 }
@@ -191,8 +262,9 @@ LINEQUAD_INLINE LineFormT<T> quick_elliptic_form(const AdjugateRowsDD& rows,
 // An elliptic shape's line form through the adjugate rows of its frame, whose origin is `origin`
 // (the cylinder's C, the cone's apex H): the Newton rung's (precise: U0 and U1 in double-double
 // from the exact differences L0 - origin) or the hit test's quick one (doubles with bounds). What
-// is the shape's own (sigma, K, the extent), own(f, |det|, its bound, square) sets from |det|,
-// square() giving |det|^2 in the form's precision where it needs it (the elliptic cylinder's K).
+// is the shape's own (sigma, K, the extent, the discs' planes' ends), own(f, |det|, square) sets
+// from |det| (a BoundedDD, whose low part is 0 in the quick form), square() giving |det|^2 in the
+// form's precision where it needs it (the elliptic cylinder's K).
 template <bool precise, class T, class Own>
 LINEQUAD_INLINE LineFormT<T> elliptic_line_form(const AdjugateRowsDD& rows, Vec3T<T> L0,
                                                 Vec3 origin, Vec3T<T> v, int orientation,
@@ -202,14 +274,20 @@ LINEQUAD_INLINE LineFormT<T> elliptic_line_form(const AdjugateRowsDD& rows, Vec3
         LineFormT<T> f =
             elliptic_form(rows, difference_exact(L0, lanes_of<T>(origin)), v, negative_det);
         BoundedDD det = absolute_det(rows, negative_det);
-        own(f, det.hi, bound_of_hi(det), [&] { return product(det, det); });
+        own(f, det, [&] { return product(det, det); });
+        if constexpr (std::is_same_v<T, double>) {
+            if (f.planes) { // Z = U_z with det's sign folded in, as elliptic_form's
+                f.planes->Z0 = negative_det ? -f.U0[2] : f.U0[2];
+                f.planes->dZ = negative_det ? -f.U1[2] : f.U1[2];
+            }
+        }
         return f;
     } else {
         QuickBounded d;
         LineFormT<T> f =
             quick_elliptic_form(rows, difference_bounded<QuickBoundedT<T>>(L0, lanes_of<T>(origin)),
                                 v, negative_det, d);
-        own(f, d.v, d.bound(), [&] { return quick(d * d); });
+        own(f, BoundedDD(d.v, 0, d.bound()), [&] { return quick(d * d); });
         return f;
     }
 }

@@ -228,7 +228,7 @@ struct ShapeTraits<Ellipsoid> {
     template <bool precise, class T, class Source>
     static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         return elliptic_line_form<precise>(adjugate_rows(src), L0, src.shape.C, v, orientation,
-                                           [&](LineFormT<T>& f, double, double, auto square) {
+                                           [&](LineFormT<T>& f, const BoundedDD&, auto square) {
                                                f.sigma_z = 1;
                                                f.K = square();
                                                f.lo = f.e_lo = f.hi = f.e_hi = 0;

@@ -322,18 +322,29 @@ struct ShapeTraits<EllipticCone> {
     template <bool precise, class T, class Source>
     static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         const EllipticCone& s = src.shape;
-        return elliptic_line_form<precise>(adjugate_rows(src), L0, s.H, v, orientation,
-                                           [&](LineFormT<T>& f, double det, double e_det, auto) {
-                                               f.sigma_z = -1;
-                                               f.K = BoundedDD(0);
-                                               // -|det| <= Z <= 0: the nappe z <= 0; with two
-                                               // nappes Z <= |det| when finite, no bound otherwise.
-                                               bool two = s.nappes == 2;
-                                               f.lo = -det, f.e_lo = e_det;
-                                               f.hi = two ? det : 0, f.e_hi = two ? e_det : 0;
-                                               f.lo_bounded = s.finite;
-                                               f.hi_bounded = !two || s.finite;
-                                           });
+        return elliptic_line_form<precise>(
+            adjugate_rows(src), L0, s.H, v, orientation,
+            [&](LineFormT<T>& f, const BoundedDD& det, auto) {
+                f.sigma_z = -1;
+                f.K = BoundedDD(0);
+                // -|det| <= Z <= 0: the nappe z <= 0; with two nappes Z <= |det| when finite, no
+                // bound otherwise.
+                bool two = s.nappes == 2;
+                double e_det = bound_of_hi(det);
+                f.lo = -det.hi, f.e_lo = e_det;
+                f.hi = two ? det.hi : 0, f.e_hi = two ? e_det : 0;
+                f.lo_bounded = s.finite;
+                f.hi_bounded = !two || s.finite;
+                f.discs = discs_of(s);
+                // The base disc at z = -1 (and the top at z = 1).
+                if (precise && s.caps) {
+                    f.planes = DiscPlanes{{}, {}, -det, two ? det : BoundedDD(0), true, two};
+                    // The base's plane through C, spanned by a and b (a closed two-nappe cone's
+                    // discs the rung does not answer).
+                    int k = axis_across(s.a, s.b);
+                    if (k >= 0 && !two) f.planes->axis = k, f.planes->lo_at = s.C[k];
+                }
+            });
     }
     template <class T = double, class Source>
     static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {

@@ -261,15 +261,23 @@ struct ShapeTraits<EllipticCylinder> {
     template <bool precise, class T, class Source>
     static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         const EllipticCylinder& s = src.shape;
-        return elliptic_line_form<precise>(
-            adjugate_rows(src), L0, s.C, v, orientation,
-            [&](LineFormT<T>& f, double det, double e_det, auto square) {
-                f.sigma_z = 0;
-                f.K = square();
-                f.lo = 0, f.e_lo = 0;
-                f.hi = det, f.e_hi = e_det; // 0 <= Z <= |det|
-                f.lo_bounded = f.hi_bounded = s.finite;
-            });
+        auto own = [&](LineFormT<T>& f, const BoundedDD& det, auto square) {
+            f.sigma_z = 0;
+            f.K = square();
+            f.lo = 0, f.e_lo = 0;
+            f.hi = det.hi, f.e_hi = bound_of_hi(det); // 0 <= Z <= |det|
+            f.lo_bounded = f.hi_bounded = s.finite;
+            f.discs = discs_of(s);
+            if (precise && s.caps) {
+                f.planes = DiscPlanes{{}, {}, BoundedDD(0), det, true, true};
+                // The discs' planes through C and C + c, spanned by a and b.
+                int k = axis_across(s.a, s.b);
+                TwoTerm top = k >= 0 ? two_sum(s.C[k], s.c[k]) : TwoTerm{0, 0};
+                if (k >= 0 && top.lo == 0)
+                    f.planes->axis = k, f.planes->lo_at = s.C[k], f.planes->hi_at = top.hi;
+            }
+        };
+        return elliptic_line_form<precise>(adjugate_rows(src), L0, s.C, v, orientation, own);
     }
     template <class T = double, class Source>
     static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {

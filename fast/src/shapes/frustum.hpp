@@ -43,13 +43,17 @@
 // exact: the quadratic above in any exact number type, with Z = u in [0, h.h] (finite) or
 // Z = R >= 0 (not finite).
 //
-// correct: no Newton form (the quadratic has four squares, the rung's form three): the ladder
-// starts at the double-double rung.
+// correct: the Newton rung's form with four terms. Divided by h.h > 0 (which moves no root),
+//     g(t) = |Y + t X|^2 - (R(t) / |h|)^2,
+// three squares of the cylinder's cross products and a fourth, negative, whose U0 = R0 / |h| and
+// U1 = dR / |h| are bounded double-doubles (|h| = sqrt(h.h) is irrational, but the rung needs only
+// bounds). The axial coordinate and its extent are the exact form's.
 #pragma once
 
 #include "forms/bounds.hpp"
 #include "forms/certified.hpp"
 #include "forms/exact_form.hpp"
+#include "forms/line_form.hpp"
 #include "forms/roots.hpp"
 #include "forms/traits.hpp"
 #include "shapes/cylinder.hpp"
@@ -187,7 +191,8 @@ struct ShapeTraits<Frustum> {
                         field("C1", &Frustum::C1), field("r1", &Frustum::r1));
     static constexpr const char* scale_fields = "r0,r1,C1-C0";
     static constexpr const char* fragile_fields = "v,C1-C0";
-    static constexpr bool has_line_form = false;
+    static constexpr bool has_line_form = true;
+    static constexpr bool line_form_in_lanes = false; // a square root and quotients per shape
 
     static Validity validate(const Frustum& s) {
         if (Error e = check_caps(s); !e.ok()) return {e};
@@ -301,6 +306,58 @@ struct ShapeTraits<Frustum> {
             q.hi_bounded = false;
         }
         return q;
+    }
+
+    // ---- correct: the Newton rung's line form (four terms) ----
+
+    template <class T = double, class Source>
+    static LineForm line_form(const Source& src, Vec3 L0, Vec3 v, int /*orientation*/) {
+        static_assert(std::is_same_v<T, double>, "the frustum's line form is scalar");
+        const Frustum& s = src.shape;
+        Vec3TwoTerm h = difference_exact(s.C1, s.C0), w = difference_exact(L0, s.C0);
+        LineForm f;
+#pragma GCC unroll 3
+        for (int k = 0; k < 3; ++k) {
+            f.U0[k] = cross_component(w, h, k);
+            f.U1[k] = cross_component(v, h, k);
+        }
+        BoundedDD hh = dot_dd(h, h), wh = dot_dd(w, h), vh = dot_dd(v, h);
+        TwoTerm dr_exact = two_sum(s.r1, -s.r0);
+        BoundedDD dr(dr_exact.hi, dr_exact.lo, 0);
+        BoundedDD R0 = product(BoundedDD(s.r0), hh) + product(dr, wh), dR = product(dr, vh);
+        BoundedDD length = sqrt(hh);
+        f.fourth = FourthTerm<double>{R0 / length, dR / length};
+        f.sigma_z = four_terms;
+        f.K = BoundedDD(0);
+        // Z = u in [0, h.h] (finite), or R >= 0 (the nappe).
+        const BoundedDD& Z0 = s.finite ? wh : R0;
+        const BoundedDD& dZ = s.finite ? vh : dR;
+        f.Z0 = Z0.hi, f.e_Z0 = bound_of_hi(Z0), f.dZ = dZ.hi, f.e_dZ = bound_of_hi(dZ);
+        f.lo = 0, f.e_lo = 0, f.lo_bounded = true;
+        f.hi = hh.hi, f.e_hi = bound_of_hi(hh), f.hi_bounded = s.finite;
+        f.discs = discs_of(s);
+        if (s.caps) {
+            Closure discs = frustum_closure(s);
+            f.planes = DiscPlanes{wh, vh, BoundedDD(0), hh, discs.lo, discs.hi};
+            f.planes->axis = axis_along(s.C1 - s.C0);
+            if (f.planes->axis >= 0)
+                f.planes->lo_at = s.C0[f.planes->axis], f.planes->hi_at = s.C1[f.planes->axis];
+        }
+        return f;
+    }
+
+    // The hit test's: the same values as doubles with their bounds (no cheaper form of the
+    // fourth term).
+    template <class T = double, class Source>
+    static LineForm quick_line_form(const Source& src, Vec3 L0, Vec3 v, int orientation) {
+        LineForm f = line_form<T>(src, L0, v, orientation);
+        auto quick = [](BoundedDD& x) { x = {x.hi, 0, bound_of_hi(x)}; };
+        for (int k = 0; k < 3; ++k)
+            quick(f.U0[k]), quick(f.U1[k]);
+        quick(f.fourth->U0), quick(f.fourth->U1);
+        quick(f.K);
+        f.planes.reset();
+        return f;
     }
 };
 

@@ -160,7 +160,7 @@ void correct_batch(const Prepared<S>& shape, const LineArrays& lines, Query q, R
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
     // The ladder's Newton rung as given (a hit test's quick rung) covers a valid open shape
     // with a line form and a valid range.
-    if constexpr (detail::ShapeTraits<S>::has_line_form) {
+    if constexpr (detail::line_form_in_lanes<S>) {
         Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
         bool rung_applies =
             shape.ok() && !detail::has_discs(shape.shape()) && detail::check_line(probe).ok();

@@ -131,12 +131,12 @@ void correct_lanes(const Prepared<S>& shape, int orientation, const Real<L>* con
     auto usable = usual_line(L0, v) & moderate(extent) & moderate(max_abs(v));
     if (q.need == Need::any) { // the quick rung, on the quick line form
         LineFormT<L> f = Traits::template quick_line_form<L>(src, L0, v, orientation);
-        return newton::with_sigma_z(f.sigma_z, [&](auto sigma_z) {
+        return newton::with_sigma_z_of_lanes(f.sigma_z, [&](auto sigma_z) {
             newton::hit_test_lanes<decltype(sigma_z)::value>(f, usable, range, out);
         });
     }
     LineFormT<L> f = Traits::template line_form<L>(src, L0, v, orientation);
-    newton::with_sigma_z(f.sigma_z, [&](auto sigma_z) {
+    newton::with_sigma_z_of_lanes(f.sigma_z, [&](auto sigma_z) {
         newton::solve_lanes<decltype(sigma_z)::value>(f, usable, L0, v, range, q, out);
     });
 }
