@@ -432,7 +432,8 @@ TEST_CASE("correct answers convex closed shapes on the Newton rung: discs, sides
         {cone, Line{{-5, 0, 1}, {1, 0, 0}, Range::line}, Part::lateral, Part::lateral, 2},
     };
     for (const Closed& c : cases) {
-        for (Query q : {Query{Need::all, true}, Query{Need::nearest, true}, Query{Need::all, false}}) {
+        for (Query q :
+             {Query{Need::all, true}, Query{Need::nearest, true}, Query{Need::all, false}}) {
             Result got = correct_solve(c.shape, c.line, q);
             INFO(shape_name(c.shape) << " L0 " << c.line.L0.x << " " << c.line.L0.y << " "
                                      << c.line.L0.z << " need " << int(q.need));

@@ -227,7 +227,8 @@ TEST_CASE("line_form's values are within their bounds of the exact ones, at ever
                 INFO(format_case(c) << "\nscaled by " << f);
                 using detail::AsGiven;
                 using detail::ShapeTraits;
-                if (std::holds_alternative<Frustum>(c.shape) || std::holds_alternative<Capsule>(c.shape))
+                if (std::holds_alternative<Frustum>(c.shape) ||
+                    std::holds_alternative<Capsule>(c.shape))
                     continue; // no Newton form (the capsule's patches have theirs)
                 if (const auto* p = std::get_if<Cylinder>(&c.shape)) {
                     Cylinder s{f * p->C, f * p->H, f * p->r, true};

@@ -612,7 +612,8 @@ Result solve_patches(const ShapeT& shape, const Line& l, Query query, Precision 
                                              {b.root.N, b.root.S, b.root.Den, b.D}) < 0;
     });
     Result r;
-    std::size_t keep = query.need == Need::all ? found.size() : std::min<std::size_t>(found.size(), 1);
+    std::size_t keep =
+        query.need == Need::all ? found.size() : std::min<std::size_t>(found.size(), 1);
     for (std::size_t k = 0; k < keep && r.count < max_hits; ++k)
         r.hits[r.count++] = found[k].hit;
     return r;
@@ -678,7 +679,8 @@ void shape_hits(const ShapeT& shape, std::uint32_t index, const Line& l, bool po
         out.insert(out.end(), mine.begin(), mine.end());
     } else {
         exact_form::Classification<CGAL::Mpzf> c;
-        Result r = solve_quadric<CGAL::Mpzf>(shape, l, {Need::all, points}, Precision::binary64, &c);
+        Result r =
+            solve_quadric<CGAL::Mpzf>(shape, l, {Need::all, points}, Precision::binary64, &c);
         constexpr bool patch = !detail::is_alternative<ShapeT, Shape>::value;
         if (patch) {
             for (int k = 0; k < r.count; ++k)

@@ -61,7 +61,7 @@ Shape capsule_of(const CapsuleFrame& f) {
 // A point inside the solid: within 0.9 r of the axis segment, on either round end or between.
 Vec3 inside(Rng& r, const CapsuleFrame& f) {
     double z = r.real(-0.8 * f.pole(), 1 + 0.8 * f.pole());
-    double reach = z < 0 ? std::sqrt(std::max(0.0, 1 - std::pow(z / f.pole(), 2)))
+    double reach = z < 0   ? std::sqrt(std::max(0.0, 1 - std::pow(z / f.pole(), 2)))
                    : z > 1 ? std::sqrt(std::max(0.0, 1 - std::pow((z - 1) / f.pole(), 2)))
                            : 1.0;
     double rho = 0.9 * reach * r.real(0, 1), phi = r.real(0, 2 * M_PI);
@@ -131,7 +131,8 @@ Case make(Family fam, Rng& r, int k, Frames frames, Precision p) {
         if (r.coin()) {
             target = inside(r, f), d = r.vec(1);
         } else { // along the side's tangent plane, just inside it or just past it
-            double side = r.coin() ? 1 + r.real(0.001, 0.1) : 1 - std::ldexp(1.0, -r.integer(1, 30));
+            double side =
+                r.coin() ? 1 + r.real(0.001, 0.1) : 1 - std::ldexp(1.0, -r.integer(1, 30));
             target = f.at(side * cs, side * sn, r.real(0.1, 0.9));
             d = f.along(-sn, cs, 0) + r.real(-1, 1) * f.h;
         }

@@ -65,8 +65,9 @@ int capsule_side_at(const Shape& shape, const Line& l, double t) {
     BigFloat T(t);
     auto side = form_along(shape, l, Part::lateral);
     BigFloat u = side.Z0 + T * side.dZ; // (P - C).h, 0 at C and h.h at H
-    Part part = sign(u) < 0 ? Part::base : sign(BigFloat(u - side.hi)) > 0 ? Part::top
-                                                                          : Part::lateral;
+    Part part = sign(u) < 0                       ? Part::base
+                : sign(BigFloat(u - side.hi)) > 0 ? Part::top
+                                                  : Part::lateral;
     return sign(value_at(part == Part::lateral ? side : form_along(shape, l, part), T));
 }
 
@@ -188,7 +189,8 @@ std::vector<SpawnRow> run_spawn_audit(const SpawnAuditOptions& o) {
                     for (int k = 0; k < p.exact.count; ++k) {
                         // A closed shape's crossings enter and leave its solids in turn.
                         int into = closed(c.shape) ? (k % 2 == 0 ? -1 : 1)
-                                                   : side_after(c.shape, line, p.exact.hits[k].t, p.exact.hits[k].part);
+                                                   : side_after(c.shape, line, p.exact.hits[k].t,
+                                                                p.exact.hits[k].part);
                         bool next = k + 1 < p.exact.count;
                         for (int m = 0; m < spawn_method_count; ++m) {
                             if (!p.usable[m])

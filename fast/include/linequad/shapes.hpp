@@ -125,12 +125,12 @@ struct Capsule {
 
 // Every shape. The solvers, the case format, the families and the benchmarks take their list
 // of shapes from here (and each shape's derivation from fast/src/shapes/).
-using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum, Sphere, Ellipsoid,
-                           Capsule>;
+using Shape =
+    std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum, Sphere, Ellipsoid, Capsule>;
 
 // The options a shape may have: `finite` and `caps` (the shapes with an axis), `nappes` (the
-// cone). The closed solids by definition (sphere, ellipsoid, capsule) have none: they are finite, closed and
-// one solid.
+// cone). The closed solids by definition (sphere, ellipsoid, capsule) have none: they are finite,
+// closed and one solid.
 namespace detail {
 template <class S, class = void>
 struct HasExtentOptions : std::false_type {};

@@ -55,8 +55,8 @@ ExactRoots exact_roots(const Prepared<S>& p, const Line& l) {
             ShapeTraits<S>::patches(src.shape));
         if (along) return all;
         for (int a = 1; a < all.count; ++a)
-            for (int b = a; b > 0 && compare_roots(all.roots[b], all.D[b], all.roots[b - 1],
-                                                   all.D[b - 1]) < 0;
+            for (int b = a;
+                 b > 0 && compare_roots(all.roots[b], all.D[b], all.roots[b - 1], all.D[b - 1]) < 0;
                  --b)
                 std::swap(all.roots[b], all.roots[b - 1]), std::swap(all.D[b], all.D[b - 1]);
         all.outcome = all.count > 0 ? exact_form::Outcome::hits : exact_form::Outcome::none;
@@ -71,8 +71,7 @@ int compare_roots(const SurdRoot<BigFloat>& a, const BigFloat& Da, const SurdRoo
     return exact_form::compare_roots<BigFloat>({a.N, a.S, a.Den, Da}, {b.N, b.S, b.Den, Db});
 }
 
-#define LINEQUAD_EXACT_ROOTS(S)                                                                    \
-    template ExactRoots exact_roots(const Prepared<S>&, const Line&);
+#define LINEQUAD_EXACT_ROOTS(S) template ExactRoots exact_roots(const Prepared<S>&, const Line&);
 LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_EXACT_ROOTS)
 #undef LINEQUAD_EXACT_ROOTS
 
