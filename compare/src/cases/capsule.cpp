@@ -68,165 +68,215 @@ Vec3 inside(Rng& r, const CapsuleFrame& f) {
     return f.at(rho * std::cos(phi), rho * std::sin(phi), z);
 }
 
+// What a family's line is drawn from: the random source, the frame (which a family may reshape),
+// the case's k, whether it is an exact construction, a quarter-turn direction (cs, sn) across the
+// axis, and the case's format.
+struct Draw {
+    Rng& r;
+    CapsuleFrame& f;
+    int k;
+    bool exact;
+    double cs, sn;
+    Precision p;
+};
+
+Line generic_line(const Draw& draw) {
+    auto& [r, f, k, exact, cs, sn, p] = draw;
+    Vec3 target = inside(r, f), from = target + f.size() * r.vec(4);
+    return r.integer(0, 4) == 0 ? Line{from, r.vec(2)} : Line{from, target - from};
+}
+
+Line near_tangent_line(const Draw& draw) {
+    auto& [r, f, k, exact, cs, sn, p] = draw;
+    // Touching the side (along its tangent plane, not along the axis) or a pole (across the
+    // axis), or 2^-k inside or outside that.
+    double side = exact ? 1 : 1 + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k);
+    Vec3 P, d;
+    if (r.coin()) {
+        double z = exact ? 0.125 + 0.75 * r.dyadic(3) : r.real(0.1, 0.9);
+        P = f.at(side * cs, side * sn, z);
+        d = f.along(-sn, cs, 0) + (exact ? 0.25 * r.integer(-4, 4) : r.real(-1, 1)) * f.h;
+    } else {
+        bool top = r.coin();
+        double z = top ? 1 + side * f.pole() : -side * f.pole();
+        P = f.at(0, 0, z);
+        d = f.along(cs + 0.5 * sn, sn - 0.5 * cs, 0);
+    }
+    return {P - (exact ? 2.0 : r.real(0.5, 3)) * d, d};
+}
+
+// The radius 2^-k of the length, or the length 2^-k of the radius.
+Line thin_line(const Draw& draw) {
+    auto& [r, f, k, exact, cs, sn, p] = draw;
+    double e = std::ldexp(1.0, -k);
+    if (r.coin()) {
+        f.a = e * f.a, f.b = e * f.b, f.r = e * f.r;
+    } else {
+        // No shorter than the case's format holds apart from C: H = C is no capsule.
+        while (e < 1 && in_format(f.C + e * f.h, p) == in_format(f.C, p))
+            e *= 2;
+        f.h = e * f.h;
+    }
+    Vec3 target = inside(r, f), from = target + f.size() * r.vec(4);
+    return {from, target - from};
+}
+
+Line scale_line(const Draw& draw) {
+    auto& [r, f, k, exact, cs, sn, p] = draw;
+    Vec3 target = inside(r, f), from = target + f.size() * r.vec(4);
+    Line l{from, target - from};
+    double s = std::ldexp(1.0, r.coin() ? k : -k);
+    if (r.coin()) {
+        f = {s * f.C, s * f.a, s * f.b, s * f.h, s * f.r};
+        l = {s * l.L0, s * l.v};
+    } else {
+        Vec3 far = std::ldexp(1.0, std::min(k, p == Precision::binary32 ? 24 : 50)) * r.vec(1);
+        f.C = f.C + far, l.L0 = l.L0 + far;
+    }
+    return l;
+}
+
+Line far_origin_line(const Draw& draw) {
+    auto& [r, f, k, exact, cs, sn, p] = draw;
+    Vec3 target, d;
+    if (r.coin()) {
+        target = inside(r, f), d = r.vec(1);
+    } else { // along the side's tangent plane, just inside it or just past it
+        double side = r.coin() ? 1 + r.real(0.001, 0.1) : 1 - std::ldexp(1.0, -r.integer(1, 30));
+        target = f.at(side * cs, side * sn, r.real(0.1, 0.9));
+        d = f.along(-sn, cs, 0) + r.real(-1, 1) * f.h;
+    }
+    while (norm(d) == 0)
+        d = r.vec(1);
+    Vec3 from = target - (std::ldexp(f.size(), k) / norm(d)) * d;
+    if (r.coin()) {
+        int j = r.integer(10, std::max(10, std::min(k, p == Precision::binary32 ? 20 : 40)));
+        Vec3 far = std::ldexp(f.size(), j) * r.vec(1);
+        f.C = f.C + far, target = target + far, from = from + far;
+    }
+    return {from, 1.5 * (target - from)};
+}
+
+// From inside, on the side or a pole, or 2^-k outside them.
+Line inside_start_line(const Draw& draw) {
+    auto& [r, f, k, exact, cs, sn, p] = draw;
+    Vec3 P;
+    switch (r.integer(0, 2)) {
+    case 0:
+        P = f.at(0.5 * cs, 0.5 * sn, 0.125 * r.integer(0, 8));
+        break;
+    case 1:
+        P = f.at(cs, sn, 0.125 * r.integer(1, 7));
+        if (k > 0) P = P + std::ldexp(1.0, -k) * f.along(cs, sn, 0);
+        break;
+    default: {
+        bool top = r.coin();
+        P = f.at(0, 0, top ? 1 + f.pole() : -f.pole());
+        if (k > 0) P = P + (top ? 1 : -1) * std::ldexp(1.0, -k) * f.h;
+    }
+    }
+    return {P, r.vec(2)};
+}
+
+// Through the axis' middle, or 2^-k of the size beside it.
+Line through_centre_line(const Draw& draw) {
+    auto& [r, f, k, exact, cs, sn, p] = draw;
+    Vec3 d = exact ? r.ivec(3) : r.vec(2);
+    while (norm(d) == 0)
+        d = exact ? r.ivec(3) : r.vec(2);
+    Vec3 P = f.at(0, 0, 0.5);
+    if (!exact) P = P + std::ldexp(f.size(), -k) * cross(d, solids::unit_vector(r));
+    return {P - 0.25 * r.integer(2, 12) * d, d};
+}
+
+Line seam_line(const Draw& draw) {
+    auto& [r, f, k, exact, cs, sn, p] = draw;
+    // Through a point of a seam circle exactly (k = 0) or moved k ulps: into the solid through
+    // its middle, across the other seam, grazing the seam along its circle, or along the
+    // axis (on the side's generator).
+    bool top = r.coin();
+    double z = top ? 1 : 0;
+    Vec3 P = f.at(cs, sn, z), d;
+    switch (r.integer(0, 3)) {
+    case 0:
+        d = f.at(0.25 * sn, -0.25 * cs, 0.5) - P;
+        break;
+    case 1:
+        d = f.at(-cs, -sn, 1 - z) - P;
+        break;
+    case 2:
+        d = f.along(-sn, cs, r.coin() ? 0.25 : -0.25);
+        break;
+    default:
+        d = f.h;
+    }
+    if (k > 0) {
+        int i = std::fabs(P.x) >= std::fabs(P.y) ? 0 : 1;
+        if (std::fabs(P.z) > std::fabs(P[i])) i = 2;
+        double moved = ulps_moved(P[i], k, r.coin(), p);
+        (i == 0 ? P.x : i == 1 ? P.y : P.z) = moved;
+    }
+    return {P - 0.5 * d, d};
+}
+
+// Along the axis through both poles; tilted or moved by 2^-k.
+Line poles_line(const Draw& draw) {
+    auto& [r, f, k, exact, cs, sn, p] = draw;
+    Vec3 P = f.at(0, 0, 0.5), d = f.h;
+    if (k > 0) {
+        Vec3 across = std::ldexp(1.0, -k) * f.along(r.real(-1, 1), r.real(-1, 1), 0);
+        if (r.coin())
+            d = d + across;
+        else
+            P = P + across;
+    }
+    return {P + 0.25 * r.integer(-8, 8) * d, (r.coin() ? 1.0 : -1.0) * d};
+}
+
+// Parallel to the axis inside, on the side, or outside.
+Line axis_parallel_line(const Draw& draw) {
+    auto& [r, f, k, exact, cs, sn, p] = draw;
+    int kind = r.integer(0, 2);
+    double rho = kind == 0 ? 0.5 : kind == 1 ? 1 : 2;
+    Vec3 P = f.at(rho * cs, rho * sn, 0.125 * r.integer(0, 8)), d = f.h;
+    if (k > 0) d = d + std::ldexp(1.0, -k) * f.along(r.real(-1, 1), r.real(-1, 1), 0);
+    return {P - (exact ? 1.0 : r.real(0.5, 2)) * d, d};
+}
+
+Line line_of(Family fam, const Draw& draw) {
+    switch (fam) {
+    case Family::generic:
+        return generic_line(draw);
+    case Family::near_tangent:
+        return near_tangent_line(draw);
+    case Family::thin:
+        return thin_line(draw);
+    case Family::scale:
+        return scale_line(draw);
+    case Family::far_origin:
+        return far_origin_line(draw);
+    case Family::inside_start:
+        return inside_start_line(draw);
+    case Family::through_centre:
+        return through_centre_line(draw);
+    case Family::seam:
+        return seam_line(draw);
+    case Family::poles:
+        return poles_line(draw);
+    case Family::axis_parallel:
+        return axis_parallel_line(draw);
+    default:
+        return {};
+    }
+}
+
 Case make(Family fam, Rng& r, int k, Frames frames, Precision p) {
     bool exact = k == 0;
     Case c;
     c.k = k;
     CapsuleFrame f = capsule_frame(r, exact && fam != Family::generic, frames);
     auto [cs, sn] = quarter(r);
-    switch (fam) {
-    case Family::generic: {
-        Vec3 target = inside(r, f), from = target + f.size() * r.vec(4);
-        c.line = r.integer(0, 4) == 0 ? Line{from, r.vec(2)} : Line{from, target - from};
-        break;
-    }
-    case Family::near_tangent: {
-        // Touching the side (along its tangent plane, not along the axis) or a pole (across the
-        // axis), or 2^-k inside or outside that.
-        double side = exact ? 1 : 1 + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k);
-        Vec3 P, d;
-        if (r.coin()) {
-            double z = exact ? 0.125 + 0.75 * r.dyadic(3) : r.real(0.1, 0.9);
-            P = f.at(side * cs, side * sn, z);
-            d = f.along(-sn, cs, 0) + (exact ? 0.25 * r.integer(-4, 4) : r.real(-1, 1)) * f.h;
-        } else {
-            bool top = r.coin();
-            double z = top ? 1 + side * f.pole() : -side * f.pole();
-            P = f.at(0, 0, z);
-            d = f.along(cs + 0.5 * sn, sn - 0.5 * cs, 0);
-        }
-        c.line = {P - (exact ? 2.0 : r.real(0.5, 3)) * d, d};
-        break;
-    }
-    case Family::thin: { // the radius 2^-k of the length, or the length 2^-k of the radius
-        double e = std::ldexp(1.0, -k);
-        if (r.coin()) {
-            f.a = e * f.a, f.b = e * f.b, f.r = e * f.r;
-        } else {
-            // No shorter than the case's format holds apart from C: H = C is no capsule.
-            while (e < 1 && in_format(f.C + e * f.h, p) == in_format(f.C, p))
-                e *= 2;
-            f.h = e * f.h;
-        }
-        Vec3 target = inside(r, f), from = target + f.size() * r.vec(4);
-        c.line = {from, target - from};
-        break;
-    }
-    case Family::scale: {
-        Vec3 target = inside(r, f), from = target + f.size() * r.vec(4);
-        Line l{from, target - from};
-        double s = std::ldexp(1.0, r.coin() ? k : -k);
-        if (r.coin()) {
-            f = {s * f.C, s * f.a, s * f.b, s * f.h, s * f.r};
-            l = {s * l.L0, s * l.v};
-        } else {
-            Vec3 far = std::ldexp(1.0, std::min(k, p == Precision::binary32 ? 24 : 50)) * r.vec(1);
-            f.C = f.C + far, l.L0 = l.L0 + far;
-        }
-        c.line = l;
-        break;
-    }
-    case Family::far_origin: {
-        Vec3 target, d;
-        if (r.coin()) {
-            target = inside(r, f), d = r.vec(1);
-        } else { // along the side's tangent plane, just inside it or just past it
-            double side =
-                r.coin() ? 1 + r.real(0.001, 0.1) : 1 - std::ldexp(1.0, -r.integer(1, 30));
-            target = f.at(side * cs, side * sn, r.real(0.1, 0.9));
-            d = f.along(-sn, cs, 0) + r.real(-1, 1) * f.h;
-        }
-        while (norm(d) == 0)
-            d = r.vec(1);
-        Vec3 from = target - (std::ldexp(f.size(), k) / norm(d)) * d;
-        if (r.coin()) {
-            int j = r.integer(10, std::max(10, std::min(k, p == Precision::binary32 ? 20 : 40)));
-            Vec3 far = std::ldexp(f.size(), j) * r.vec(1);
-            f.C = f.C + far, target = target + far, from = from + far;
-        }
-        c.line = {from, 1.5 * (target - from)};
-        break;
-    }
-    case Family::inside_start: { // inside, on the side or a pole, or 2^-k outside them
-        Vec3 P;
-        switch (r.integer(0, 2)) {
-        case 0:
-            P = f.at(0.5 * cs, 0.5 * sn, 0.125 * r.integer(0, 8));
-            break;
-        case 1:
-            P = f.at(cs, sn, 0.125 * r.integer(1, 7));
-            if (k > 0) P = P + std::ldexp(1.0, -k) * f.along(cs, sn, 0);
-            break;
-        default: {
-            bool top = r.coin();
-            P = f.at(0, 0, top ? 1 + f.pole() : -f.pole());
-            if (k > 0) P = P + (top ? 1 : -1) * std::ldexp(1.0, -k) * f.h;
-        }
-        }
-        c.line = {P, r.vec(2)};
-        break;
-    }
-    case Family::through_centre: { // through the axis' middle, or 2^-k of the size beside it
-        Vec3 d = exact ? r.ivec(3) : r.vec(2);
-        while (norm(d) == 0)
-            d = exact ? r.ivec(3) : r.vec(2);
-        Vec3 P = f.at(0, 0, 0.5);
-        if (!exact) P = P + std::ldexp(f.size(), -k) * cross(d, solids::unit_vector(r));
-        c.line = {P - 0.25 * r.integer(2, 12) * d, d};
-        break;
-    }
-    case Family::seam: {
-        // Through a point of a seam circle exactly (k = 0) or moved k ulps: into the solid through
-        // its middle, across the other seam, grazing the seam along its circle, or along the
-        // axis (on the side's generator).
-        bool top = r.coin();
-        double z = top ? 1 : 0;
-        Vec3 P = f.at(cs, sn, z), d;
-        switch (r.integer(0, 3)) {
-        case 0:
-            d = f.at(0.25 * sn, -0.25 * cs, 0.5) - P;
-            break;
-        case 1:
-            d = f.at(-cs, -sn, 1 - z) - P;
-            break;
-        case 2:
-            d = f.along(-sn, cs, r.coin() ? 0.25 : -0.25);
-            break;
-        default:
-            d = f.h;
-        }
-        if (k > 0) {
-            int i = std::fabs(P.x) >= std::fabs(P.y) ? 0 : 1;
-            if (std::fabs(P.z) > std::fabs(P[i])) i = 2;
-            double moved = ulps_moved(P[i], k, r.coin(), p);
-            (i == 0 ? P.x : i == 1 ? P.y : P.z) = moved;
-        }
-        c.line = {P - 0.5 * d, d};
-        break;
-    }
-    case Family::poles: { // along the axis through both poles; tilted or moved by 2^-k
-        Vec3 P = f.at(0, 0, 0.5), d = f.h;
-        if (k > 0) {
-            Vec3 across = std::ldexp(1.0, -k) * f.along(r.real(-1, 1), r.real(-1, 1), 0);
-            if (r.coin())
-                d = d + across;
-            else
-                P = P + across;
-        }
-        c.line = {P + 0.25 * r.integer(-8, 8) * d, (r.coin() ? 1.0 : -1.0) * d};
-        break;
-    }
-    case Family::axis_parallel: { // parallel to the axis inside, on the side, or outside
-        int kind = r.integer(0, 2);
-        double rho = kind == 0 ? 0.5 : kind == 1 ? 1 : 2;
-        Vec3 P = f.at(rho * cs, rho * sn, 0.125 * r.integer(0, 8)), d = f.h;
-        if (k > 0) d = d + std::ldexp(1.0, -k) * f.along(r.real(-1, 1), r.real(-1, 1), 0);
-        c.line = {P - (exact ? 1.0 : r.real(0.5, 2)) * d, d};
-        break;
-    }
-    default:
-        break;
-    }
+    c.line = line_of(fam, Draw{r, f, k, exact, cs, sn, p});
     c.shape = capsule_of(f);
     return c;
 }

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 namespace linequad::solids {
@@ -77,120 +78,155 @@ inline BallFrame ball_frame(Rng& r, bool round, bool exact, Frames frames) {
     }
 }
 
+// What a family's frame and line are drawn from: the random source, the case's k, whether it is an
+// exact construction, whether the solid is round (a sphere), its frames and the case's format.
+struct BallDraw {
+    Rng& r;
+    int k;
+    bool exact, round;
+    Frames frames;
+    Precision p;
+};
+struct BallLine {
+    BallFrame f;
+    Line line;
+};
+
+inline BallLine generic_ball(const BallDraw& draw) {
+    auto& [r, k, exact, round, frames, p] = draw;
+    BallFrame f = ball_frame(r, round, r.integer(0, 9) == 0, frames);
+    Vec3 target = f.at(r.real(0, 0.95) * unit_vector(r)), from = target + f.size() * r.vec(4);
+    return {f, r.integer(0, 4) == 0 ? Line{from, r.vec(2)} : Line{from, target - from}};
+}
+
+inline BallLine near_tangent_ball(const BallDraw& draw) {
+    auto& [r, k, exact, round, frames, p] = draw;
+    // Touching at x on the unit sphere along a direction in its tangent plane, or 2^-k
+    // inside or outside of that.
+    BallFrame f = ball_frame(r, round, exact, frames);
+    Vec3 x, t;
+    if (exact) {
+        int axis;
+        x = axis_vector(r, &axis), t = across_axis(r, axis);
+    } else {
+        x = unit_vector(r), t = cross(x, unit_vector(r));
+        while (norm(t) == 0)
+            t = cross(x, unit_vector(r));
+        x = (1 + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k)) * x;
+    }
+    Vec3 P = f.at(x), d = f.along(t);
+    return {f, {P - (exact ? 2.0 : r.real(0.5, 3)) * d, d}};
+}
+
+// One axis 2^-k of the others (the ellipsoid's).
+inline BallLine thin_ball(const BallDraw& draw) {
+    auto& [r, k, exact, round, frames, p] = draw;
+    BallFrame f = ball_frame(r, round, false, frames);
+    double e = std::ldexp(1.0, -k);
+    switch (r.integer(0, 2)) {
+    case 0:
+        f.a = e * f.a;
+        break;
+    case 1:
+        f.b = e * f.b;
+        break;
+    default:
+        f.c = e * f.c;
+    }
+    Vec3 target = f.at(r.real(0, 0.95) * unit_vector(r));
+    Vec3 from = target + f.size() * r.vec(4);
+    return {f, {from, target - from}};
+}
+
+inline BallLine scale_ball(const BallDraw& draw) {
+    auto& [r, k, exact, round, frames, p] = draw;
+    BallFrame f = ball_frame(r, round, false, frames);
+    Vec3 target = f.at(r.real(0, 0.95) * unit_vector(r)), from = target + f.size() * r.vec(4);
+    Line l{from, target - from};
+    double s = std::ldexp(1.0, r.coin() ? k : -k);
+    if (r.coin()) {
+        f = {s * f.O, s * f.a, s * f.b, s * f.c};
+        l = {s * l.L0, s * l.v};
+    } else {
+        Vec3 far = std::ldexp(1.0, std::min(k, p == Precision::binary32 ? 24 : 50)) * r.vec(1);
+        f.O = f.O + far, l.L0 = l.L0 + far;
+    }
+    return {f, l};
+}
+
+inline BallLine far_origin_ball(const BallDraw& draw) {
+    auto& [r, k, exact, round, frames, p] = draw;
+    BallFrame f = ball_frame(r, round, false, frames);
+    Vec3 target, d;
+    if (r.coin()) { // aimed through the solid
+        target = f.at(r.real(0, 0.7) * unit_vector(r)), d = r.vec(1);
+    } else { // along a tangent plane, 2^-m inside it or just past it
+        Vec3 x = unit_vector(r), t = cross(x, unit_vector(r));
+        double side = r.coin() ? 1 + r.real(0.001, 0.1) : 1 - std::ldexp(1.0, -r.integer(1, 30));
+        target = f.at(side * x), d = f.along(t);
+    }
+    while (norm(d) == 0)
+        d = r.vec(1);
+    Vec3 from = target - (std::ldexp(f.size(), k) / norm(d)) * d;
+    if (r.coin()) { // the scene far from the world origin too
+        int j = r.integer(10, std::max(10, std::min(k, p == Precision::binary32 ? 20 : 40)));
+        Vec3 far = std::ldexp(f.size(), j) * r.vec(1);
+        f.O = f.O + far, target = target + far, from = from + far;
+    }
+    return {f, {from, 1.5 * (target - from)}};
+}
+
+// From inside, on the surface, or 2^-k outside it.
+inline BallLine inside_start_ball(const BallDraw& draw) {
+    auto& [r, k, exact, round, frames, p] = draw;
+    BallFrame f = ball_frame(r, round, exact, frames);
+    int kind = r.integer(0, 2);
+    Vec3 x = kind == 0 ? 0.5 * (exact ? axis_vector(r) : unit_vector(r)) : axis_vector(r);
+    if (kind == 2 && k > 0) x = (1 + std::ldexp(1.0, -k)) * x;
+    return {f, {f.at(x), r.vec(2)}};
+}
+
+// Through O, or 2^-k of the size beside it.
+inline BallLine through_centre_ball(const BallDraw& draw) {
+    auto& [r, k, exact, round, frames, p] = draw;
+    BallFrame f = ball_frame(r, round, exact, frames);
+    Vec3 d = exact ? r.ivec(3) : r.vec(2);
+    while (norm(d) == 0)
+        d = exact ? r.ivec(3) : r.vec(2);
+    Vec3 P = f.O;
+    if (!exact) P = P + std::ldexp(f.size(), -k) * cross(d, unit_vector(r));
+    return {f, {P - 0.25 * r.integer(2, 12) * d, d}};
+}
+
+inline std::optional<BallLine> ball_line(Family fam, const BallDraw& draw) {
+    switch (fam) {
+    case Family::generic:
+        return generic_ball(draw);
+    case Family::near_tangent:
+        return near_tangent_ball(draw);
+    case Family::thin:
+        return thin_ball(draw);
+    case Family::scale:
+        return scale_ball(draw);
+    case Family::far_origin:
+        return far_origin_ball(draw);
+    case Family::inside_start:
+        return inside_start_ball(draw);
+    case Family::through_centre:
+        return through_centre_ball(draw);
+    default:
+        return std::nullopt;
+    }
+}
+
 // The families, for a solid made from a frame by make(frame) (a Shape).
 template <class Make>
 Case ball_case(Family fam, Rng& r, int k, Frames frames, Precision p, bool round, Make make) {
-    bool exact = k == 0;
     Case c;
     c.k = k;
-    switch (fam) {
-    case Family::generic: {
-        BallFrame f = ball_frame(r, round, r.integer(0, 9) == 0, frames);
-        Vec3 target = f.at(r.real(0, 0.95) * unit_vector(r)), from = target + f.size() * r.vec(4);
-        c.shape = make(f);
-        c.line = r.integer(0, 4) == 0 ? Line{from, r.vec(2)} : Line{from, target - from};
-        return c;
-    }
-    case Family::near_tangent: {
-        // Touching at x on the unit sphere along a direction in its tangent plane, or 2^-k
-        // inside or outside of that.
-        BallFrame f = ball_frame(r, round, exact, frames);
-        Vec3 x, t;
-        if (exact) {
-            int axis;
-            x = axis_vector(r, &axis), t = across_axis(r, axis);
-        } else {
-            x = unit_vector(r), t = cross(x, unit_vector(r));
-            while (norm(t) == 0)
-                t = cross(x, unit_vector(r));
-            x = (1 + (r.coin() ? 1 : -1) * std::ldexp(1.0, -k)) * x;
-        }
-        Vec3 P = f.at(x), d = f.along(t);
-        c.shape = make(f);
-        c.line = {P - (exact ? 2.0 : r.real(0.5, 3)) * d, d};
-        return c;
-    }
-    case Family::thin: { // one axis 2^-k of the others (the ellipsoid's)
-        BallFrame f = ball_frame(r, round, false, frames);
-        double e = std::ldexp(1.0, -k);
-        switch (r.integer(0, 2)) {
-        case 0:
-            f.a = e * f.a;
-            break;
-        case 1:
-            f.b = e * f.b;
-            break;
-        default:
-            f.c = e * f.c;
-        }
-        Vec3 target = f.at(r.real(0, 0.95) * unit_vector(r));
-        Vec3 from = target + f.size() * r.vec(4);
-        c.shape = make(f);
-        c.line = {from, target - from};
-        return c;
-    }
-    case Family::scale: {
-        BallFrame f = ball_frame(r, round, false, frames);
-        Vec3 target = f.at(r.real(0, 0.95) * unit_vector(r)), from = target + f.size() * r.vec(4);
-        Line l{from, target - from};
-        double s = std::ldexp(1.0, r.coin() ? k : -k);
-        if (r.coin()) {
-            f = {s * f.O, s * f.a, s * f.b, s * f.c};
-            l = {s * l.L0, s * l.v};
-        } else {
-            Vec3 far = std::ldexp(1.0, std::min(k, p == Precision::binary32 ? 24 : 50)) * r.vec(1);
-            f.O = f.O + far, l.L0 = l.L0 + far;
-        }
-        c.shape = make(f);
-        c.line = l;
-        return c;
-    }
-    case Family::far_origin: {
-        BallFrame f = ball_frame(r, round, false, frames);
-        Vec3 target, d;
-        if (r.coin()) { // aimed through the solid
-            target = f.at(r.real(0, 0.7) * unit_vector(r)), d = r.vec(1);
-        } else { // along a tangent plane, 2^-m inside it or just past it
-            Vec3 x = unit_vector(r), t = cross(x, unit_vector(r));
-            double side =
-                r.coin() ? 1 + r.real(0.001, 0.1) : 1 - std::ldexp(1.0, -r.integer(1, 30));
-            target = f.at(side * x), d = f.along(t);
-        }
-        while (norm(d) == 0)
-            d = r.vec(1);
-        Vec3 from = target - (std::ldexp(f.size(), k) / norm(d)) * d;
-        if (r.coin()) { // the scene far from the world origin too
-            int j = r.integer(10, std::max(10, std::min(k, p == Precision::binary32 ? 20 : 40)));
-            Vec3 far = std::ldexp(f.size(), j) * r.vec(1);
-            f.O = f.O + far, target = target + far, from = from + far;
-        }
-        c.shape = make(f);
-        c.line = {from, 1.5 * (target - from)};
-        return c;
-    }
-    case Family::inside_start: { // from inside, on the surface, or 2^-k outside it
-        BallFrame f = ball_frame(r, round, exact, frames);
-        int kind = r.integer(0, 2);
-        Vec3 x = kind == 0 ? 0.5 * (exact ? axis_vector(r) : unit_vector(r)) : axis_vector(r);
-        if (kind == 2 && k > 0) x = (1 + std::ldexp(1.0, -k)) * x;
-        c.shape = make(f);
-        c.line = {f.at(x), r.vec(2)};
-        return c;
-    }
-    case Family::through_centre: { // through O, or 2^-k of the size beside it
-        BallFrame f = ball_frame(r, round, exact, frames);
-        Vec3 d = exact ? r.ivec(3) : r.vec(2);
-        while (norm(d) == 0)
-            d = exact ? r.ivec(3) : r.vec(2);
-        Vec3 P = f.O;
-        if (!exact) P = P + std::ldexp(f.size(), -k) * cross(d, unit_vector(r));
-        c.shape = make(f);
-        c.line = {P - 0.25 * r.integer(2, 12) * d, d};
-        return c;
-    }
-    default:
-        return c;
-    }
+    if (std::optional<BallLine> b = ball_line(fam, BallDraw{r, k, k == 0, round, frames, p}))
+        c.shape = make(b->f), c.line = b->line;
+    return c;
 }
 
 // The families a ball-like solid has.

@@ -115,7 +115,7 @@ struct CorrectTo {
         using Traits = ShapeTraits<S>;
         Result r; // the one result, returned in place
         // The Newton rung on the scene as `unit` has it; r is left empty when the rung declines.
-        auto newton = [&](const auto& scene, const Unit& unit) {
+        auto newton = [&](const auto& scene, const Unit& unit) LINEQUAD_INLINE_LAMBDA {
             if constexpr (Traits::has_line_form) {
                 LineForm form = Traits::line_form(scene, unit.line.L0, unit.line.v, orientation);
                 if (newton_rung<Target>(form, unit, l, q, r)) {

@@ -250,27 +250,35 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         return no_root_proven(A, est.vertex, [&](double c) { return local_near<SigmaZ, R>(f, c); });
     double estimate[2] = {est.root[0], est.root[1]};
     if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
+    if (f.discs != Discs::none) {
+        // A closed shape: both roots before any hit (closed_hits); two solids, the next rungs.
+        if (f.discs == Discs::two_solids) return false;
+        std::optional<Enclosure<double>> en[2];
+        Local<double> local[2];
+        if constexpr (R == Residual::double_double) {
+            newton::local_at<SigmaZ>(f, estimate, local);
+        } else {
+            for (int i = 0; i < 2; ++i)
+                local[i] = local_near<SigmaZ, R>(f, estimate[i]);
+        }
+        for (int i = 0; i < 2; ++i) {
+            en[i] = root_near(local[i], A, estimate[i]);
+            if (!en[i] || en[i]->smaller != (i == 0)) return false;
+        }
+        return closed_hits<Target>(f, A, en, unit, caller, query, r);
+    }
     // Both roots at once when both are needed; otherwise the second only if the first is not kept.
-    // A closed shape needs both before any hit (closed_hits).
-    bool closed = f.discs != Discs::none;
-    if (f.discs == Discs::two_solids) return false;
     Local<double> local[2];
-    bool both = R == Residual::double_double && (query.need == Need::all || closed);
+    bool both = R == Residual::double_double && query.need == Need::all;
     if (both) newton::local_at<SigmaZ>(f, estimate, local);
-    std::optional<Enclosure<double>> en[2];
-    auto prove = [&](int i) {
-        if (!both) local[i] = local_near<SigmaZ, R>(f, estimate[i]);
-        en[i] = root_near(local[i], A, estimate[i]);
-        return en[i] && en[i]->smaller == (i == 0);
-    };
-    if (closed)
-        return prove(0) && prove(1) && closed_hits<Target>(f, A, en, unit, caller, query, r);
     for (int i = 0; i < 2; ++i) {
-        if (!prove(i)) return false;
-        int inside = kept(f, unit, *en[i]);
+        if (!both) local[i] = local_near<SigmaZ, R>(f, estimate[i]);
+        std::optional<Enclosure<double>> en = root_near(local[i], A, estimate[i]);
+        if (!en || en->smaller != (i == 0)) return false;
+        int inside = kept(f, unit, *en);
         if (inside < 0) return false;
         if (inside == 0) continue;
-        if (!add_hit<Target>(*en[i], Part::lateral, unit, caller, query, r)) return false;
+        if (!add_hit<Target>(*en, Part::lateral, unit, caller, query, r)) return false;
         if (query.need != Need::all) break; // the smaller root first: also the nearest
     }
     return true;

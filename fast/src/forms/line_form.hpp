@@ -265,31 +265,41 @@ LINEQUAD_INLINE LineFormT<T> quick_elliptic_form(const AdjugateRowsDD& rows,
 // is the shape's own (sigma, K, the extent, the discs' planes' ends), own(f, |det|, square) sets
 // from |det| (a BoundedDD, whose low part is 0 in the quick form), square() giving |det|^2 in the
 // form's precision where it needs it (the elliptic cylinder's K).
+template <class T, class Own>
+LINEQUAD_INLINE LineFormT<T> precise_elliptic_line_form(const AdjugateRowsDD& rows, Vec3T<T> L0,
+                                                        Vec3 origin, Vec3T<T> v, bool negative_det,
+                                                        Own& own) {
+    LineFormT<T> f =
+        elliptic_form(rows, difference_exact(L0, lanes_of<T>(origin)), v, negative_det);
+    BoundedDD det = absolute_det(rows, negative_det);
+    own(f, det, [&] { return product(det, det); });
+    if constexpr (std::is_same_v<T, double>) {
+        if (f.planes) { // Z = U_z with det's sign folded in, as elliptic_form's
+            f.planes->Z0 = negative_det ? -f.U0[2] : f.U0[2];
+            f.planes->dZ = negative_det ? -f.U1[2] : f.U1[2];
+        }
+    }
+    return f;
+}
+template <class T, class Own>
+LINEQUAD_INLINE LineFormT<T> quick_elliptic_line_form(const AdjugateRowsDD& rows, Vec3T<T> L0,
+                                                      Vec3 origin, Vec3T<T> v, bool negative_det,
+                                                      Own& own) {
+    QuickBounded d;
+    LineFormT<T> f = quick_elliptic_form(
+        rows, difference_bounded<QuickBoundedT<T>>(L0, lanes_of<T>(origin)), v, negative_det, d);
+    own(f, BoundedDD(d.v, 0, d.bound()), [&] { return quick(d * d); });
+    return f;
+}
+// One named form per function: built in place where it is returned, never copied.
 template <bool precise, class T, class Own>
 LINEQUAD_INLINE LineFormT<T> elliptic_line_form(const AdjugateRowsDD& rows, Vec3T<T> L0,
                                                 Vec3 origin, Vec3T<T> v, int orientation,
                                                 Own&& own) {
-    bool negative_det = orientation < 0;
-    if constexpr (precise) {
-        LineFormT<T> f =
-            elliptic_form(rows, difference_exact(L0, lanes_of<T>(origin)), v, negative_det);
-        BoundedDD det = absolute_det(rows, negative_det);
-        own(f, det, [&] { return product(det, det); });
-        if constexpr (std::is_same_v<T, double>) {
-            if (f.planes) { // Z = U_z with det's sign folded in, as elliptic_form's
-                f.planes->Z0 = negative_det ? -f.U0[2] : f.U0[2];
-                f.planes->dZ = negative_det ? -f.U1[2] : f.U1[2];
-            }
-        }
-        return f;
-    } else {
-        QuickBounded d;
-        LineFormT<T> f =
-            quick_elliptic_form(rows, difference_bounded<QuickBoundedT<T>>(L0, lanes_of<T>(origin)),
-                                v, negative_det, d);
-        own(f, BoundedDD(d.v, 0, d.bound()), [&] { return quick(d * d); });
-        return f;
-    }
+    if constexpr (precise)
+        return precise_elliptic_line_form(rows, L0, origin, v, orientation < 0, own);
+    else
+        return quick_elliptic_line_form(rows, L0, origin, v, orientation < 0, own);
 }
 
 // BoundedDD as prepare() keeps it: value, low part, bound.
