@@ -266,6 +266,10 @@ def instructions_closed():
     return out
 
 
+def correct_vs_exact():
+    return verbatim(LATEST / "correct_vs_exact.txt")
+
+
 def instructions_lanes():
     return verbatim(LATEST / "instructions_lanes.txt")
 
@@ -321,7 +325,8 @@ def plugin():
 
 
 TABLES = {f.__name__: f for f in [solvers, bench, rungs, headline, peers, peer_instructions, instructions,
-                                  instructions_closed, instructions_lanes, batch, scenes, plugin]}
+                                  instructions_closed, instructions_lanes, correct_vs_exact, batch, scenes,
+                                  plugin]}
 BEGIN = re.compile(r"^<!-- table: (\w+) -->$")
 END = "<!-- end table -->"
 # A measured figure: a time, a rate, a percentage, a ratio or a count of instructions.
