@@ -116,7 +116,7 @@ Part plane_holding(const AxialQuadratic<BT>& q, const Extent& e) {
 // One solid's points (close() below): more than two (a rim found twice, through rounding) keep the
 // ends of its segment, the first and the last in t, in their order; two cross, one is tangent.
 template <class BT>
-ClosedPoints<BT> one_solid(ClosedPoints<BT> out) {
+void keep_one_solid(ClosedPoints<BT>& out) {
     if (out.n > 2) {
         out.certain = false;
         int first = 0, last = 0;
@@ -130,7 +130,6 @@ ClosedPoints<BT> one_solid(ClosedPoints<BT> out) {
     }
     for (int i = 0; i < out.n; ++i)
         out.p[i].kind = out.n == 2 ? HitKind::cross : HitKind::tangent;
-    return out;
 }
 
 // The boundary points of the closed shape: the lateral roots `lateral[0..n)` (z in the layer's
@@ -168,7 +167,10 @@ ClosedPoints<BT> close(const BoundaryPoint<BT>* lateral, int n, const AxialQuadr
         if (e.caps.lo) disc(e.lo, Part::base);
         if (e.caps.hi) disc(e.hi, Part::top);
     }
-    if (!e.caps.two_solids) return one_solid(out);
+    if (!e.caps.two_solids) {
+        keep_one_solid(out);
+        return out;
+    }
     // Which solid each point is on: bit 0 the one at z <= 0 (or the only one), bit 1 z >= 0.
     int solids[max_hits];
     for (int i = 0; i < out.n; ++i) {
