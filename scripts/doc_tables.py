@@ -56,6 +56,12 @@ def source_line(path, command, machine=None):
     return text + "."
 
 
+def made_by(path):
+    """From a measurement file's header lines: where it is, the command and the machine."""
+    head = commented_header(path)
+    return source_line(path, head[0], strip_commit(head[1]) if len(head) > 1 else None)
+
+
 def benchmark_medians(path):
     """Google Benchmark aggregate output: name -> (median time in ns, counters)."""
     out = {}
@@ -150,11 +156,10 @@ def solvers():
 def bench():
     path = LATEST / "bench.txt"
     bench = benchmark_medians(path)
-    header = commented_header(path)
     shapes = [s for s in SHAPES if f"{s}/seed/points" in bench]
     queries = [("points", "all hits, points"), ("prepared/points", "prepared shape"),
                ("no_points", "all hits, no points"), ("nearest", "nearest"), ("any", "hit test")]
-    out = [source_line(path, header[0], strip_commit(header[1])) + " Median ns per solve:", "",
+    out = [made_by(path) + " Median ns per solve:", "",
            "| solver | query | " + " | ".join(shapes) + " |",
            "|---|---|" + "---:|" * len(shapes)]
     for solver in GUARANTEES:
@@ -227,7 +232,7 @@ def peer_instructions():
     shapes = [s for s in SHAPES if any(r[1] == s for r in rows)]
     solvers = list(dict.fromkeys(r[0] for r in rows))
     got = {(r[0], r[1]): int(r[2]) for r in rows}
-    out = [source_line(path, commented_header(path)[0]) + " Instructions per solve:", "",
+    out = [made_by(path) + " Instructions per solve:", "",
            "| solver | " + " | ".join(shapes) + " |", "|---|" + "---:|" * len(shapes)]
     for s in solvers:
         out.append(f"| `{s}` | " + " | ".join(
@@ -253,7 +258,7 @@ def instructions_closed():
     got = {(r[0], r[1], r[2]): int(r[5]) for r in rows}
     columns = [("correct", "all", "`correct`, all hits"), ("correct", "any", "hit test"),
                ("stable", "all", "`stable`, all hits")]
-    out = [source_line(path, commented_header(path)[0]) +
+    out = [made_by(path) +
            " Instructions per solve, open → closed (the same shapes and lines with `caps`):", "",
            "| shape | " + " | ".join(c[2] for c in columns) + " |", "|---|" + "---:|" * len(columns)]
     for shape in SHAPES:
@@ -277,9 +282,7 @@ def instructions_lanes():
 def batch():
     path = LATEST / "bench_batch.txt"
     bench = benchmark_medians(path)
-    out = [source_line(path, commented_header(path)[0],
-                       strip_commit(commented_header(path)[1])),
-           " Median time for 1024 generic lines against one prepared shape:", "",
+    out = [made_by(path) + " Median time for 1024 generic lines against one prepared shape:", "",
            "| shape | solver | scalar loop | AVX2 | AVX-512 | AVX-512 over AVX2 |",
            "|---|---|---:|---:|---:|---:|"]
     for shape in SHAPES:
@@ -302,9 +305,7 @@ def batch():
 def scenes():
     path = LATEST / "scene_bench.txt"
     bench = benchmark_medians(path)
-    head = commented_header(path)
-    out = [source_line(path, head[0], strip_commit(head[1]) if len(head) > 1 else None), "",
-           "| benchmark | median per ray |", "|---|---:|"]
+    out = [made_by(path), "", "| benchmark | median per ray |", "|---|---:|"]
     out += [f"| `{k}` | {ns(v)} |" for k, v in bench.items()]
     return out
 
@@ -312,8 +313,7 @@ def scenes():
 def plugin():
     path = LATEST / "bench_plugin.txt"
     bench = benchmark_medians(path)
-    head = commented_header(path)
-    out = [source_line(path, head[0], strip_commit(head[1]) if len(head) > 1 else None), "",
+    out = [made_by(path), "",
            "| cases per batch | in process | in the worker | worker over in process |",
            "|---:|---:|---:|---:|"]
     for k, v in bench.items():

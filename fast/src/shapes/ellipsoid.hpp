@@ -35,6 +35,7 @@
 #include "forms/line_form.hpp"
 #include "forms/roots.hpp"
 #include "forms/traits.hpp"
+#include "shapes/on_frame.hpp"
 #include "shapes/seed_frame.hpp"
 
 namespace linequad::detail {
@@ -93,7 +94,7 @@ struct EllipsoidStable {
 };
 
 template <>
-struct ShapeTraits<Ellipsoid> {
+struct ShapeTraits<Ellipsoid> : OnFrame<Ellipsoid, ShapeTraits<Ellipsoid>> {
     static constexpr const char* name = "ellipsoid";
     static constexpr auto fields =
         std::make_tuple(field("C", &Ellipsoid::C), field("a", &Ellipsoid::a),
@@ -129,14 +130,7 @@ struct ShapeTraits<Ellipsoid> {
 
     // ---- What prepare() keeps ----
 
-    static void prepare(const Ellipsoid& s, Facts<Ellipsoid>& f) {
-        seed_inverse_frame(s.C, s.a, s.b, s.c, f.seed_inverse);
-        f.exponent = scale_exponent(f.magnitude);
-        double to_unit = Binary64::pow2(-f.exponent);
-        f.dual = DualFrame(to_unit * s.a, to_unit * s.b, {to_unit * s.c, {}}).rows();
-        f.lowest_exponent = lowest_exponent({s.a, s.b, s.c}, to_unit);
-        store(adjugate_rows(AsGiven<Ellipsoid>{s}), f);
-    }
+    // prepare(): OnFrame's.
 
     // ---- seed ----
 
@@ -158,15 +152,7 @@ struct ShapeTraits<Ellipsoid> {
     static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
         const Ellipsoid& s = src.shape;
         Vec3T<T> a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c);
-        auto frame = [&]() -> DualFrameT<T> {
-            if constexpr (Source::prepared && in_double<T>) {
-                int delta = ps.k - src.facts.exponent;
-                if (dual_frame_rescales(src.facts, delta))
-                    return rescaled_dual_frame(src.facts, delta);
-            }
-            return {a, b, {c, {}}};
-        };
-        return {frame, a, b, c, ps.pos(s.C), ps.pos(L0), ps.dir(v)};
+        return {dual_frame<T>(src, ps, a, b, c), a, b, c, ps.pos(s.C), ps.pos(L0), ps.dir(v)};
     }
 
     // ---- certified ----
@@ -191,12 +177,6 @@ struct ShapeTraits<Ellipsoid> {
 
     // ---- exact ----
 
-    template <class NT>
-    static int exact_orientation(const Ellipsoid& s) {
-        using exact_form::lift;
-        return sign(exact_form::AdjugateFrame<NT>(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.c)).det);
-    }
-
     // |W + t V|^2 = det^2 with W = adj(M) (L0 - C), V = adj(M) v; no extent.
     template <class NT>
     static exact_form::LineQuadratic<NT> exact_quadratic(const Ellipsoid& s, const Line& l,
@@ -216,15 +196,6 @@ struct ShapeTraits<Ellipsoid> {
 
     // ---- correct: the Newton rung's line form, and the hit test's quick one ----
 
-    template <class Source>
-    static AdjugateRowsDD adjugate_rows(const Source& src) {
-        if constexpr (Source::prepared) {
-            return adjugate_rows_dd(src.facts);
-        } else {
-            const Ellipsoid& s = src.shape;
-            return adjugate_rows_dd(s.a, s.b, s.c);
-        }
-    }
     template <bool precise, class T, class Source>
     static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         return elliptic_line_form<precise>(adjugate_rows(src), L0, src.shape.C, v, orientation,
@@ -234,15 +205,6 @@ struct ShapeTraits<Ellipsoid> {
                                                f.lo = f.e_lo = f.hi = f.e_hi = 0;
                                                f.lo_bounded = f.hi_bounded = false;
                                            });
-    }
-    template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
-        return form<true, T>(src, L0, v, orientation);
-    }
-    template <class T = double, class Source>
-    static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,
-                                        int orientation) {
-        return form<false, T>(src, L0, v, orientation);
     }
 };
 

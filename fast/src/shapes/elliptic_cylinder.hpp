@@ -36,6 +36,7 @@
 #include "forms/line_form.hpp"
 #include "forms/roots.hpp"
 #include "forms/traits.hpp"
+#include "shapes/on_frame.hpp"
 #include "shapes/seed_frame.hpp"
 
 namespace linequad::detail {
@@ -107,7 +108,7 @@ struct EllipticStable {
 };
 
 template <>
-struct ShapeTraits<EllipticCylinder> {
+struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<EllipticCylinder>> {
     static constexpr const char* name = "elliptic_cylinder";
     static constexpr auto fields =
         std::make_tuple(field("C", &EllipticCylinder::C), field("a", &EllipticCylinder::a),
@@ -135,17 +136,7 @@ struct ShapeTraits<EllipticCylinder> {
 
     // ---- What prepare() keeps ----
 
-    static DualFrame dual_frame(const EllipticCylinder& s, double to_unit) {
-        return DualFrame(to_unit * s.a, to_unit * s.b, {to_unit * s.c, {}});
-    }
-    static void prepare(const EllipticCylinder& s, Facts<EllipticCylinder>& f) {
-        seed_inverse_frame(s.C, s.a, s.b, s.c, f.seed_inverse);
-        f.exponent = scale_exponent(f.magnitude);
-        double to_unit = Binary64::pow2(-f.exponent);
-        f.dual = dual_frame(s, to_unit).rows();
-        f.lowest_exponent = lowest_exponent({s.a, s.b, s.c}, to_unit);
-        store(adjugate_rows(AsGiven<EllipticCylinder>{s}), f);
-    }
+    // prepare(): OnFrame's.
 
     // ---- seed ----
 
@@ -175,15 +166,7 @@ struct ShapeTraits<EllipticCylinder> {
     static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
         const EllipticCylinder& s = src.shape;
         Vec3T<T> a = ps.pos(s.a), b = ps.pos(s.b), c = ps.pos(s.c);
-        auto frame = [&]() -> DualFrameT<T> {
-            if constexpr (Source::prepared && in_double<T>) {
-                int delta = ps.k - src.facts.exponent;
-                if (dual_frame_rescales(src.facts, delta))
-                    return rescaled_dual_frame(src.facts, delta);
-            }
-            return {a, b, {c, {}}};
-        };
-        return {frame, a, b, c, ps.pos(s.C), ps.pos(L0), ps.dir(v)};
+        return {dual_frame<T>(src, ps, a, b, c), a, b, c, ps.pos(s.C), ps.pos(L0), ps.dir(v)};
     }
 
     // ---- certified ----
@@ -212,13 +195,6 @@ struct ShapeTraits<EllipticCylinder> {
 
     // ---- exact ----
 
-    // sgn det[a b c], in NT (the oracle decides it in its own arithmetic).
-    template <class NT>
-    static int exact_orientation(const EllipticCylinder& s) {
-        using exact_form::lift;
-        return sign(exact_form::AdjugateFrame<NT>(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.c)).det);
-    }
-
     // x^2 + y^2 = 1, 0 <= z <= 1, times det^2 with W = det w, V = det v'. The sign of det is
     // folded into the extent: the caller gives it (validation decided it exactly), so that a
     // filtered number type need not.
@@ -245,17 +221,6 @@ struct ShapeTraits<EllipticCylinder> {
 
     // ---- correct: the Newton rung's line form ----
 
-    // The rows of adj(M) and det in bounded double-double: what prepare() keeps, or computed.
-    template <class Source>
-    static AdjugateRowsDD adjugate_rows(const Source& src) {
-        if constexpr (Source::prepared) {
-            return adjugate_rows_dd(src.facts);
-        } else {
-            const EllipticCylinder& s = src.shape;
-            return adjugate_rows_dd(s.a, s.b, s.c);
-        }
-    }
-
     // For the line L0 + t v in T: double, or a lane type (a line per lane). precise: the Newton
     // rung's, in double-double; else the hit test's quick form, in doubles with bounds.
     template <bool precise, class T, class Source>
@@ -278,18 +243,6 @@ struct ShapeTraits<EllipticCylinder> {
             }
         };
         return elliptic_line_form<precise>(adjugate_rows(src), L0, s.C, v, orientation, own);
-    }
-    template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
-        return form<true, T>(src, L0, v, orientation);
-    }
-
-    // ---- correct: the hit test's quick line form (the same, in doubles with bounds) ----
-
-    template <class T = double, class Source>
-    static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,
-                                        int orientation) {
-        return form<false, T>(src, L0, v, orientation);
     }
 };
 
