@@ -250,15 +250,20 @@ unsigned proven_lanes(const Prepared<S>& p, const double* const soa[6], Interval
 }
 
 // Whether the scalar solver answers a line of moderate size from its first rung as given: the
-// quick rung for a hit test (which correct::intersect tries first), the Newton rung otherwise.
+// quick rung for a hit test (which correct::intersect tries first), the Newton rung otherwise,
+// from its enclosures alone (a root its bounds leave next to an extent's end the scalar ladder
+// places with exact signs, which the lanes leave to it).
 template <class S>
 bool rung_proves(const Prepared<S>& p, const Line& l, Query q) {
-    if (q.need != Need::any) return correct::intersect(p, l, q).rung == Rung::newton;
     using Traits = detail::ShapeTraits<S>;
     auto src = detail::source(p);
-    detail::LineForm form = Traits::quick_line_form(src, l.L0, l.v, src.validity().orientation);
+    int orientation = src.validity().orientation;
+    detail::Unit unit{1, 1, l};
     Result r;
-    return detail::hit_test_rung(form, detail::Unit{1, 1, l}, r);
+    if (q.need != Need::any)
+        return detail::newton_rung<detail::Binary64>(Traits::line_form(src, l.L0, l.v, orientation),
+                                                     unit, l, q, r);
+    return detail::hit_test_rung(Traits::quick_line_form(src, l.L0, l.v, orientation), unit, r);
 }
 
 // Every family's cases in blocks of N lines against the block's first shape: each lane is

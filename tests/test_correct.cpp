@@ -450,3 +450,50 @@ TEST_CASE("correct answers convex closed shapes on the Newton rung: discs, sides
         CHECK(any.rung == Rung::newton);
     }
 }
+
+TEST_CASE("correct decides roots at and beside an extent's end on the Newton rung") {
+    // The rim point (3, 4, 4) of a radius-5 cylinder from z = 0 to 4: a line through it exactly
+    // (at t = 1/2; its other root inside the extent), one that grazes it from above the top, and
+    // the first moved four ulps up, beside the rim (its points still doubles, not ties). The
+    // rung's enclosures cannot tell a root at an end from one an ulp away. At the rim the Newton
+    // rung answers from the exact sign of the quadratic where the line crosses the end's plane (a
+    // rim belongs to its disc; on an open shape a root at an end is a hit); beside it, a closed
+    // shape's root is placed against its disc's crossing in double-double on the Newton rung, an
+    // open shape's by the double-double rung. Each as the oracle answers it.
+    Vec3 C{0, 0, 0}, H{0, 0, 4};
+    Line through{{4, 3.75, 4.5}, {-2, 0.5, -1}, Range::line};
+    Line grazing{{4, 3.75, 3.5}, {-2, 0.5, 1}, Range::line};
+    Line beside{{4, 3.75, 4.5 + 0x1p-48}, {-2, 0.5, -1}, Range::line};
+    struct AtEnd {
+        Line line;
+        bool caps;
+        int hits;
+        Part first;
+        HitKind kind;
+        Rung rung;
+    };
+    const AtEnd cases[] = {
+        {through, false, 2, Part::lateral, HitKind::cross, Rung::newton},
+        {through, true, 2, Part::top, HitKind::cross, Rung::newton},
+        {grazing, false, 1, Part::lateral, HitKind::cross, Rung::newton},
+        {grazing, true, 1, Part::top, HitKind::tangent, Rung::newton},
+        {beside, false, 1, Part::lateral, HitKind::cross, Rung::double_double},
+        {beside, true, 2, Part::top, HitKind::cross, Rung::newton},
+    };
+    for (const AtEnd& c : cases) {
+        Cylinder cylinder{C, H, 5, true, c.caps};
+        EllipticCylinder elliptic{C, {5, 0, 0}, {0, 5, 0}, {0, 0, 4}, true, c.caps};
+        for (Shape shape : {Shape(cylinder), Shape(elliptic)}) {
+            for (Query q : {Query{Need::all, true}, Query{Need::nearest, true}}) {
+                INFO(shape_name(shape)
+                     << " caps " << c.caps << " L0.z " << c.line.L0.z << " need " << int(q.need));
+                Result got = correct_solve(shape, c.line, q);
+                check_same_answer(got, exact::intersect(shape, c.line, q));
+                CHECK(got.rung == c.rung);
+                REQUIRE(got.count == (q.need == Need::all ? c.hits : 1));
+                CHECK(got.hits[0].part == c.first);
+                CHECK(got.hits[0].kind == c.kind);
+            }
+        }
+    }
+}

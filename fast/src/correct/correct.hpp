@@ -79,6 +79,53 @@ inline bool moderate(double extent, const Line& l) {
     return in_moderate_range(extent) && in_moderate_range(max_abs(l.v));
 }
 
+// The exact form in BigFloat, formed once for the line and only when asked: by the Newton rung,
+// for a root its bounds leave next to an extent's end (ExtentEnds), and by the exact rung.
+template <class S>
+class ExactForm final : public ExtentEnds {
+  public:
+    ExactForm(const S& shape, const Line& l, int orientation)
+        : shape_(shape), line_(l), orientation_(orientation) {}
+
+    const exact_form::LineQuadratic<BigFloat>& quadratic() const {
+        if (!q_)
+            q_ = ShapeTraits<S>::template exact_quadratic<BigFloat>(shape_, line_, orientation_);
+        return *q_;
+    }
+
+    // Deferred, at() only notes that the rung asked: the double-double rung, cheaper than the
+    // exact form, answers a root beside an end first; the Newton rung is asked again after it.
+    void defer(bool d) { deferred_ = d; }
+    bool asked() const { return asked_; }
+
+    // dZ^2 q(t_E) = (A N + 2 B dZ) N + C0 dZ^2 with N = end - Z0, exactly (the exact form's own
+    // test of a disc), and t_E = N / dZ enclosed from N's and dZ's leading bits.
+    std::optional<EndCrossing> at(bool top, double t_factor) const override {
+        asked_ = true;
+        if (deferred_) return std::nullopt;
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        if (!(top ? q.hi_bounded : q.lo_bounded)) return std::nullopt;
+        BigFloat N = (top ? q.hi : q.lo) - q.Z0;
+        EndCrossing c;
+        c.q_sign = sign((q.A * N + q.B.scaled(1) * q.dZ) * N + q.C0 * q.dZ * q.dZ);
+        c.A_sign = sign(q.A);
+        c.dZ_sign = sign(q.dZ);
+        c.open = top ? q.hi_open : q.lo_open;
+        BigFloat::Leading n = N.leading(), d = q.dZ.leading();
+        BoundedDD t = BoundedDD(n.hi, n.lo, n.err) / BoundedDD(d.hi, d.lo, d.err);
+        c.t = BoundedDD(t.hi / t_factor, t.lo / t_factor, t.e / t_factor); // exact: 2^k
+        return c;
+    }
+
+  private:
+    const S& shape_;
+    const Line& line_;
+    int orientation_;
+    bool deferred_ = false;
+    mutable bool asked_ = false;
+    mutable std::optional<exact_form::LineQuadratic<BigFloat>> q_;
+};
+
 template <class Target>
 struct CorrectTo {
     static constexpr Certainty says = Certainty::certain;
@@ -114,11 +161,12 @@ struct CorrectTo {
         using S = typename Source::Shape;
         using Traits = ShapeTraits<S>;
         Result r; // the one result, returned in place
+        ExactForm<S> exact(src.shape, l, orientation);
         // The Newton rung on the scene as `unit` has it; r is left empty when the rung declines.
         auto newton = [&](const auto& scene, const Unit& unit) LINEQUAD_INLINE_LAMBDA {
             if constexpr (Traits::has_line_form) {
                 LineForm form = Traits::line_form(scene, unit.line.L0, unit.line.v, orientation);
-                if (newton_rung<Target>(form, unit, l, q, r)) {
+                if (newton_rung<Target>(form, unit, l, q, r, &exact)) {
                     mark_certain<Target>(r, Rung::newton);
                     return true;
                 }
@@ -133,25 +181,35 @@ struct CorrectTo {
         if constexpr (std::is_same_v<Target, Binary32> && Traits::has_line_form) {
             if (as_given) {
                 LineForm form = Traits::quick_line_form(src, l.L0, l.v, orientation);
-                if (newton_rung<Target, Residual::quick>(form, Unit{1, 1, l}, l, q, r)) {
+                if (newton_rung<Target, Residual::quick>(form, Unit{1, 1, l}, l, q, r, &exact)) {
                     mark_certain<Target>(r, Rung::newton);
                     return r;
                 }
                 r = Result();
             }
         }
+        // A root next to an extent's end: the double-double rung first, then the Newton rung
+        // with the exact form's signs at that end, then the exact rung (with that exact form).
+        exact.defer(true);
         if (as_given && newton(src, Unit{1, 1, l})) return r;
-        if (std::optional<Unit> u = unit_scale(src, extent, l)) {
-            S unit = scaled(src.shape, 1 / u->pos_factor);
-            if (!as_given && newton(AsGiven<S>{unit}, *u)) return r;
-            auto dd = Traits::template exact_quadratic<BoundedDD>(unit, u->line, orientation);
+        std::optional<Unit> u = unit_scale(src, extent, l);
+        std::optional<S> unit;
+        if (u) {
+            unit = scaled(src.shape, 1 / u->pos_factor);
+            if (!as_given && newton(AsGiven<S>{*unit}, *u)) return r;
+            auto dd = Traits::template exact_quadratic<BoundedDD>(*unit, u->line, orientation);
             if (double_double_rung<Target>(dd, *u, q, r)) {
                 mark_certain<Target>(r, Rung::double_double);
                 return r;
             }
         }
-        r = exact_rung<Target>(
-            Traits::template exact_quadratic<BigFloat>(src.shape, l, orientation), l, q);
+        if (exact.asked()) {
+            exact.defer(false);
+            r = Result(); // what the double-double rung left
+            if (as_given ? newton(src, Unit{1, 1, l}) : u && newton(AsGiven<S>{*unit}, *u))
+                return r;
+        }
+        r = exact_rung<Target>(exact.quadratic(), l, q);
         mark_certain<Target>(r, Rung::exact);
         return r;
     }

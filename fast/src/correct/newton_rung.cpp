@@ -124,15 +124,34 @@ LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, Part part, const Unit&
 
 // ---- Shapes closed by discs ----
 
-// Where a lateral root lies against the extent (a closed shape's is bounded at both ends).
-enum class Side { below, within, above, unknown };
-LINEQUAD_INLINE Side side_of(const LineForm& f, const Enclosure<double>& en) {
-    Axial<double> a = axial_at(f, en);
-    DifferenceTest<double> lo = difference_test(a.z, a.e_z, f.lo, f.e_lo);
-    if (lo.d < -lo.bound) return Side::below;
-    DifferenceTest<double> hi = difference_test(f.hi, f.e_hi, a.z, a.e_z);
-    if (hi.d < -hi.bound) return Side::above;
-    return lo.bound < lo.d && hi.bound < hi.d ? Side::within : Side::unknown;
+// Where a lateral root lies against the extent: strictly below, within or above it, or exactly
+// at an end (a rim), which only the exact signs of `ends` show.
+enum class Side { below, at_lo, within, at_hi, above, unknown };
+struct Placement {
+    Side side = Side::unknown;
+    Enclosure<double> t_end{}; // at_lo, at_hi: the end's crossing, which is the root
+    bool open = false;         // and another part owns that end
+};
+
+// The crossing t_E of the end root i's bounds leave open, placed against root i by the sign of
+// q(t_E): t_E between the roots, beyond root i, or root i itself. That needs t_E proven on root
+// i's side of the other root (the roots are proven apart, t_E within a few ulps of root i).
+LINEQUAD_INLINE Placement placed_at_end(const std::optional<Enclosure<double>> (&root)[2], int i,
+                                        bool top, const ExtentEnds& ends, const Unit& unit) {
+    std::optional<EndCrossing> c = ends.at(top, unit.t_factor);
+    if (!c || c->dZ_sign == 0 || c->A_sign == 0) return {};
+    Enclosure<double> end{c->t.hi, c->t.lo, c->t.e, true, true};
+    EnclosedT<double> at_end = t_of(end), other = t_of(*root[1 - i]);
+    DifferenceTest<double> apart = i == 0
+                                       ? difference_test(other.t, other.e_t, at_end.t, at_end.e_t)
+                                       : difference_test(at_end.t, at_end.e_t, other.t, other.e_t);
+    if (!(apart.d > apart.bound)) return {};
+    // sgn(t_i - t_E), then sgn(Z(t_i) - end) = sgn(dZ) sgn(t_i - t_E).
+    bool between = c->q_sign != c->A_sign;
+    int after = c->q_sign == 0 ? 0 : (between ? -1 : 1) * (i == 0 ? 1 : -1);
+    int z = c->dZ_sign * after;
+    if (!top) return {z < 0 ? Side::below : z == 0 ? Side::at_lo : Side::within, end, c->open};
+    return {z > 0 ? Side::above : z == 0 ? Side::at_hi : Side::within, end, c->open};
 }
 
 // Where the line crosses the disc's plane Z = end: t = (end - Z0) / dZ, rational, in
@@ -142,6 +161,58 @@ LINEQUAD_INLINE std::optional<Enclosure<double>> plane_crossing(const DiscPlanes
     BoundedDD t = (end - p.Z0) / p.dZ;
     if (!std::isfinite(t.hi) || !std::isfinite(t.e)) return std::nullopt;
     return Enclosure<double>{t.hi, t.lo, t.e, true, true};
+}
+
+// A closed shape's root next to an end, against that end's crossing, both enclosed to about
+// 2^-100 (the discs' planes are exact in double-double): a root a few ulps from a rim. Where
+// the enclosures meet (a root at the rim), unknown.
+LINEQUAD_INLINE Side beside_plane(const LineForm& f, const Enclosure<double>& root, bool top) {
+    if (!f.planes || !(std::fabs(f.planes->dZ.hi) > f.planes->dZ.e)) return Side::unknown;
+    std::optional<Enclosure<double>> end =
+        plane_crossing(*f.planes, top ? f.planes->hi : f.planes->lo);
+    if (!end) return Side::unknown;
+    // root - end = (c_r - c_e) + (x_r - x_e): three roundings, each within u of a sum of these.
+    double d = (root.c - end->c) + (root.x - end->x);
+    double bound =
+        root.e + end->e +
+        4 * u * (std::fabs(root.c) + std::fabs(end->c) + std::fabs(root.x) + std::fabs(end->x)) +
+        F::denorm_min;
+    if (!(std::fabs(d) > bound)) return Side::unknown;
+    bool later = d > 0, rising = f.planes->dZ.hi > 0; // Z(root) > end iff later == rising
+    if (!top) return later == rising ? Side::within : Side::below;
+    return later == rising ? Side::above : Side::within;
+}
+
+// Where root i lies against the extent (a closed shape's is bounded at both ends; an open one's
+// where lo_bounded, hi_bounded say), as its enclosure shows it; unknown next to an end.
+LINEQUAD_INLINE Side side_of(const LineForm& f, const Enclosure<double>& en) {
+    bool closed = f.discs != Discs::none;
+    Axial<double> a = axial_at(f, en);
+    DifferenceTest<double> lo = difference_test(a.z, a.e_z, f.lo, f.e_lo);
+    DifferenceTest<double> hi = difference_test(f.hi, f.e_hi, a.z, a.e_z);
+    bool has_lo = closed || f.lo_bounded, has_hi = closed || f.hi_bounded;
+    if (has_lo && lo.d < -lo.bound) return Side::below;
+    if (has_hi && hi.d < -hi.bound) return Side::above;
+    bool lo_clear = !has_lo || lo.bound < lo.d, hi_clear = !has_hi || hi.bound < hi.d;
+    return lo_clear && hi_clear ? Side::within : Side::unknown;
+}
+
+// Root i, which its enclosure leaves next to one end (the scalar ladder's question; the batch
+// lanes hand such a line to it): against that end's crossing in double-double, then from the
+// exact signs of `ends`. Both ends next to it (a tiny extent): unknown. Rare, so out of line.
+[[gnu::noinline]] Placement place_at_end(const LineForm& f,
+                                         const std::optional<Enclosure<double>> (&root)[2], int i,
+                                         const ExtentEnds& ends, const Unit& unit) {
+    bool closed = f.discs != Discs::none;
+    Axial<double> a = axial_at(f, *root[i]);
+    DifferenceTest<double> lo = difference_test(a.z, a.e_z, f.lo, f.e_lo);
+    DifferenceTest<double> hi = difference_test(f.hi, f.e_hi, a.z, a.e_z);
+    bool lo_clear = !(closed || f.lo_bounded) || lo.bound < lo.d;
+    bool hi_clear = !(closed || f.hi_bounded) || hi.bound < hi.d;
+    if (lo_clear == hi_clear) return {};
+    bool top = lo_clear;
+    if (Side s = beside_plane(f, *root[i], top); s != Side::unknown) return {s};
+    return placed_at_end(root, i, top, ends, unit);
 }
 
 // For A < 0 (a line steeper than a cone's generators, one root on each nappe): the root on the
@@ -170,12 +241,23 @@ LINEQUAD_INLINE int root_on_nappe(const LineForm& f,
 // at the disc's plane is the disc); a piece beyond one end: no hit. Every hit crosses. A side the
 // bounds leave open, a disc the form has not (the quick form, the cone's apex end), a rounding not
 // proven: the next rungs.
+// A root exactly at an end (A > 0) is where the piece meets that end's disc at its rim: the disc
+// is that end of the piece (a rim belongs to its disc), and a piece that touches the extent only
+// there is one point, a rim the line grazes (tangent).
 template <class Target>
 bool closed_hits(const LineForm& f, const Leading<double>& A,
                  const std::optional<Enclosure<double>> (&root)[2], const Unit& unit,
-                 const Line& caller, Query query, Result& r) {
-    Side side[2] = {side_of(f, *root[0]), side_of(f, *root[1])};
-    if (side[0] == Side::unknown || side[1] == Side::unknown) return false;
+                 const Line& caller, Query query, Result& r, const ExtentEnds* ends) {
+    Side side[2], rim[2];
+    for (int i = 0; i < 2; ++i) {
+        rim[i] = side_of(f, *root[i]);
+        if (rim[i] == Side::unknown && ends) rim[i] = place_at_end(f, root, i, *ends, unit).side;
+        side[i] = rim[i] == Side::at_lo   ? Side::below
+                  : rim[i] == Side::at_hi ? Side::above
+                                          : rim[i];
+        if (side[i] == Side::unknown) return false;
+    }
+    bool at_rim = rim[0] != side[0] || rim[1] != side[1];
     Enclosure<double> at[2];
     Part part[2];
     ExactCoordinate exact[2];
@@ -197,9 +279,21 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
         return true;
     };
     if (A.A > 0) {
-        if (side[0] == side[1] && side[0] != Side::within) return true;
+        if (side[0] == side[1] && side[0] != Side::within) {
+            if (!at_rim) return true;
+            int i = rim[0] != side[0] ? 0 : 1; // the root at the rim
+            if (!end_at(0, i, side[i])) return false;
+            auto [t, e_t] = t_of(at[0]);
+            Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
+            if (k.outside) return true;
+            if (!k.inside || !add_hit<Target>(at[0], part[0], unit, caller, query, r, exact[0]))
+                return false;
+            r.hits[0].kind = HitKind::tangent;
+            return true;
+        }
         if (!end_at(0, 0, side[0]) || !end_at(1, 1, side[1])) return false;
     } else {
+        if (at_rim) return false;
         // The solid's nappe holds root i and the ray from it away from the other root: before t0
         // (i = 0) or after t1. Along that ray Z runs to one side (`away`, from dZ's sign); the
         // ray meets the extent from root i to the end on that side, or across both ends, or not.
@@ -217,7 +311,7 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
         }
     }
     for (int i = 0; i < 2; ++i) {
-        double t = at[i].c + at[i].x, e_t = at[i].e + u * std::fabs(t) + F::denorm_min;
+        auto [t, e_t] = t_of(at[i]);
         Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
         if (k.outside) continue;
         if (!k.inside || !add_hit<Target>(at[i], part[i], unit, caller, query, r, exact[i]))
@@ -241,8 +335,43 @@ Local<double> local_near(const LineForm& f, double c) {
         return local_at<SigmaZ>(f, c);
 }
 
+// An open shape's root i whose bounds leave kept() open, placed by `ends` once the other root is
+// proven too: outside the extent, not kept; within it or at an end (kept unless another part
+// owns that end; `at` becomes the end's crossing, which is the root), kept where the range
+// proves it. 1, 0, or -1: undecided. Rare, so out of line.
+template <int SigmaZ, Residual R>
+[[gnu::noinline]] int kept_at_end(const LineForm& f, const Leading<double>& A,
+                                  const double (&estimate)[2], int i, Enclosure<double>& at,
+                                  const ExtentEnds& ends, const Unit& unit) {
+    std::optional<Enclosure<double>> root[2];
+    root[i] = at;
+    int j = 1 - i;
+    root[j] = root_near(local_near<SigmaZ, R>(f, estimate[j]), A, estimate[j]);
+    if (!root[j] || root[j]->smaller != (j == 0)) return -1;
+    Placement p{side_of(f, at)};
+    if (p.side == Side::unknown) p = place_at_end(f, root, i, ends, unit);
+    switch (p.side) {
+    case Side::unknown:
+        return -1;
+    case Side::below:
+    case Side::above:
+        return 0;
+    case Side::at_lo:
+    case Side::at_hi:
+        if (p.open) return 0;
+        at = p.t_end;
+        break;
+    case Side::within:
+        break;
+    }
+    auto [t, e_t] = t_of(at);
+    Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
+    return k.outside ? 0 : k.inside ? 1 : -1;
+}
+
 template <int SigmaZ, class Target, Residual R>
-bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
+bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r,
+           const ExtentEnds* ends) {
     Leading<double> A = leading<SigmaZ>(f);
     if (!(std::fabs(A.A) > A.e)) return false; // nearly parallel to the axis or to a generator
     Estimates<double> est = estimates<SigmaZ>(f, A);
@@ -265,7 +394,7 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
             en[i] = root_near(local[i], A, estimate[i]);
             if (!en[i] || en[i]->smaller != (i == 0)) return false;
         }
-        return closed_hits<Target>(f, A, en, unit, caller, query, r);
+        return closed_hits<Target>(f, A, en, unit, caller, query, r, ends);
     }
     // Both roots at once when both are needed; otherwise the second only if the first is not kept.
     Local<double> local[2];
@@ -276,6 +405,8 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         std::optional<Enclosure<double>> en = root_near(local[i], A, estimate[i]);
         if (!en || en->smaller != (i == 0)) return false;
         int inside = kept(f, unit, *en);
+        if (inside < 0 && ends)
+            inside = kept_at_end<SigmaZ, R>(f, A, estimate, i, *en, *ends, unit);
         if (inside < 0) return false;
         if (inside == 0) continue;
         if (!add_hit<Target>(*en, Part::lateral, unit, caller, query, r)) return false;
@@ -366,17 +497,20 @@ bool hit_test_rung(const LineForm& f, const Unit& unit, Result& r) {
 }
 
 template <class Target, Residual R>
-bool newton_rung(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r) {
+bool newton_rung(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r,
+                 const ExtentEnds* ends) {
     return with_sigma_z(f.sigma_z, [&](auto sigma_z) {
-        return solve<decltype(sigma_z)::value, Target, R>(f, unit, caller, query, r);
+        return solve<decltype(sigma_z)::value, Target, R>(f, unit, caller, query, r, ends);
     });
 }
 
 template bool newton_rung<Binary64, Residual::double_double>(const LineForm&, const Unit&,
-                                                             const Line&, Query, Result&);
+                                                             const Line&, Query, Result&,
+                                                             const ExtentEnds*);
 template bool newton_rung<Binary32, Residual::double_double>(const LineForm&, const Unit&,
-                                                             const Line&, Query, Result&);
+                                                             const Line&, Query, Result&,
+                                                             const ExtentEnds*);
 template bool newton_rung<Binary32, Residual::quick>(const LineForm&, const Unit&, const Line&,
-                                                     Query, Result&);
+                                                     Query, Result&, const ExtentEnds*);
 
 } // namespace linequad::detail

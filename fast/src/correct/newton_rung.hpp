@@ -22,6 +22,8 @@
 
 #include "linequad/result.hpp"
 
+#include <optional>
+
 namespace linequad::detail {
 
 // How g is evaluated near each estimate: in double-double from the line form (the double
@@ -29,11 +31,33 @@ namespace linequad::detail {
 // still leave a float rounding proven nearly always (correct32's first rung).
 enum class Residual { double_double, quick };
 
+// Where the line crosses the plane of one end of the extent, Z = end, at t_E = (end - Z0) / dZ:
+// what the rung asks when its bounds leave a lateral root next to that end (a rim, or a root a
+// few ulps from it). The signs are exact; t_E is rational, enclosed in double-double.
+struct EndCrossing {
+    int q_sign;  // sgn q(t_E): -1 inside the quadric, 0 on it (t_E is a root), 1 outside
+    int A_sign;  // sgn of q's leading coefficient: t_E lies between the roots iff q_sign != A_sign
+    int dZ_sign; // sgn dZ
+    bool open; // the end belongs to another part (a capsule side's seam): a root there is not kept
+    BoundedDD t; // t_E, in the rung's units
+};
+// The ladder's answer to that question, from the exact form (the exact rung's, formed once and
+// only when asked). No value where the end is not bounded.
+class ExtentEnds {
+  public:
+    virtual std::optional<EndCrossing> at(bool top, double t_factor) const = 0;
+
+  protected:
+    ~ExtentEnds() = default;
+};
+
 // The answer to `query` in r (hits, t and points correctly rounded to Target, Binary64 or
 // Binary32, r.count set) when every decision and every rounding is proven; false otherwise, with
-// r to be discarded. `caller` is the line as given, u the scaled scene.
+// r to be discarded. `caller` is the line as given, u the scaled scene. Where a root's bounds
+// leave its side of an extent's end open, `ends` (when given) decides it exactly.
 template <class Target, Residual R = Residual::double_double>
-bool newton_rung(const LineForm& f, const Unit& u, const Line& caller, Query query, Result& r);
+bool newton_rung(const LineForm& f, const Unit& u, const Line& caller, Query query, Result& r,
+                 const ExtentEnds* ends = nullptr);
 
 // The hit test (Need::any) on a quick line form (the shape's quick_line_form: doubles with
 // bounds) of a scene as given (u's factors 1): the same proof, from G in double. When it proves

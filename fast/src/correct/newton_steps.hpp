@@ -241,6 +241,17 @@ LINEQUAD_INLINE Mask<T> no_root_proven(const Leading<T>& A, T c, const Local<T>&
 // The root's t = c + x rounded once, and a linear function of t at the root, Z(t*) = Z0 + t* dZ
 // (the axial coordinate, or a fourth term), from z = fma(t, dZ, Z0), each with its bound: the
 // bounds of Z0 and dZ, |t* - t|, and z's rounding.
+// t = c + x in double, within e_t of the root.
+template <class T>
+struct EnclosedT {
+    T t, e_t;
+};
+template <class T>
+LINEQUAD_INLINE EnclosedT<T> t_of(const Enclosure<T>& en) {
+    using std::fabs;
+    T t = en.c + en.x;
+    return {t, en.e + T(u) * fabs(t) + T(F::denorm_min)};
+}
 template <class T>
 struct Axial {
     T t, e_t, z, e_z;
@@ -249,8 +260,7 @@ template <class T>
 LINEQUAD_INLINE Axial<T> linear_at(T Z0, T e_Z0, T dZ, T e_dZ, const Enclosure<T>& en) {
     using std::fabs;
     using std::fma;
-    T t = en.c + en.x;
-    T e_t = en.e + T(u) * fabs(t) + T(F::denorm_min);
+    auto [t, e_t] = t_of(en);
     T z = fma(t, dZ, Z0);
     T e_z = (e_Z0 + e_t * (fabs(dZ) + e_dZ) + fabs(t) * e_dZ + T(u) * fabs(z)) * T(F::cover(32)) +
             T(F::subnormal_slack);
