@@ -134,13 +134,14 @@ void stable_batch(benchmark::State& state, int shape, Lanes lanes) {
 }
 
 // correct on the same 1024 lines against the shape prepared once: one line at a time (lanes =
-// scalar), or the batch on `lanes`.
-void correct_lines(benchmark::State& state, int shape, Lanes lanes) {
+// scalar), or the batch on `lanes`; `closed`: the shape closed by its discs.
+void correct_lines(benchmark::State& state, int shape, Lanes lanes, bool closed) {
     bench::OneShape<double> o = bench::one_shape<double>(shape);
     LineArrays l = o.lines();
     std::vector<Result> out(l.count);
     std::visit(
-        [&](const auto& s) {
+        [&](auto s) {
+            if constexpr (has_extent_options<decltype(s)>) s.caps = closed;
             auto p = prepare(s);
             for (auto _ : state) {
                 if (lanes == Lanes::scalar) {
@@ -161,15 +162,22 @@ void correct_lines(benchmark::State& state, int shape, Lanes lanes) {
 }
 
 int register_all() {
-    for (int shape = 0; shape < int(shape_count); ++shape) {
-        std::string correct_name = name_of(shape) + "/correct/1024_lines/";
-        benchmark::RegisterBenchmark((correct_name + "scalar_loop").c_str(), correct_lines, shape,
-                                     Lanes::scalar);
-        for (Lanes lanes : {Lanes::avx2, Lanes::avx512})
-            if (lanes <= batch_lanes())
-                benchmark::RegisterBenchmark((correct_name + "batch_" + lanes_name(lanes)).c_str(),
-                                             correct_lines, shape, lanes);
-    }
+    for (int shape = 0; shape < int(shape_count); ++shape)
+        for (bool closed : {false, true}) {
+            bool has_caps = std::visit(
+                [](const auto& s) { return has_extent_options<std::decay_t<decltype(s)>>; },
+                bench::one_shape<double>(shape, 1).shape);
+            if (closed && !has_caps) continue;
+            std::string correct_name =
+                name_of(shape) + (closed ? "+caps" : "") + "/correct/1024_lines/";
+            benchmark::RegisterBenchmark((correct_name + "scalar_loop").c_str(), correct_lines,
+                                         shape, Lanes::scalar, closed);
+            for (Lanes lanes : {Lanes::avx2, Lanes::avx512})
+                if (lanes <= batch_lanes())
+                    benchmark::RegisterBenchmark(
+                        (correct_name + "batch_" + lanes_name(lanes)).c_str(), correct_lines, shape,
+                        lanes, closed);
+        }
     for (int shape = 0; shape < int(shape_count); ++shape) {
         std::string name = name_of(shape) + "/stable/1024_lines/";
         benchmark::RegisterBenchmark((name + "scalar_loop").c_str(), stable_scalar_loop<double>,

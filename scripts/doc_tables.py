@@ -286,13 +286,15 @@ def batch():
            "| shape | solver | scalar loop | AVX2 | AVX-512 | AVX-512 over AVX2 |",
            "|---|---|---:|---:|---:|---:|"]
     for shape in SHAPES:
-        for solver in ["stable", "correct"]:
-            key = f"{shape}/{solver}/1024_lines/"
+        for solver in ["stable", "correct", "correct (closed)"]:
+            name = shape + "+caps" if solver.endswith("(closed)") else shape
+            key = f"{name}/{solver.split()[0]}/1024_lines/"
             if key + "batch_avx2" not in bench:
                 continue
             scalar = bench.get(key + "scalar_loop")
             avx2, avx512 = bench[key + "batch_avx2"], bench.get(key + "batch_avx512")
-            out.append(f"| {shape} | `{solver}` | {ns(scalar) if scalar else '-'} | {ns(avx2)} | "
+            out.append(f"| {name} | `{solver.split()[0]}` | {ns(scalar) if scalar else '-'} | "
+                       f"{ns(avx2)} | "
                        + (f"{ns(avx512)} | {avx2 / avx512:.2f}× |" if avx512 else "- | - |"))
     lanes = [k for k in bench if k.startswith("machine/")]
     if lanes:

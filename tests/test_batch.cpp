@@ -291,7 +291,7 @@ std::pair<long, long> lanes_against_scalar_rung() {
                             using S = std::decay_t<decltype(shape)>;
                             if constexpr (detail::line_form_in_lanes<S>) {
                                 Prepared<S> p = prepare(shape);
-                                if (!p.ok() || detail::has_discs(shape)) return;
+                                if (!p.ok()) return;
                                 for (Query q : {Query{}, Query{Need::nearest, false},
                                                 Query{Need::any, false}}) {
                                     unsigned bits = proven_lanes<N>(p, arrays, head.line.range, q);

@@ -422,9 +422,9 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
 // the line crosses both discs, at t = (end - Z0) / dZ, and the first in the range is the hit.
 // From the quick form's doubles: with n = end - Z0 and dZ each within their bounds, the quotient
 // is within (e_n + |t| e_dZ) / (|dZ| - e_dZ) of n / dZ, and its rounding adds u |t|.
-bool closed_hit_test(const LineForm& f, const Leading<double>& A,
-                     const std::optional<Enclosure<double>> (&root)[2], bool both_outside,
-                     const Unit& unit, Result& r) {
+bool closed_hit_test_of(const LineForm& f, const Leading<double>& A,
+                        const std::optional<Enclosure<double>> (&root)[2], bool both_outside,
+                        const Unit& unit, Result& r) {
     if (f.discs != Discs::convex || !(A.A > 0) || !root[0] || !root[1] ||
         root[0]->smaller == root[1]->smaller)
         return false;
@@ -486,7 +486,7 @@ bool hit_test(const LineForm& f, const Unit& unit, Result& r) {
         if (inside == 0) outside[en->smaller ? 0 : 1] = true;
     }
     if (f.discs == Discs::none) return outside[0] && outside[1];
-    return closed_hit_test(f, A, root, outside[0] && outside[1], unit, r);
+    return closed_hit_test_of(f, A, root, outside[0] && outside[1], unit, r);
 }
 
 } // namespace
@@ -494,6 +494,20 @@ bool hit_test(const LineForm& f, const Unit& unit, Result& r) {
 bool hit_test_rung(const LineForm& f, const Unit& unit, Result& r) {
     return with_sigma_z(
         f.sigma_z, [&](auto sigma_z) { return hit_test<decltype(sigma_z)::value>(f, unit, r); });
+}
+
+bool closed_rung(const LineForm& f, double A, const Enclosure<double> (&roots)[2], const Unit& unit,
+                 const Line& caller, Query query, Result& r) {
+    const std::optional<Enclosure<double>> en[2] = {roots[0], roots[1]};
+    return closed_hits<Binary64>(f, {A, 0}, en, unit, caller, query, r, nullptr);
+}
+
+bool closed_hit_test(const LineForm& f, double A, const Enclosure<double> (&roots)[2],
+                     bool both_outside, const Unit& unit, Result& r) {
+    std::optional<Enclosure<double>> en[2];
+    for (int i = 0; i < 2; ++i)
+        if (roots[i].proven) en[i] = roots[i];
+    return closed_hit_test_of(f, {A, 0}, en, both_outside, unit, r);
 }
 
 template <class Target, Residual R>

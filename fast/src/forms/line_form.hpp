@@ -31,8 +31,10 @@ namespace linequad::detail {
 enum class Discs : unsigned char { none, convex, two_solids };
 // Where the discs lie: a disc's t is (end - Z0) / dZ, rational, from Z0, dZ and the extent's ends
 // in double-double; at_lo, at_hi: whether that end has a disc (a cone's apex end has none).
-struct DiscPlanes {
-    BoundedDD Z0, dZ, lo, hi;
+template <class T>
+struct DiscPlanesT {
+    BoundedDDT<T> Z0, dZ; // the line's (a lane type for the batch lanes')
+    BoundedDD lo, hi;     // the shape's
     bool at_lo, at_hi;
     // Where both planes are perpendicular to a coordinate axis: its index, and the planes'
     // coordinates on it, exact doubles (a disc point's coordinate there is the plane's, exactly,
@@ -40,6 +42,7 @@ struct DiscPlanes {
     int axis = -1;
     double lo_at = 0, hi_at = 0;
 };
+using DiscPlanes = DiscPlanesT<double>;
 // The coordinate axis a direction runs along (its other two components exactly 0), or -1.
 inline int axis_along(Vec3 d) {
     int nonzero = (d.x != 0) + (d.y != 0) + (d.z != 0);
@@ -68,8 +71,8 @@ struct LineFormT {
     T Z0, e_Z0, dZ, e_dZ;
     double lo, e_lo, hi, e_hi;
     bool lo_bounded, hi_bounded;
-    Discs discs = Discs::none;        // discs_of(shape), set by every form
-    std::optional<DiscPlanes> planes; // the precise form's, on a shape closed by discs
+    Discs discs = Discs::none;            // discs_of(shape), set by every form
+    std::optional<DiscPlanesT<T>> planes; // the precise form's, on a shape closed by discs
 };
 using LineForm = LineFormT<double>;
 
@@ -273,11 +276,11 @@ LINEQUAD_INLINE LineFormT<T> precise_elliptic_line_form(const AdjugateRowsDD& ro
         elliptic_form(rows, difference_exact(L0, lanes_of<T>(origin)), v, negative_det);
     BoundedDD det = absolute_det(rows, negative_det);
     own(f, det, [&] { return product(det, det); });
-    if constexpr (std::is_same_v<T, double>) {
-        if (f.planes) { // Z = U_z with det's sign folded in, as elliptic_form's
-            f.planes->Z0 = negative_det ? -f.U0[2] : f.U0[2];
-            f.planes->dZ = negative_det ? -f.U1[2] : f.U1[2];
-        }
+    if (f.planes) { // Z = U_z with det's sign folded in, as elliptic_form's
+        auto signed_z = [&](const BoundedDDT<T>& x) {
+            return negative_det ? BoundedDDT<T>(-x.hi, -x.lo, x.e) : x;
+        };
+        f.planes->Z0 = signed_z(f.U0[2]), f.planes->dZ = signed_z(f.U1[2]);
     }
     return f;
 }

@@ -346,14 +346,12 @@ struct ShapeTraits<Cylinder> {
         f.hi = axis.hh.hi, f.e_hi = bound_of_hi(axis.hh);
         f.lo_bounded = f.hi_bounded = s.finite;
         f.discs = discs_of(s);
-        if constexpr (std::is_same_v<T, double>) {
-            if (s.caps) { // the discs at Z = 0 and Z = h.h: Z0 = w.h and dZ = v.h
-                f.planes =
-                    DiscPlanes{dot_dd(w, h), dot_dd(v, h), BoundedDD(0), axis.hh, true, true};
-                f.planes->axis = axis_along(s.H - s.C);
-                if (f.planes->axis >= 0)
-                    f.planes->lo_at = s.C[f.planes->axis], f.planes->hi_at = s.H[f.planes->axis];
-            }
+        if (s.caps) { // the discs at Z = 0 and Z = h.h: Z0 = w.h and dZ = v.h
+            f.planes =
+                DiscPlanesT<T>{dot_dd(w, h), dot_dd(v, h), BoundedDD(0), axis.hh, true, true};
+            f.planes->axis = axis_along(s.H - s.C);
+            if (f.planes->axis >= 0)
+                f.planes->lo_at = s.C[f.planes->axis], f.planes->hi_at = s.H[f.planes->axis];
         }
         return f;
     }

@@ -338,7 +338,7 @@ struct ShapeTraits<EllipticCone> {
                 f.discs = discs_of(s);
                 // The base disc at z = -1 (and the top at z = 1).
                 if (precise && s.caps) {
-                    f.planes = DiscPlanes{{}, {}, -det, two ? det : BoundedDD(0), true, two};
+                    f.planes = DiscPlanesT<T>{{}, {}, -det, two ? det : BoundedDD(0), true, two};
                     // The base's plane through C, spanned by a and b (a closed two-nappe cone's
                     // discs the rung does not answer).
                     int k = axis_across(s.a, s.b);

@@ -234,7 +234,7 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
             f.lo_bounded = f.hi_bounded = s.finite;
             f.discs = discs_of(s);
             if (precise && s.caps) {
-                f.planes = DiscPlanes{{}, {}, BoundedDD(0), det, true, true};
+                f.planes = DiscPlanesT<T>{{}, {}, BoundedDD(0), det, true, true};
                 // The discs' planes through C and C + c, spanned by a and b.
                 int k = axis_across(s.a, s.b);
                 TwoTerm top = k >= 0 ? two_sum(s.C[k], s.c[k]) : TwoTerm{0, 0};

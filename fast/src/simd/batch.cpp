@@ -158,12 +158,11 @@ void correct_batch(const Prepared<S>& shape, const LineArrays& lines, Query q, R
                    Lanes lanes) {
     std::size_t i = 0;
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
-    // The ladder's Newton rung as given (a hit test's quick rung) covers a valid open shape
-    // with a line form and a valid range.
+    // The ladder's Newton rung as given (a hit test's quick rung) covers a valid shape with a
+    // line form (open, or closed by discs) and a valid range.
     if constexpr (detail::line_form_in_lanes<S>) {
         Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
-        bool rung_applies =
-            shape.ok() && !detail::has_discs(shape.shape()) && detail::check_line(probe).ok();
+        bool rung_applies = shape.ok() && detail::check_line(probe).ok();
         lanes = std::min(lanes, batch_lanes());
         if (rung_applies && lanes != Lanes::scalar) {
 #if defined(LINEQUAD_HAVE_AVX512_KERNELS)

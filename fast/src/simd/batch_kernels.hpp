@@ -75,10 +75,9 @@ LINEQUAD_INLINE void write_hits(const HitSlots<R, N>& b, int k, std::uint8_t cou
             h.t = row[0], h.p = Vec3{row[1], row[2], row[3]};
         }
         h.bound = facts.bound(j, k);
-        // kind, part, certain: a crossing of the lateral surface (closed shapes: the scalar
-        // solver's)
+        // kind, part, certain: a crossing of the lateral surface, or a closed shape's hit
         store_byte_fields<Hit, offsetof(Hit, kind)>(
-            h, {byte_of(HitKind::cross), byte_of(Part::lateral),
+            h, {byte_of(facts.kind(j, k)), byte_of(facts.part(j, k)),
                 byte_of(facts.certainty == Certainty::certain), 0, 0, 0, 0, 0});
     }
 }
@@ -106,6 +105,8 @@ LINEQUAD_INLINE void write_result(const LaneBlock<R, N>& b, int k, std::uint8_t 
         Certainty certainty = Certainty::unknown;
         Rung rung = Rung::none;
         double bound(int, int) const { return no_bound; }
+        HitKind kind(int, int) const { return HitKind::cross; }
+        Part part(int, int) const { return Part::lateral; }
     };
     write_hits(b, k, count, Stable{}, r);
 }
@@ -117,6 +118,10 @@ template <int N>
 struct CorrectBlock : HitSlots<double, N> {
     unsigned proven;
     double bound[2][N]; // half an ulp of t; a hit test's own (its t is not rounded)
+    // A closed shape's hits name their kind and part (an open shape's cross the lateral surface).
+    bool closed;
+    HitKind kind[2][N];
+    Part part[2][N];
 };
 
 // Lane k's Result, as the scalar ladder makes it from the Newton rung's hits (a hit test's
@@ -128,6 +133,8 @@ LINEQUAD_INLINE void write_result(const CorrectBlock<N>& b, int k, std::uint8_t 
         Certainty certainty = Certainty::certain;
         Rung rung = Rung::newton;
         double bound(int j, int k) const { return b.bound[j][k]; }
+        HitKind kind(int j, int k) const { return b.closed ? b.kind[j][k] : HitKind::cross; }
+        Part part(int j, int k) const { return b.closed ? b.part[j][k] : Part::lateral; }
     };
     write_hits(b, k, count, Newton{b}, r);
 }
