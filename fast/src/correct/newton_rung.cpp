@@ -496,12 +496,6 @@ bool hit_test_rung(const LineForm& f, const Unit& unit, Result& r) {
         f.sigma_z, [&](auto sigma_z) { return hit_test<decltype(sigma_z)::value>(f, unit, r); });
 }
 
-bool closed_rung(const LineForm& f, double A, const Enclosure<double> (&roots)[2], const Unit& unit,
-                 const Line& caller, Query query, Result& r) {
-    const std::optional<Enclosure<double>> en[2] = {roots[0], roots[1]};
-    return closed_hits<Binary64>(f, {A, 0}, en, unit, caller, query, r, nullptr);
-}
-
 bool closed_hit_test(const LineForm& f, double A, const Enclosure<double> (&roots)[2],
                      bool both_outside, const Unit& unit, Result& r) {
     std::optional<Enclosure<double>> en[2];

@@ -67,14 +67,11 @@ bool newton_rung(const LineForm& f, const Unit& u, const Line& caller, Query que
 // it); when it proves there is none, r holds no hit; false otherwise.
 bool hit_test_rung(const LineForm& f, const Unit& u, Result& r);
 
-// The last steps of both on a convex shape closed by discs, for the batch lanes, which prove the
-// lateral roots' enclosures lane by lane exactly as the rung does (newton_steps.hpp) and close
-// each lane here. `f` needs only the axial line, the extent and the discs' planes; A is g's
-// leading coefficient (proven nonzero). closed_rung: both roots proven, the smaller first; the
-// answer as newton_rung gives it (without the exact signs at an end). closed_hit_test: the
-// roots as the hit test estimated them, none proven inside; as hit_test_rung answers.
-bool closed_rung(const LineForm& f, double A, const newton::Enclosure<double> (&roots)[2],
-                 const Unit& u, const Line& caller, Query query, Result& r);
+// The hit test's last step on a convex shape closed by discs, for the batch lanes, which prove
+// the lateral roots' enclosures exactly as the rung does (newton_steps.hpp) and close here, one
+// lane at a time, a line none of whose roots they proved a hit: `f` needs only the axial line
+// and the extent; A is g's leading coefficient (proven nonzero); the roots as the hit test
+// estimated them. As hit_test_rung answers.
 bool closed_hit_test(const LineForm& f, double A, const newton::Enclosure<double> (&roots)[2],
                      bool both_outside, const Unit& u, Result& r);
 

@@ -75,10 +75,15 @@ LINEQUAD_INLINE void write_hits(const HitSlots<R, N>& b, int k, std::uint8_t cou
             h.t = row[0], h.p = Vec3{row[1], row[2], row[3]};
         }
         h.bound = facts.bound(j, k);
-        // kind, part, certain: a crossing of the lateral surface, or a closed shape's hit
-        store_byte_fields<Hit, offsetof(Hit, kind)>(
-            h, {byte_of(facts.kind(j, k)), byte_of(facts.part(j, k)),
-                byte_of(facts.certainty == Certainty::certain), 0, 0, 0, 0, 0});
+        // kind, part, certain: a crossing of the lateral surface, or a closed shape's hit as
+        // the block names it
+        unsigned char certain = byte_of(facts.certainty == Certainty::certain);
+        if (facts.named(k))
+            store_byte_fields<Hit, offsetof(Hit, kind)>(
+                h, {byte_of(facts.kind(j, k)), byte_of(facts.part(j, k)), certain, 0, 0, 0, 0, 0});
+        else
+            store_byte_fields<Hit, offsetof(Hit, kind)>(
+                h, {byte_of(HitKind::cross), byte_of(Part::lateral), certain, 0, 0, 0, 0, 0});
     }
 }
 
@@ -105,6 +110,7 @@ LINEQUAD_INLINE void write_result(const LaneBlock<R, N>& b, int k, std::uint8_t 
         Certainty certainty = Certainty::unknown;
         Rung rung = Rung::none;
         double bound(int, int) const { return no_bound; }
+        static constexpr bool named(int) { return false; }
         HitKind kind(int, int) const { return HitKind::cross; }
         Part part(int, int) const { return Part::lateral; }
     };
@@ -133,8 +139,9 @@ LINEQUAD_INLINE void write_result(const CorrectBlock<N>& b, int k, std::uint8_t 
         Certainty certainty = Certainty::certain;
         Rung rung = Rung::newton;
         double bound(int j, int k) const { return b.bound[j][k]; }
-        HitKind kind(int j, int k) const { return b.closed ? b.kind[j][k] : HitKind::cross; }
-        Part part(int j, int k) const { return b.closed ? b.part[j][k] : Part::lateral; }
+        bool named(int) const { return b.closed; }
+        HitKind kind(int j, int k) const { return b.kind[j][k]; }
+        Part part(int j, int k) const { return b.part[j][k]; }
     };
     write_hits(b, k, count, Newton{b}, r);
 }

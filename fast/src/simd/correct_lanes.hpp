@@ -77,7 +77,7 @@ struct EnclosureLanes {
     }
 };
 
-// A closed shape's slots: every hit a lateral crossing until put_closed_result says otherwise.
+// A closed shape's slots: every hit a lateral crossing until put_hit_test says otherwise.
 template <int N>
 void open_closed_slots(CorrectBlock<N>& out) {
     out.closed = true;
@@ -86,10 +86,9 @@ void open_closed_slots(CorrectBlock<N>& out) {
             out.kind[j][k] = HitKind::cross, out.part[j][k] = Part::lateral;
 }
 
-// Lane k's result from the scalar closure into the block's slots, as mark_certain() makes it
-// (a hit test's bound is its own).
+// Lane k's hit test from the scalar closure into the block's slots (its bound its own).
 template <int N>
-void put_closed_result(const Result& r, int k, bool hit_test, CorrectBlock<N>& out) {
+void put_hit_test(const Result& r, int k, CorrectBlock<N>& out) {
     out.proven |= 1u << k;
     out.keep[0] &= ~(1u << k), out.keep[1] &= ~(1u << k);
     for (int j = 0; j < r.count; ++j) {
@@ -97,7 +96,7 @@ void put_closed_result(const Result& r, int k, bool hit_test, CorrectBlock<N>& o
         out.keep[j] |= 1u << k;
         out.tp[j][k][0] = h.t, out.tp[j][k][1] = h.p.x, out.tp[j][k][2] = h.p.y;
         out.tp[j][k][3] = h.p.z;
-        out.bound[j][k] = hit_test ? h.bound : Binary64::half_ulp(h.t);
+        out.bound[j][k] = h.bound;
         out.kind[j][k] = h.kind, out.part[j][k] = h.part;
     }
 }
@@ -159,16 +158,16 @@ LINEQUAD_INLINE CrossingLanes<L> plane_crossing_lanes(const DiscPlanesT<L>& p,
 // Both roots of one lane's line, as the scalar rung adds them (the smaller first), or the
 // proof that there is none. L0 and v: the lane's line as given.
 //
-// On a convex shape closed by discs with A > 0 the lanes close the line as closed_hits does: each
-// root below, within or above the extent (side_of), the piece between them cut to the extent,
-// each end of it a root within or the disc beyond which the root lies (its t the plane crossing,
-// its coordinate across the plane the plane's own where the plane is perpendicular to an axis).
-// The lanes with A < 0 (a line steeper than a cone's generators) are closed one by one by the
-// scalar rung's closed_rung. Two solids: only the lanes that miss the quadric.
-template <int SigmaZ, class L>
+// On a convex shape closed by discs the lanes close the line as closed_hits does, its branches
+// as masks: each root below, within or above the extent (side_of), the piece of the line inside
+// the quadric cut to the extent, each end of it a root within or a disc (its t the plane
+// crossing, its coordinate across the plane the plane's own where the plane is perpendicular to
+// an axis). Two solids: only the lanes that miss the quadric.
+template <int SigmaZ, bool Convex, class L>
 void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, const Vec3T<L>& v,
                  Interval range, Query q, CorrectBlock<lane_count<L>>& out) {
-    const L one(1.0), zero(0.0); // as given: t and the points need no scaling
+    constexpr bool convex = Convex; // closed by discs around one solid: compiled apart
+    const L one(1.0), zero(0.0);    // as given: t and the points need no scaling
     const Mask<L> none = zero < zero;
     Leading<L> A = leading<SigmaZ>(f);
     usable = usable & (A.e < fabs(A.A)); // not nearly parallel to the axis or a generator
@@ -180,18 +179,18 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
     Local<L> local[2];
     local_at<SigmaZ>(f, c, local);
     Mask<L> no_root = no_root_proven(A, c[0], local[0]);
-    Enclosure<L> root[2] = {root_near(local[0], A, c[0]), root_near(local[1], A, c[1])};
-    Mask<L> both_proven =
-        est.real & root[0].proven & root[0].smaller & root[1].proven & (!root[1].smaller);
 
-    // Slot j's enclosure (a root, or a disc's crossing), what it is, and whether the extent is
-    // already decided for it (a closed shape's: then only the range remains).
-    Enclosure<L> at[2] = {root[0], root[1]};
+    // A closed shape's slot j: its enclosure (a root, or a disc's crossing) and what it is; the
+    // extent is then decided, and only the range remains. An open shape's slot j is root j.
+    [[maybe_unused]] Enclosure<L> root[2], at[2];
     Mask<L> disc[2] = {none, none}, top[2] = {none, none};
     Mask<L> closed_ok = none, missed = none; // lanes the lanes close; lanes that miss the solid
-    const bool convex = f.discs == Discs::convex;
-    if (convex) {
-        Mask<L> below[2], above[2], within[2];
+    if constexpr (convex) {
+        for (int j = 0; j < 2; ++j)
+            at[j] = root[j] = root_near(local[j], A, c[j]);
+        // Each root below, within or above the extent (side_of), and for a cone which side of
+        // the apex it lies on (root_on_nappe).
+        Mask<L> below[2], above[2], within[2], z_pos[2], z_neg[2];
         for (int j = 0; j < 2; ++j) {
             Axial<L> a = axial_at(f, root[j]);
             DifferenceTest<L> dlo = difference_test(a.z, a.e_z, L(f.lo), L(f.e_lo));
@@ -199,22 +198,48 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
             below[j] = dlo.d < -dlo.bound;
             above[j] = (!below[j]) & (dhi.d < -dhi.bound);
             within[j] = (dlo.bound < dlo.d) & (dhi.bound < dhi.d);
+            z_pos[j] = a.e_z < a.z, z_neg[j] = a.z < -a.e_z;
         }
         Mask<L> sides = (below[0] | above[0] | within[0]) & (below[1] | above[1] | within[1]);
-        Mask<L> closing = both_proven & (zero < A.A) & sides;
-        missed = closing & ((below[0] & below[1]) | (above[0] & above[1]));
-        closed_ok = closing & (!missed);
+        Mask<L> both_proven =
+            est.real & root[0].proven & root[0].smaller & root[1].proven & (!root[1].smaller);
+        Mask<L> closing = both_proven & sides;
+        // A > 0: the piece between the roots.
+        Mask<L> pos = closing & (zero < A.A);
+        Mask<L> pos_missed = pos & ((below[0] & below[1]) | (above[0] & above[1]));
+        // A < 0 (a cone's steep line): the ray from the root on the solid's nappe (Z <= 0), i, away
+        // from the other root, running towards `away` along Z; from root i to the disc there when
+        // root i is within the extent, across both discs (first, then last in t) when it is on
+        // the other side, no hit when it is on that side already.
+        Mask<L> i0 = z_neg[0] & z_pos[1], i1 = z_pos[0] & z_neg[1];
+        Mask<L> neg = none;
+        if (f.sigma_z == -1) neg = closing & (A.A < zero) & (i0 | i1) & (f.e_dZ < fabs(f.dZ));
+        Mask<L> rising = zero < f.dZ;
+        Mask<L> away_above = (rising & i1) | ((!rising) & i0), away_below = !away_above;
+        Mask<L> b_i = (i0 & below[0]) | (i1 & below[1]), a_i = (i0 & above[0]) | (i1 & above[1]);
+        Mask<L> w_i = (i0 & within[0]) | (i1 & within[1]);
+        Mask<L> neg_missed = neg & ((b_i & away_below) | (a_i & away_above));
+        Mask<L> across = neg & (!w_i) & (!neg_missed), from_root = neg & w_i;
+        missed = pos_missed | neg_missed;
+        Mask<L> use_lo[2] = {(pos & below[0]) | (from_root & i0 & away_below) | (across & rising),
+                             (pos & below[1]) | (from_root & i1 & away_below) |
+                                 (across & (!rising))};
+        Mask<L> use_hi[2] = {(pos & above[0]) | (from_root & i0 & away_above) |
+                                 (across & (!rising)),
+                             (pos & above[1]) | (from_root & i1 & away_above) | (across & rising)};
+        Mask<L> use_root1[2] = {from_root & i1, pos & within[1]}; // else root 0
+        closed_ok = (pos | neg) & (!missed);
         const DiscPlanesT<L>& p = *f.planes;
         CrossingLanes<L> cross[2] = {plane_crossing_lanes(p, p.lo), plane_crossing_lanes(p, p.hi)};
         for (int j = 0; j < 2; ++j) {
-            disc[j] = !within[j], top[j] = above[j];
-            Mask<L> uses_lo = closed_ok & below[j], uses_hi = closed_ok & above[j];
-            if (!p.at_lo) closed_ok = closed_ok & (!uses_lo);
-            if (!p.at_hi) closed_ok = closed_ok & (!uses_hi);
-            closed_ok = closed_ok & ((!uses_lo) | cross[0].finite) & ((!uses_hi) | cross[1].finite);
+            disc[j] = use_lo[j] | use_hi[j], top[j] = use_hi[j];
+            if (!p.at_lo) closed_ok = closed_ok & (!use_lo[j]);
+            if (!p.at_hi) closed_ok = closed_ok & (!use_hi[j]);
+            closed_ok =
+                closed_ok & ((!use_lo[j]) | cross[0].finite) & ((!use_hi[j]) | cross[1].finite);
             auto pick = [&](L Enclosure<L>::*part) {
-                return select(below[j], cross[0].t.*part,
-                              select(above[j], cross[1].t.*part, root[j].*part));
+                L r = select(use_root1[j], root[1].*part, root[0].*part);
+                return select(use_lo[j], cross[0].t.*part, select(use_hi[j], cross[1].t.*part, r));
             };
             at[j].c = pick(&Enclosure<L>::c), at[j].x = pick(&Enclosure<L>::x);
             at[j].e = pick(&Enclosure<L>::e);
@@ -224,12 +249,17 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
     Mask<L> failed[2], kept_root[2];
     L t[2], bound[2], p[3][2]; // p[a][j]: coordinate a of slot j's point
     for (int j = 0; j < 2; ++j) {
-        auto range_only = [&] { // a closed shape's extent is decided above
-            EnclosedT<L> tj = t_of(at[j]);
-            return Kept<L>().range(range, tj.t, tj.e_t);
-        };
-        Kept<L> k = convex ? range_only() : kept(f, range, at[j]);
-        Rounded<L> rt = rounded_t(at[j], one);
+        Enclosure<L> en; // slot j's enclosure
+        Kept<L> k;
+        if constexpr (convex) {
+            en = at[j];
+            EnclosedT<L> tj = t_of(en);
+            k = Kept<L>().range(range, tj.t, tj.e_t);
+        } else {
+            en = root_near(local[j], A, c[j]);
+            k = kept(f, range, en);
+        }
+        Rounded<L> rt = rounded_t(en, one);
         Mask<L> hit_proven = rt.proven;
         t[j] = rt.value;
         bound[j] = half_ulp(rt.value); // mark_certain's bound
@@ -240,30 +270,36 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
                 continue;
             }
             L va = v[a], pa = L0[a];
-            Rounded<L> pr = rounded_point(at[j], pa, va, one);
+            Rounded<L> pr = rounded_point(en, pa, va, one);
             Mask<L> along = equal(va, zero); // L0_k + t v_k is L0_k: +0 for a zero
             L value = select(along, pa + zero, pr.value);
             Mask<L> exact = along;
-            if (convex && a == f.planes->axis) { // a disc's point: the plane's coordinate, +0
-                L plane = select(top[j], L(f.planes->hi_at), L(f.planes->lo_at)) + zero;
-                value = select(disc[j], plane, value);
-                exact = exact | disc[j];
+            if constexpr (convex) {
+                if (a == f.planes->axis) { // a disc's point: the plane's coordinate, +0
+                    L plane = select(top[j], L(f.planes->hi_at), L(f.planes->lo_at)) + zero;
+                    value = select(disc[j], plane, value);
+                    exact = exact | disc[j];
+                }
             }
             hit_proven = hit_proven & (exact | pr.proven);
             p[a][j] = value;
         }
-        Mask<L> which = j == 0 ? root[j].smaller : !root[j].smaller; // the root the rung expects
+        const Enclosure<L>& r = convex ? root[j] : en;   // root j
+        Mask<L> which = j == 0 ? r.smaller : !r.smaller; // the root the rung expects
         Mask<L> decided = k.inside | k.outside;
-        failed[j] = (!root[j].proven) | (!which) | (!decided) | (k.inside & (!hit_proven));
-        kept_root[j] = est.real & k.inside & (!missed);
+        failed[j] = (!r.proven) | (!which) | (!decided) | (k.inside & (!hit_proven));
+        kept_root[j] = est.real & k.inside;
+        if constexpr (convex) kept_root[j] = kept_root[j] & (!missed);
     }
     // The nearest hit stops at the first slot when it is kept: the second is then never looked
     // at.
     Mask<L> stop = q.need == Need::all ? none : kept_root[0];
     Mask<L> roots_proven = (!failed[0]) & (stop | (!failed[1]));
     Mask<L> answered = est.real & roots_proven; // from the roots alone, or closed in the lanes
-    if (convex) answered = missed | (closed_ok & roots_proven);
-    if (f.discs == Discs::two_solids) answered = none;
+    if constexpr (convex)
+        answered = missed | (closed_ok & roots_proven);
+    else if (f.discs == Discs::two_solids)
+        answered = none;
     Mask<L> proven = usable & (answered | ((!est.real) & no_root));
     // The first slot takes the smaller root where it is kept, else the larger.
     Mask<L> larger_first = !kept_root[0];
@@ -276,8 +312,8 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
     out.proven = unsigned(bits(proven));
     out.keep[0] = unsigned(bits(kept_root[0] | (kept_root[1] & !stop)));
     out.keep[1] = unsigned(bits(kept_root[0] & kept_root[1] & !stop));
-    if (!convex) return;
-    // Each slot's part; the lanes with A < 0, one by one.
+    if constexpr (!convex) return;
+    // Each slot's part.
     constexpr int N = lane_count<L>;
     out.closed = true;
     unsigned is_disc[2] = {unsigned(bits(disc[0])), unsigned(bits(disc[1]))};
@@ -290,24 +326,34 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
             out.kind[j][k] = HitKind::cross;
             out.part[j][k] = !d ? Part::lateral : up ? Part::top : Part::base;
         }
-    unsigned rest = unsigned(bits(usable & both_proven & (!(zero < A.A))));
-    if (rest == 0) return;
+}
+
+// A closed shape's hit test in the lanes `rest` (real roots, no hit proven): closed_hit_test,
+// one lane at a time; `outside`: the lanes with both roots proven outside. Out of line, so that
+// the lanes' own path keeps its registers.
+template <class L>
+[[gnu::noinline]] void close_hit_test_lanes(const LineFormT<L>& f, const Leading<L>& A,
+                                            const Enclosure<L> (&en)[2], unsigned rest,
+                                            unsigned outside, const Vec3T<L>& L0, const Vec3T<L>& v,
+                                            Interval range, CorrectBlock<lane_count<L>>& out) {
+    constexpr int N = lane_count<L>;
+    open_closed_slots(out); // the lanes' own hits: lateral crossings
     AxialLanes<L> axial(f, A, L0, v);
-    EnclosureLanes<L> lanes[2] = {EnclosureLanes<L>(root[0]), EnclosureLanes<L>(root[1])};
+    EnclosureLanes<L> root[2] = {EnclosureLanes<L>(en[0]), EnclosureLanes<L>(en[1])};
     for (int k = 0; k < N; ++k) {
         if (!((rest >> k) & 1)) continue;
-        const Enclosure<double> lane[2] = {lanes[0].at(k), lanes[1].at(k)};
+        const Enclosure<double> lane[2] = {root[0].at(k), root[1].at(k)};
         Line l = axial.line(k, range);
         Result r;
-        if (closed_rung(axial.at(k), axial.A[k], lane, Unit{1, 1, l}, l, q, r))
-            put_closed_result(r, k, false, out);
+        if (closed_hit_test(axial.at(k), axial.A[k], lane, (outside >> k) & 1, Unit{1, 1, l}, r))
+            put_hit_test(r, k, out);
     }
 }
 
 // The hit test (Need::any) of one lane's line, as the scalar quick rung takes it
 // (newton_rung.cpp: hit_test): the roots as estimated, in that order; the first proven inside
 // the extent and the range is the hit; no hit needs both roots proven outside, or none real.
-template <int SigmaZ, class L>
+template <int SigmaZ, bool Closed, class L>
 void hit_test_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, const Vec3T<L>& v,
                     Interval range, CorrectBlock<lane_count<L>>& out) {
     Leading<L> A = leading<SigmaZ>(f);
@@ -328,7 +374,7 @@ void hit_test_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, c
     Mask<L> any_hit = hit[0] | hit[1];
     Mask<L> answered = any_hit | (outside_smaller & outside_larger);
     // On a closed shape, no hit needs closed_hit_test (both roots outside is not enough).
-    if (f.discs != Discs::none) answered = any_hit;
+    if constexpr (Closed) answered = any_hit;
     Mask<L> proven = usable & ((est.real & answered) | ((!est.real) & no_root));
     // t = c + x rounded once: within e + u |t| of the root (the sum's rounding).
     L t = select(hit[0], en[0].c + en[0].x, en[1].c + en[1].x);
@@ -342,24 +388,12 @@ void hit_test_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, c
     out.proven = unsigned(bits(proven));
     out.keep[0] = unsigned(bits(est.real & any_hit));
     out.keep[1] = 0;
-    if (f.discs == Discs::none) return;
+    if constexpr (!Closed) return;
     // The lanes with real roots and no hit proven: closed_hit_test, lane by lane.
     unsigned rest = unsigned(bits(usable & est.real & (!any_hit)));
-    if (rest == 0) return;
-    constexpr int N = lane_count<L>;
-    open_closed_slots(out); // the lanes' own hits: lateral crossings
-    AxialLanes<L> axial(f, A, L0, v);
-    EnclosureLanes<L> root[2] = {EnclosureLanes<L>(en[0]), EnclosureLanes<L>(en[1])};
-    unsigned outside = unsigned(bits(outside_smaller & outside_larger));
-    for (int k = 0; k < N; ++k) {
-        if (!((rest >> k) & 1)) continue;
-        const Enclosure<double> lane[2] = {root[0].at(k), root[1].at(k)};
-        Line l = axial.line(k, range);
-        Result r;
-        if (!closed_hit_test(axial.at(k), axial.A[k], lane, (outside >> k) & 1, Unit{1, 1, l}, r))
-            continue;
-        put_closed_result(r, k, true, out);
-    }
+    if (rest != 0)
+        close_hit_test_lanes(f, A, en, rest, unsigned(bits(outside_smaller & outside_larger)), L0,
+                             v, range, out);
 }
 
 } // namespace newton
@@ -380,12 +414,20 @@ void correct_lanes(const Prepared<S>& shape, int orientation, const Real<L>* con
     if (q.need == Need::any) { // the quick rung, on the quick line form
         LineFormT<L> f = Traits::template quick_line_form<L>(src, L0, v, orientation);
         return newton::with_sigma_z_of_lanes(f.sigma_z, [&](auto sigma_z) {
-            newton::hit_test_lanes<decltype(sigma_z)::value>(f, usable, L0, v, range, out);
+            constexpr int sz = decltype(sigma_z)::value;
+            if (f.discs == Discs::none)
+                newton::hit_test_lanes<sz, false>(f, usable, L0, v, range, out);
+            else
+                newton::hit_test_lanes<sz, true>(f, usable, L0, v, range, out);
         });
     }
     LineFormT<L> f = Traits::template line_form<L>(src, L0, v, orientation);
     newton::with_sigma_z_of_lanes(f.sigma_z, [&](auto sigma_z) {
-        newton::solve_lanes<decltype(sigma_z)::value>(f, usable, L0, v, range, q, out);
+        constexpr int sz = decltype(sigma_z)::value;
+        if (f.discs == Discs::convex)
+            newton::solve_lanes<sz, true>(f, usable, L0, v, range, q, out);
+        else
+            newton::solve_lanes<sz, false>(f, usable, L0, v, range, q, out);
     });
 }
 
