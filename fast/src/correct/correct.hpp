@@ -112,8 +112,12 @@ class ExactForm final : public ExtentEnds {
         c.dZ_sign = sign(q.dZ);
         c.open = top ? q.hi_open : q.lo_open;
         BigFloat::Leading n = N.leading(), d = q.dZ.leading();
-        BoundedDD t = BoundedDD(n.hi, n.lo, n.err) / BoundedDD(d.hi, d.lo, d.err);
-        c.t = BoundedDD(t.hi / t_factor, t.lo / t_factor, t.e / t_factor); // exact: 2^k
+        c.t = BoundedDD(n.hi, n.lo, n.err) / BoundedDD(d.hi, d.lo, d.err);
+        if (t_factor != 1) { // into the scaled scene's units: exact, unless a part would underflow
+            auto tiny = [](double x) { return x != 0 && std::fabs(x) < 0x1p-960; };
+            c.t = BoundedDD(c.t.hi / t_factor, c.t.lo / t_factor, c.t.e / t_factor);
+            if (tiny(c.t.hi) || tiny(c.t.lo) || tiny(c.t.e)) return std::nullopt;
+        }
         return c;
     }
 
