@@ -124,9 +124,10 @@ LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, Part part, const Unit&
 
 // ---- Shapes closed by discs ----
 
-// Where a lateral root lies against the extent: strictly below, within or above it, or exactly
-// at an end (a rim), which only the exact signs of `ends` show.
-enum class Side { below, at_lo, within, at_hi, above, unknown };
+// Where a lateral root lies against the extent: strictly below, within or above it; next to one
+// end, where its enclosure cannot tell (near_lo, near_hi); exactly at an end (a rim), which only
+// the exact signs of `ends` show; or unknown.
+enum class Side { below, at_lo, within, at_hi, above, near_lo, near_hi, unknown };
 struct Placement {
     Side side = Side::unknown;
     Enclosure<double> t_end{}; // at_lo, at_hi: the end's crossing, which is the root
@@ -184,7 +185,8 @@ LINEQUAD_INLINE Side beside_plane(const LineForm& f, const Enclosure<double>& ro
 }
 
 // Where root i lies against the extent (a closed shape's is bounded at both ends; an open one's
-// where lo_bounded, hi_bounded say), as its enclosure shows it; unknown next to an end.
+// where lo_bounded, hi_bounded say), as its enclosure shows it: next to one end, that end; next
+// to both (a tiny extent), unknown.
 LINEQUAD_INLINE Side side_of(const LineForm& f, const Enclosure<double>& en) {
     bool closed = f.discs != Discs::none;
     Axial<double> a = axial_at(f, en);
@@ -194,25 +196,22 @@ LINEQUAD_INLINE Side side_of(const LineForm& f, const Enclosure<double>& en) {
     if (has_lo && lo.d < -lo.bound) return Side::below;
     if (has_hi && hi.d < -hi.bound) return Side::above;
     bool lo_clear = !has_lo || lo.bound < lo.d, hi_clear = !has_hi || hi.bound < hi.d;
-    return lo_clear && hi_clear ? Side::within : Side::unknown;
+    if (lo_clear == hi_clear) return lo_clear ? Side::within : Side::unknown;
+    return lo_clear ? Side::near_hi : Side::near_lo;
 }
 
-// Root i, which its enclosure leaves next to one end (the scalar ladder's question; the batch
-// lanes hand such a line to it): against that end's crossing in double-double, then from the
-// exact signs of `ends`. Both ends next to it (a tiny extent): unknown. Rare, so out of line.
+// Root i, which its enclosure leaves next to one end (`near`: side_of's near_lo or near_hi; the
+// scalar ladder's question, the batch lanes hand such a line to it): against that end's crossing
+// in double-double, then from the exact signs of `ends`. Rare, so out of line.
 [[gnu::noinline]] Placement place_at_end(const LineForm& f,
                                          const std::optional<Enclosure<double>> (&root)[2], int i,
-                                         const ExtentEnds& ends, const Unit& unit) {
-    bool closed = f.discs != Discs::none;
-    Axial<double> a = axial_at(f, *root[i]);
-    DifferenceTest<double> lo = difference_test(a.z, a.e_z, f.lo, f.e_lo);
-    DifferenceTest<double> hi = difference_test(f.hi, f.e_hi, a.z, a.e_z);
-    bool lo_clear = !(closed || f.lo_bounded) || lo.bound < lo.d;
-    bool hi_clear = !(closed || f.hi_bounded) || hi.bound < hi.d;
-    if (lo_clear == hi_clear) return {};
-    bool top = lo_clear;
+                                         Side near, const ExtentEnds& ends, const Unit& unit) {
+    bool top = near == Side::near_hi;
     if (Side s = beside_plane(f, *root[i], top); s != Side::unknown) return {s};
     return placed_at_end(root, i, top, ends, unit);
+}
+LINEQUAD_INLINE bool near_end(Side s) {
+    return s == Side::near_lo || s == Side::near_hi;
 }
 
 // For A < 0 (a line steeper than a cone's generators, one root on each nappe): the root on the
@@ -251,7 +250,8 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
     Side side[2], rim[2];
     for (int i = 0; i < 2; ++i) {
         rim[i] = side_of(f, *root[i]);
-        if (rim[i] == Side::unknown && ends) rim[i] = place_at_end(f, root, i, *ends, unit).side;
+        if (near_end(rim[i]))
+            rim[i] = ends ? place_at_end(f, root, i, rim[i], *ends, unit).side : Side::unknown;
         side[i] = rim[i] == Side::at_lo   ? Side::below
                   : rim[i] == Side::at_hi ? Side::above
                                           : rim[i];
@@ -278,20 +278,16 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
             exact[k] = {f.planes->axis, low ? f.planes->lo_at : f.planes->hi_at};
         return true;
     };
+    int points = 2; // the piece's ends; one where it is a grazed rim
     if (A.A > 0) {
         if (side[0] == side[1] && side[0] != Side::within) {
             if (!at_rim) return true;
             int i = rim[0] != side[0] ? 0 : 1; // the root at the rim
             if (!end_at(0, i, side[i])) return false;
-            auto [t, e_t] = t_of(at[0]);
-            Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
-            if (k.outside) return true;
-            if (!k.inside || !add_hit<Target>(at[0], part[0], unit, caller, query, r, exact[0]))
-                return false;
-            r.hits[0].kind = HitKind::tangent;
-            return true;
+            points = 1;
+        } else if (!end_at(0, 0, side[0]) || !end_at(1, 1, side[1])) {
+            return false;
         }
-        if (!end_at(0, 0, side[0]) || !end_at(1, 1, side[1])) return false;
     } else {
         if (at_rim) return false;
         // The solid's nappe holds root i and the ray from it away from the other root: before t0
@@ -310,7 +306,7 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
             if (!end_at(0, i, first) || !end_at(1, i, last)) return false;
         }
     }
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < points; ++i) {
         auto [t, e_t] = t_of(at[i]);
         Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
         if (k.outside) continue;
@@ -318,6 +314,7 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
             return false;
         if (query.need != Need::all) break;
     }
+    if (points == 1 && r.count == 1) r.hits[0].kind = HitKind::tangent; // a grazed rim
     return true;
 }
 
@@ -349,9 +346,11 @@ template <int SigmaZ, Residual R>
     root[j] = root_near(local_near<SigmaZ, R>(f, estimate[j]), A, estimate[j]);
     if (!root[j] || root[j]->smaller != (j == 0)) return -1;
     Placement p{side_of(f, at)};
-    if (p.side == Side::unknown) p = place_at_end(f, root, i, ends, unit);
+    if (near_end(p.side)) p = place_at_end(f, root, i, p.side, ends, unit);
     switch (p.side) {
     case Side::unknown:
+    case Side::near_lo:
+    case Side::near_hi:
         return -1;
     case Side::below:
     case Side::above:
@@ -430,7 +429,8 @@ bool closed_hit_test_of(const LineForm& f, const Leading<double>& A,
         return false;
     Side side[2] = {side_of(f, *root[0]), side_of(f, *root[1])};
     if (root[1]->smaller) std::swap(side[0], side[1]);
-    if (side[0] == Side::unknown || side[1] == Side::unknown) return false;
+    auto placed = [](Side s) { return s == Side::below || s == Side::within || s == Side::above; };
+    if (!placed(side[0]) || !placed(side[1])) return false;
     // Both beyond one end: no hit; both within: the hits, which the range dropped.
     if (side[0] == side[1]) return side[0] != Side::within || both_outside;
     if (side[0] == Side::within || side[1] == Side::within) return false; // out of the range
