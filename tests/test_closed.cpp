@@ -2,10 +2,15 @@
 // answers, and the discs against an independent plane intersection in exact rationals.
 #include "support.hpp"
 
+#include "forms/closure.hpp"
+
 #include "linequad/exact.hpp"
 
 #include <CGAL/Gmpq.h>
 
+#include <cstring>
+#include <iterator>
+#include <limits>
 #include <random>
 
 using namespace linequad;
@@ -227,4 +232,61 @@ TEST_CASE("disc hits agree with an independent plane intersection in exact ratio
         ++checked;
     }
     CHECK(checked > 150);
+}
+
+namespace {
+
+// close_convex's candidates against close()'s, one R at a time: roots, disc tests and extents
+// drawn from values that sit on an end, beside it, far off, or are not numbers at all.
+template <class R>
+void check_convex_closure_against_close(std::mt19937_64& rng) {
+    using detail::CandidateT;
+    const R pool[] = {0,
+                      2,
+                      1,
+                      -1,
+                      R(0.5),
+                      std::nextafter(R(0), R(1)),
+                      std::nextafter(R(2), R(3)),
+                      std::nextafter(R(2), R(1)),
+                      R(1e30),
+                      -R(1e30),
+                      std::numeric_limits<R>::infinity(),
+                      std::numeric_limits<R>::quiet_NaN()};
+    auto any = [&] { return pool[rng() % std::size(pool)]; };
+    auto small = [&] { return R(int(rng() % 9) - 4) / 2; };
+    for (int trial = 0; trial < 20000; ++trial) {
+        auto pick = [&] { return rng() % 4 == 0 ? any() : small(); };
+        detail::RootsT<R> r;
+        r.kind = static_cast<typename detail::RootsT<R>::Kind>(rng() % 4);
+        r.t[0] = pick(), r.t[1] = pick();
+        detail::AxialQuadratic<R> q{pick(), pick(), pick(), pick(), pick(), pick(), R(0.5)};
+        detail::Extent e{0, 2, {bool(rng() & 1), bool(rng() & 2), false}};
+        if (!e.caps.lo && !e.caps.hi) e.caps.hi = true;
+        auto z_of = [&](const detail::RootsT<R>& roots, int i) { return q.z0 + roots.t[i] * q.dz; };
+        CandidateT<R> lean[max_hits];
+        int n = detail::close_convex(r, z_of, q, e, lean);
+        detail::BoundaryPoint<R> lateral[2];
+        for (int i = 0; i < r.count(); ++i)
+            lateral[i] = {r.t[i] * q.t_scale, z_of(r, i), Part::lateral, r.hit_kind(), true};
+        detail::ClosedPoints<R> general = detail::close(lateral, r.count(), q, e);
+        INFO("trial " << trial);
+        REQUIRE(n == general.n);
+        for (int i = 0; i < n; ++i) {
+            const detail::BoundaryPoint<R>& p = general.p[i];
+            // bit for bit: a NaN is the same NaN, and -0 is not +0
+            CHECK(std::memcmp(&lean[i].t, &p.t, sizeof(R)) == 0);
+            CHECK(std::memcmp(&lean[i].z, &p.z, sizeof(R)) == 0);
+            CHECK(lean[i].kind == p.kind);
+            CHECK(lean[i].part == p.part);
+        }
+    }
+}
+
+} // namespace
+
+TEST_CASE("seed's and stable's convex closure equals the general one, NaN and rims included") {
+    std::mt19937_64 rng(41);
+    check_convex_closure_against_close<double>(rng);
+    check_convex_closure_against_close<float>(rng);
 }

@@ -215,6 +215,43 @@ ClosedPoints<BT> close(const BoundaryPoint<BT>* lateral, int n, const AxialQuadr
     return out;
 }
 
+// close() for one convex solid in a real type R (seed and stable), straight into the
+// candidates: each sign is a comparison, which for two R values is the sign of their difference,
+// and a NaN falls as close() lets it (a NaN z stays where an end is open, for finish to refuse; a
+// NaN disc test counts as inside). At most two points remain.
+template <class R, class AxialOf>
+int close_convex(const RootsT<R>& r, AxialOf z_of, const AxialQuadratic<R>& q, const Extent& e,
+                 CandidateT<R>* c) {
+    int n = 0;
+    for (int i = 0; i < r.count(); ++i) {
+        R z = z_of(r, i);
+        bool above_lo = !std::isfinite(e.lo) || (e.caps.lo ? z > e.lo : !(z < e.lo));
+        bool below_hi = !std::isfinite(e.hi) || (e.caps.hi ? z < e.hi : !(z > e.hi));
+        if (above_lo && below_hi) c[n++] = {r.t[i] * q.t_scale, HitKind::cross, z};
+    }
+    if (q.dz > 0 || q.dz < 0) {
+        auto disc = [&](double end, Part part) {
+            R s = (R(end) - q.z0) / q.dz;
+            if (!((q.A * s + q.B2) * s + q.C > 0))
+                c[n++] = {caller_t(q.tc, s, q.t_scale), HitKind::cross, R(end), part};
+        };
+        if (e.caps.lo) disc(e.lo, Part::base);
+        if (e.caps.hi) disc(e.hi, Part::top);
+    }
+    if (n > 2) { // a rim found twice, through rounding: the segment's first and last stand
+        int first = 0, last = 0;
+        for (int i = 1; i < n; ++i) {
+            if (c[i].t < c[first].t) first = i;
+            if (c[i].t > c[last].t) last = i;
+        }
+        CandidateT<R> a = c[std::min(first, last)], b = c[std::max(first, last)];
+        c[0] = a, c[1] = b;
+        n = first == last ? 1 : 2;
+    }
+    if (n == 1) c[0].kind = HitKind::tangent;
+    return n;
+}
+
 // The seed's and stable's last step for a closed shape: the roots (t in the form's parameter,
 // scaled by q.t_scale), their axial coordinates z_of(roots, i), and the discs. A line in a
 // disc's plane is a claim of infinitely many hits: in_plane() (the certified result) settles it.
@@ -223,6 +260,11 @@ template <class R, class AxialOf, class InPlane>
                                        const Extent& e, const Line& l, Query query,
                                        InPlane in_plane) {
     if (plane_holding(q, e) != Part::lateral) return in_plane();
+    if (!e.caps.two_solids) {
+        CandidateT<R> c[max_hits];
+        int n = close_convex(r, z_of, q, e, c);
+        return finish(c, n, e, l, query);
+    }
     BoundaryPoint<R> lateral[2];
     int n = r.count();
     for (int i = 0; i < n; ++i)
