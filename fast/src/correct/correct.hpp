@@ -79,8 +79,50 @@ inline bool moderate(double extent, const Line& l) {
     return in_moderate_range(extent) && in_moderate_range(max_abs(l.v));
 }
 
+// A quadratic's value as a double-double enclosure: a BoundedDD as it is, a BigFloat from its
+// leading bits.
+inline BoundedDD enclosure(const BoundedDD& x) {
+    return x;
+}
+inline BoundedDD enclosure(const BigFloat& x) {
+    BigFloat::Leading n = x.leading();
+    return {n.hi, n.lo, n.err};
+}
+inline BoundedDD twice(const BoundedDD& x) {
+    return {2 * x.hi, 2 * x.lo, 2 * x.e};
+}
+inline BigFloat twice(const BigFloat& x) {
+    return x.scaled(1);
+}
+
+// Where the line crosses one end of q's extent: dZ^2 q(t_E) = (A N + 2 B dZ) N + C0 dZ^2 with
+// N = end - Z0 (the exact form's own test of a disc), and t_E = N / dZ enclosed, times
+// `to_rung` (a power of two: q's parameter into the rung's). No value where the end is not
+// bounded, a sign is not proven (a BoundedDD's bound does not exclude zero) or t_E scaled would
+// leave the normal range.
+template <class NT>
+std::optional<EndCrossing> end_crossing(const exact_form::LineQuadratic<NT>& q, bool top,
+                                        double to_rung) {
+    if (!(top ? q.hi_bounded : q.lo_bounded)) return std::nullopt;
+    NT N = (top ? q.hi : q.lo) - q.Z0;
+    EndCrossing c;
+    c.q_sign = sign((q.A * N + twice(q.B) * q.dZ) * N + q.C0 * q.dZ * q.dZ);
+    c.A_sign = sign(q.A);
+    c.dZ_sign = sign(q.dZ);
+    for (int s : {c.q_sign, c.A_sign, c.dZ_sign})
+        if (s == undecided_sign) return std::nullopt;
+    c.open = top ? q.hi_open : q.lo_open;
+    c.t = enclosure(N) / enclosure(q.dZ);
+    if (to_rung != 1) c.t = BoundedDD(c.t.hi * to_rung, c.t.lo * to_rung, c.t.e * to_rung);
+    auto tiny = [](double x) { return x != 0 && std::fabs(x) < 0x1p-960; };
+    if (tiny(c.t.hi) || tiny(c.t.lo) || tiny(c.t.e) || !std::isfinite(c.t.e)) return std::nullopt;
+    return c;
+}
+
 // The exact form in BigFloat, formed once for the line and only when asked: by the Newton rung,
-// for a root its bounds leave next to an extent's end (ExtentEnds), and by the exact rung.
+// for a root its bounds leave next to an extent's end (ExtentEnds), and by the exact rung. An
+// end's signs come first from the double-double rung's quadratic, when it has run: its bounds
+// decide all but the lines through a rim, at a small part of the exact form's cost.
 template <class S>
 class ExactForm final : public ExtentEnds {
   public:
@@ -97,28 +139,19 @@ class ExactForm final : public ExtentEnds {
     // exact form, answers a root beside an end first; the Newton rung is asked again after it.
     void defer(bool d) { deferred_ = d; }
     bool asked() const { return asked_; }
+    // The double-double rung's quadratic of the scene scaled to unit size, whose parameter is
+    // the caller's over t_factor.
+    void filter_with(const exact_form::LineQuadratic<BoundedDD>& dd, double t_factor) {
+        dd_ = &dd, dd_t_factor_ = t_factor;
+    }
 
-    // dZ^2 q(t_E) = (A N + 2 B dZ) N + C0 dZ^2 with N = end - Z0, exactly (the exact form's own
-    // test of a disc), and t_E = N / dZ enclosed from N's and dZ's leading bits.
     std::optional<EndCrossing> at(bool top, double t_factor) const override {
         asked_ = true;
         if (deferred_) return std::nullopt;
-        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
-        if (!(top ? q.hi_bounded : q.lo_bounded)) return std::nullopt;
-        BigFloat N = (top ? q.hi : q.lo) - q.Z0;
-        EndCrossing c;
-        c.q_sign = sign((q.A * N + q.B.scaled(1) * q.dZ) * N + q.C0 * q.dZ * q.dZ);
-        c.A_sign = sign(q.A);
-        c.dZ_sign = sign(q.dZ);
-        c.open = top ? q.hi_open : q.lo_open;
-        BigFloat::Leading n = N.leading(), d = q.dZ.leading();
-        c.t = BoundedDD(n.hi, n.lo, n.err) / BoundedDD(d.hi, d.lo, d.err);
-        if (t_factor != 1) { // into the scaled scene's units: exact, unless a part would underflow
-            auto tiny = [](double x) { return x != 0 && std::fabs(x) < 0x1p-960; };
-            c.t = BoundedDD(c.t.hi / t_factor, c.t.lo / t_factor, c.t.e / t_factor);
-            if (tiny(c.t.hi) || tiny(c.t.lo) || tiny(c.t.e)) return std::nullopt;
-        }
-        return c;
+        if (dd_)
+            if (std::optional<EndCrossing> c = end_crossing(*dd_, top, dd_t_factor_ / t_factor))
+                return c;
+        return end_crossing(quadratic(), top, 1 / t_factor);
     }
 
   private:
@@ -128,6 +161,8 @@ class ExactForm final : public ExtentEnds {
     bool deferred_ = false;
     mutable bool asked_ = false;
     mutable std::optional<exact_form::LineQuadratic<BigFloat>> q_;
+    const exact_form::LineQuadratic<BoundedDD>* dd_ = nullptr;
+    double dd_t_factor_ = 1;
 };
 
 template <class Target>
@@ -198,14 +233,16 @@ struct CorrectTo {
         if (as_given && newton(src, Unit{1, 1, l})) return r;
         std::optional<Unit> u = unit_scale(src, extent, l);
         std::optional<S> unit;
+        std::optional<exact_form::LineQuadratic<BoundedDD>> dd;
         if (u) {
             unit = scaled(src.shape, 1 / u->pos_factor);
             if (!as_given && newton(AsGiven<S>{*unit}, *u)) return r;
-            auto dd = Traits::template exact_quadratic<BoundedDD>(*unit, u->line, orientation);
-            if (double_double_rung<Target>(dd, *u, q, r)) {
+            dd = Traits::template exact_quadratic<BoundedDD>(*unit, u->line, orientation);
+            if (double_double_rung<Target>(*dd, *u, q, r)) {
                 mark_certain<Target>(r, Rung::double_double);
                 return r;
             }
+            exact.filter_with(*dd, u->t_factor);
         }
         if (exact.asked()) {
             exact.defer(false);

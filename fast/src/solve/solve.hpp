@@ -194,6 +194,25 @@ struct PatchHit {
     int patch, index;
 };
 
+// Whether hit a comes before hit b, two hits of different patches on one double: by the patches'
+// exact roots. Rare, and out of line, so that the usual merge holds no exact numbers.
+template <class... P>
+[[gnu::noinline]] bool exactly_before(const std::tuple<P...>& patches, const Line& l,
+                                      const PatchHit& a, const PatchHit& b) {
+    auto roots_of = [&](int i) {
+        std::optional<exact_form::Classification<BigFloat>> c;
+        int at = 0;
+        std::apply(
+            [&](const auto&... p) { ((at++ == i ? void(c = patch_roots(p, l)) : void()), ...); },
+            patches);
+        return std::move(*c);
+    };
+    const exact_form::Classification<BigFloat> x = roots_of(a.patch), y = roots_of(b.patch);
+    if (a.index >= x.count || b.index >= y.count) return a.patch < b.patch; // not exact roots
+    const auto &p = x.roots[a.index], &s = y.roots[b.index];
+    return exact_form::compare_roots<BigFloat>({p.N, p.S, p.Den, x.D}, {s.N, s.S, s.Den, y.D}) < 0;
+}
+
 // The hits of every patch, merged: each named by its patch's part, in the order of t; two on one
 // double from different patches ordered by their exact roots; two at most (the shape is convex). A
 // patch's error is the answer (the first patch, the side, names the capsule's fields), and so is a
@@ -227,26 +246,9 @@ Result merge_patches(const std::tuple<P...>& patches, const Result (&each)[sizeo
     r.certainty = unknown   ? Certainty::unknown
                   : certain ? Certainty::certain
                             : Certainty::uncertain;
-    // The patches' exact roots, worked out only where two hits share one double.
-    std::array<std::optional<exact_form::Classification<BigFloat>>, sizeof...(P)> exact;
-    auto roots_of = [&](int i) -> const exact_form::Classification<BigFloat>& {
-        if (!exact[std::size_t(i)]) {
-            int at = 0;
-            std::apply(
-                [&](const auto&... p) {
-                    ((at++ == i ? void(exact[std::size_t(i)] = patch_roots(p, l)) : void()), ...);
-                },
-                patches);
-        }
-        return *exact[std::size_t(i)];
-    };
     auto before = [&](const PatchHit& a, const PatchHit& b) {
         if (a.hit.t != b.hit.t || a.patch == b.patch) return a.hit.t < b.hit.t;
-        const auto &x = roots_of(a.patch), &y = roots_of(b.patch);
-        if (a.index >= x.count || b.index >= y.count) return a.patch < b.patch; // not exact roots
-        const auto &p = x.roots[a.index], &s = y.roots[b.index];
-        return exact_form::compare_roots<BigFloat>({p.N, p.S, p.Den, x.D}, {s.N, s.S, s.Den, y.D}) <
-               0;
+        return exactly_before(patches, l, a, b);
     };
     for (int i = 1; i < count; ++i) // a few hits: insertion
         for (int j = i; j > 0 && before(hits[j], hits[j - 1]); --j)
