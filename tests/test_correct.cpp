@@ -497,3 +497,40 @@ TEST_CASE("correct decides roots at and beside an extent's end on the Newton run
         }
     }
 }
+
+TEST_CASE("correct answers lines parallel to a cylinder's axis on the Newton rung") {
+    // A cylinder along z from C to H, its ends and the lines' starts not dyadic: the rung's
+    // bounds cannot tell A from 0, nor the double-double rung B, and only the exact form shows
+    // that g is constant along each line. Inside the quadric (C0 < 0) a closed cylinder meets the
+    // line at its two discs, in the order dZ's sign gives, and an open one nowhere; outside, no
+    // shape meets it. Each as the oracle answers it.
+    Vec3 C{0.1, 0.2, 0.3}, H{0.1, 0.2, 4.3};
+    struct Parallel {
+        Line line;
+        bool caps;
+        int hits;
+        Part first;
+    };
+    const Line inside_up{{1.1, 2.3, -1.7}, {0, 0, 1.5}, Range::line};
+    const Line inside_down{{-2.9, 0.7, 9.1}, {0, 0, -0.3}, Range::line};
+    const Line outside{{5.3, 2.3, -1.7}, {0, 0, 1.5}, Range::line};
+    const Parallel cases[] = {
+        {inside_up, true, 2, Part::base},     {inside_down, true, 2, Part::top},
+        {inside_up, false, 0, Part::lateral}, {inside_down, false, 0, Part::lateral},
+        {outside, true, 0, Part::lateral},    {outside, false, 0, Part::lateral},
+    };
+    for (const Parallel& c : cases) {
+        Cylinder cylinder{C, H, 5, true, c.caps};
+        for (Query q :
+             {Query{Need::all, true}, Query{Need::nearest, true}, Query{Need::any, false}}) {
+            INFO("caps " << c.caps << " L0 " << c.line.L0.x << " need " << int(q.need));
+            Result got = correct_solve(cylinder, c.line, q);
+            check_same_answer(got, exact::intersect(cylinder, c.line, q));
+            CHECK(got.rung == Rung::newton);
+            REQUIRE(got.count == (q.need == Need::all ? c.hits : std::min(c.hits, 1)));
+            if (got.count > 0) CHECK(got.hits[0].part == c.first);
+            for (int i = 0; i < got.count; ++i)
+                CHECK(got.hits[i].kind == HitKind::cross);
+        }
+    }
+}

@@ -154,6 +154,14 @@ class ExactForm final : public ExtentEnds {
         return end_crossing(quadratic(), top, 1 / t_factor);
     }
 
+    std::optional<int> constant_sign() const override {
+        asked_ = true;
+        if (deferred_) return std::nullopt;
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        if (sign(q.A) != 0 || sign(q.B) != 0) return std::nullopt;
+        return sign(q.C0);
+    }
+
   private:
     const S& shape_;
     const Line& line_;

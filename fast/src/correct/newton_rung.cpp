@@ -243,20 +243,12 @@ LINEQUAD_INLINE int root_on_nappe(const LineForm& f,
 // A root exactly at an end (A > 0) is where the piece meets that end's disc at its rim: the disc
 // is that end of the piece (a rim belongs to its disc), and a piece that touches the extent only
 // there is one point, a rim the line grazes (tangent).
+// The piece's hits from where its ends lie: side[i] for root i, at a rim where rim[i] is at_lo or
+// at_hi; `between`: the line is inside the quadric between the roots (A > 0), else outside.
 template <class Target>
-bool closed_hits(const LineForm& f, const Leading<double>& A,
-                 const std::optional<Enclosure<double>> (&root)[2], const Unit& unit,
-                 const Line& caller, Query query, Result& r, const ExtentEnds* ends) {
-    Side side[2], rim[2];
-    for (int i = 0; i < 2; ++i) {
-        rim[i] = side_of(f, *root[i]);
-        if (near_end(rim[i]))
-            rim[i] = ends ? place_at_end(f, root, i, rim[i], *ends, unit).side : Side::unknown;
-        side[i] = rim[i] == Side::at_lo   ? Side::below
-                  : rim[i] == Side::at_hi ? Side::above
-                                          : rim[i];
-        if (side[i] == Side::unknown) return false;
-    }
+bool piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double>> (&root)[2],
+                const Side (&side)[2], const Side (&rim)[2], const Unit& unit, const Line& caller,
+                Query query, Result& r) {
     bool at_rim = rim[0] != side[0] || rim[1] != side[1];
     Enclosure<double> at[2];
     Part part[2];
@@ -279,7 +271,7 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
         return true;
     };
     int points = 2; // the piece's ends; one where it is a grazed rim
-    if (A.A > 0) {
+    if (between) {
         if (side[0] == side[1] && side[0] != Side::within) {
             if (!at_rim) return true;
             int i = rim[0] != side[0] ? 0 : 1; // the root at the rim
@@ -316,6 +308,41 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
     }
     if (points == 1 && r.count == 1) r.hits[0].kind = HitKind::tangent; // a grazed rim
     return true;
+}
+
+template <class Target>
+bool closed_hits(const LineForm& f, const Leading<double>& A,
+                 const std::optional<Enclosure<double>> (&root)[2], const Unit& unit,
+                 const Line& caller, Query query, Result& r, const ExtentEnds* ends) {
+    Side side[2], rim[2];
+    for (int i = 0; i < 2; ++i) {
+        rim[i] = side_of(f, *root[i]);
+        if (near_end(rim[i]))
+            rim[i] = ends ? place_at_end(f, root, i, rim[i], *ends, unit).side : Side::unknown;
+        side[i] = rim[i] == Side::at_lo   ? Side::below
+                  : rim[i] == Side::at_hi ? Side::above
+                                          : rim[i];
+        if (side[i] == Side::unknown) return false;
+    }
+    return piece_hits<Target>(f, A.A > 0, root, side, rim, unit, caller, query, r);
+}
+
+// g constant along the line (A = B = 0 exactly, which only `ends` proves: a line parallel to a
+// cylinder's axis, or to a cone's generator away from the cone). Outside the quadric (C0 > 0)
+// it meets nothing, and inside (C0 < 0, a cylinder's) it meets no lateral point: an open shape
+// nothing, a closed one the two discs, in the order dZ's sign gives (the piece from below the
+// extent to above it). On the quadric, or unproven: the next rungs. Rare, so out of line.
+template <class Target>
+[[gnu::noinline]] bool constant_g_hits(const LineForm& f, const Unit& unit, const Line& caller,
+                                       Query query, Result& r, const ExtentEnds& ends) {
+    std::optional<int> c0 = ends.constant_sign();
+    if (!c0 || *c0 == 0) return false;
+    if (*c0 > 0 || f.discs == Discs::none) return true;
+    if (f.discs != Discs::convex || !(std::fabs(f.dZ) > f.e_dZ)) return false;
+    Side first = f.dZ > 0 ? Side::below : Side::above, last = f.dZ > 0 ? Side::above : Side::below;
+    const std::optional<Enclosure<double>> no_roots[2];
+    const Side side[2] = {first, last};
+    return piece_hits<Target>(f, true, no_roots, side, side, unit, caller, query, r);
 }
 
 } // namespace
@@ -372,7 +399,8 @@ template <int SigmaZ, class Target, Residual R>
 bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r,
            const ExtentEnds* ends) {
     Leading<double> A = leading<SigmaZ>(f);
-    if (!(std::fabs(A.A) > A.e)) return false; // nearly parallel to the axis or to a generator
+    if (!(std::fabs(A.A) > A.e)) // nearly parallel to the axis or to a generator
+        return ends && constant_g_hits<Target>(f, unit, caller, query, r, *ends);
     Estimates<double> est = estimates<SigmaZ>(f, A);
     if (!est.real)
         return no_root_proven(A, est.vertex, [&](double c) { return local_near<SigmaZ, R>(f, c); });

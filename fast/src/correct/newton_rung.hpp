@@ -42,11 +42,15 @@ struct EndCrossing {
     bool open; // the end belongs to another part (a capsule side's seam): a root there is not kept
     BoundedDD t; // t_E, in the rung's units
 };
-// The ladder's answer to that question, from the exact form (the exact rung's, formed once and
-// only when asked). No value where the end is not bounded.
+// The ladder's answers to what the rung's bounds leave open, exactly, from the exact form (the
+// exact rung's, formed once and only when asked).
 class ExtentEnds {
   public:
+    // An end's crossing; no value where the end is not bounded.
     virtual std::optional<EndCrossing> at(bool top, double t_factor) const = 0;
+    // Where the bounds cannot tell A from 0: when g is constant along the line (A = B = 0), the
+    // sign of C0 (-1 inside the quadric, 0 on it, 1 outside); no value where it is not.
+    virtual std::optional<int> constant_sign() const = 0;
 
   protected:
     ~ExtentEnds() = default;
