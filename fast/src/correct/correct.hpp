@@ -30,6 +30,7 @@
 #include "correct/ladder.hpp"
 #include "correct/newton_rung.hpp"
 #include "correct/rungs.hpp"
+#include "numeric/expansion.hpp"
 #include "shapes/all.hpp"
 #include "solve/solve.hpp"
 
@@ -119,6 +120,46 @@ std::optional<EndCrossing> end_crossing(const exact_form::LineQuadratic<NT>& q, 
     return c;
 }
 
+// Whether v x (p - q) = 0 exactly, p - q taken exactly: each component's four products of doubles
+// summed in an expansion. No value where a product could leave the range in which its low part
+// is exact.
+inline std::optional<bool> cross_is_zero(Vec3 v, Vec3 p, Vec3 q) {
+    auto moderate = [](Vec3 x) {
+        for (int k = 0; k < 3; ++k) {
+            double a = std::fabs(x[k]);
+            if (a != 0 && !(a >= 0x1p-480 && a <= 0x1p+480)) return false;
+        }
+        return true;
+    };
+    if (!moderate(v) || !moderate(p) || !moderate(q)) return std::nullopt;
+    for (int k = 0; k < 3; ++k) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        Expansion<8> e; // v_i (p_j - q_j) - v_j (p_i - q_i)
+        e.add_product(v[i], p[j]);
+        e.add_product(-v[i], q[j]);
+        e.add_product(-v[j], p[i]);
+        e.add_product(v[j], q[i]);
+        if (e.sign() != 0) return false;
+    }
+    return true;
+}
+
+// Whether the line runs exactly parallel to a cylinder's axis, which is where A = 0 (and then
+// B = 0: g is constant along the line); no value for other shapes, which the exact form answers.
+inline std::optional<bool> exactly_parallel(const Cylinder& s, const Line& l) {
+    return cross_is_zero(l.v, s.H, s.C);
+}
+inline std::optional<bool> exactly_parallel(const EllipticCylinder& s, const Line& l) {
+    return cross_is_zero(l.v, s.c, Vec3{});
+}
+inline std::optional<bool> exactly_parallel(const CapsuleSide& s, const Line& l) {
+    return cross_is_zero(l.v, s.H, s.C);
+}
+template <class S>
+std::optional<bool> exactly_parallel(const S&, const Line&) {
+    return std::nullopt;
+}
+
 // The exact form in BigFloat, formed once for the line and only when asked: by the Newton rung,
 // for a root its bounds leave next to an extent's end (ExtentEnds), and by the exact rung. An
 // end's signs come first from the double-double rung's quadratic, when it has run: its bounds
@@ -154,9 +195,16 @@ class ExactForm final : public ExtentEnds {
         return end_crossing(quadratic(), top, 1 / t_factor);
     }
 
+    // A cylinder's parallel line is shown by a few exact products and C0's sign by the
+    // double-double rung's bound (but on the surface); the exact form answers the rest.
     std::optional<int> constant_sign() const override {
         asked_ = true;
         if (deferred_) return std::nullopt;
+        if (std::optional<bool> parallel = exactly_parallel(shape_, line_)) {
+            if (!*parallel) return std::nullopt;
+            if (dd_)
+                if (int s = sign(dd_->C0); s != undecided_sign) return s;
+        }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) != 0) return std::nullopt;
         return sign(q.C0);
