@@ -210,6 +210,16 @@ class ExactForm final : public ExtentEnds {
         return sign(q.C0);
     }
 
+    std::optional<Part> disc_holding() const override {
+        asked_ = true;
+        if (deferred_) return std::nullopt;
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        if (sign(q.dZ) != 0) return Part::lateral;
+        if (q.lo_capped && sign(q.Z0 - q.lo) == 0) return Part::base;
+        if (q.hi_capped && sign(q.Z0 - q.hi) == 0) return Part::top;
+        return Part::lateral;
+    }
+
   private:
     const S& shape_;
     const Line& line_;

@@ -327,6 +327,66 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
     return piece_hits<Target>(f, A.A > 0, root, side, rim, unit, caller, query, r);
 }
 
+// t rounded to Target in the caller's units, where its enclosure proves the rounding (add_hit's).
+template <class Target>
+std::optional<double> rounded_t_to(const Enclosure<double>& en, const Unit& unit) {
+    if constexpr (std::is_same_v<Target, Binary32>) {
+        double t = en.c + en.x, e_t = en.e + u * std::fabs(t);
+        return round_proven<Target>({t, 0, e_t * F::cover(4) + F::denorm_min}, unit.t_factor);
+    } else {
+        Rounded<double> t = rounded_t(en, unit.t_factor);
+        if (!t.proven) return std::nullopt;
+        return t.value;
+    }
+}
+
+// A line in a disc's plane (dZ = 0 and Z0 at that end, exactly, which only `ends` proves) with
+// both lateral roots proven and A > 0: the chord between them is the disc's, and the line lies
+// on the shape there. The answer is that chord cut to the range, each end the root or the
+// range's end beyond it, or nothing where they cross (the exact form's in_disc_plane). Rare, so
+// out of line.
+template <class Target>
+[[gnu::noinline]] bool
+chord_in_disc(const Leading<double>& A, const std::optional<Enclosure<double>> (&root)[2],
+              const Unit& unit, const Line& caller, Result& r, const ExtentEnds& ends) {
+    if (!(A.A > A.e)) return false;
+    std::optional<Part> disc = ends.disc_holding();
+    if (!disc || *disc == Part::lateral) return false;
+    const Interval& range = unit.line.range; // in the rung's units; its ends exact
+    EnclosedT<double> t[2] = {t_of(*root[0]), t_of(*root[1])};
+    // sgn(root i - x) for an exact x, or 0 where the bounds cannot tell.
+    auto against = [&](int i, double x) {
+        DifferenceTest<double> d = difference_test(t[i].t, t[i].e_t, x, 0.0);
+        return d.d > d.bound ? 1 : d.d < -d.bound ? -1 : 0;
+    };
+    bool from_root = true, to_root = true; // the chord's ends: roots, or the range's
+    if (range.has_t0()) {
+        int s = against(0, range.t0);
+        if (s == 0) return false;
+        from_root = s > 0;
+    }
+    if (range.has_t1()) {
+        int s = against(1, range.t1);
+        if (s == 0) return false;
+        to_root = s < 0;
+    }
+    // The chord's first end after its last: a chord the range misses.
+    int order = from_root && to_root ? -1 // the roots, proven apart
+                : from_root          ? against(0, range.t1)
+                : to_root            ? -against(1, range.t0)
+                                     : -1; // the range's ends, t0 <= t1
+    if (order == 0) return false;
+    r = Result();
+    if (order > 0) return true;
+    std::optional<double> s0 = from_root ? rounded_t_to<Target>(*root[0], unit) : caller.range.t0;
+    std::optional<double> s1 = to_root ? rounded_t_to<Target>(*root[1], unit) : caller.range.t1;
+    if (!s0 || !s1) return false;
+    r.on_surface = true;
+    r.surface_part = *disc;
+    r.s0 = *s0, r.s1 = *s1;
+    return true;
+}
+
 // g constant along the line (A = B = 0 exactly, which only `ends` proves: a line parallel to a
 // cylinder's axis, or to a cone's generator away from the cone). Outside the quadric (C0 > 0)
 // it meets nothing, and inside (C0 < 0, a cylinder's) it meets no lateral point: an open shape
@@ -421,7 +481,10 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
             en[i] = root_near(local[i], A, estimate[i]);
             if (!en[i] || en[i]->smaller != (i == 0)) return false;
         }
-        return closed_hits<Target>(f, A, en, unit, caller, query, r, ends);
+        if (closed_hits<Target>(f, A, en, unit, caller, query, r, ends)) return true;
+        // Z constant along the line, perhaps at an end: a line in a disc's plane.
+        return ends && !(std::fabs(f.dZ) > f.e_dZ) &&
+               chord_in_disc<Target>(A, en, unit, caller, r, *ends);
     }
     // Both roots at once when both are needed; otherwise the second only if the first is not kept.
     Local<double> local[2];

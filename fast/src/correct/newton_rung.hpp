@@ -51,6 +51,9 @@ class ExtentEnds {
     // Where the bounds cannot tell A from 0: when g is constant along the line (A = B = 0), the
     // sign of C0 (-1 inside the quadric, 0 on it, 1 outside); no value where it is not.
     virtual std::optional<int> constant_sign() const = 0;
+    // Where the bounds cannot tell dZ from 0 on a closed shape: the disc whose plane holds the
+    // line (dZ = 0 and Z0 at that end), or lateral where none does.
+    virtual std::optional<Part> disc_holding() const = 0;
 
   protected:
     ~ExtentEnds() = default;
