@@ -534,3 +534,35 @@ TEST_CASE("correct answers lines parallel to a cylinder's axis on the Newton run
         }
     }
 }
+
+TEST_CASE("correct answers a line in a disc's plane on the Newton rung") {
+    // A case of the rim family: the line lies in the base disc's plane, (L0 - C).h = v.h = 0
+    // exactly, h = H - C, and crosses the disc. The answer is the chord between the lateral
+    // roots, on the disc's surface, cut to the range; the Newton rung encloses the roots and the
+    // exact products show the plane. Each as the oracle answers it.
+    Cylinder drum{{-6, 4, 1}, {-22, -12, 9}, 36, true, true};
+    Line line{{-30, 47.5, 40}, {24, -39, -30}, Range::line};
+    Result whole = exact::intersect(drum, line);
+    REQUIRE(whole.on_surface);
+    REQUIRE(whole.surface_part == Part::base);
+    double mid = 0.5 * (whole.s0 + whole.s1), inf = std::numeric_limits<double>::infinity();
+    // The whole chord; from its middle on (cut there); a piece inside it (the range's ends); and
+    // from past its end (nothing, which the double-double rung already shows: no rounding).
+    struct Piece {
+        Interval range;
+        Rung rung;
+    };
+    const Piece pieces[] = {{Range::line, Rung::newton},
+                            {{mid, inf}, Rung::newton},
+                            {{mid, mid + 0.25}, Rung::newton},
+                            {{2 * whole.s1, inf}, Rung::double_double}};
+    for (const Piece& piece : pieces) {
+        Line l{line.L0, line.v, piece.range};
+        for (Query q : {Query{Need::all, true}, Query{Need::any, false}}) {
+            INFO("range " << l.range.t0 << " to " << l.range.t1 << " need " << int(q.need));
+            Result got = correct_solve(drum, l, q);
+            check_same_answer(got, exact::intersect(drum, l, q));
+            CHECK(got.rung == piece.rung);
+        }
+    }
+}

@@ -34,6 +34,8 @@
 #include "shapes/all.hpp"
 #include "solve/solve.hpp"
 
+#include <initializer_list>
+
 namespace linequad::detail {
 
 // Every answer of the ladder is certain, each t within half an ulp of Target; and says which rung
@@ -120,18 +122,21 @@ std::optional<EndCrossing> end_crossing(const exact_form::LineQuadratic<NT>& q, 
     return c;
 }
 
-// Whether v x (p - q) = 0 exactly, p - q taken exactly: each component's four products of doubles
-// summed in an expansion. No value where a product could leave the range in which its low part
-// is exact.
-inline std::optional<bool> cross_is_zero(Vec3 v, Vec3 p, Vec3 q) {
-    auto moderate = [](Vec3 x) {
+// Products of doubles are exact in an expansion (a low part and a high one) while they stay
+// far from underflow and overflow: every input nonzero component within 2^-480 to 2^480.
+inline bool exact_products(std::initializer_list<Vec3> inputs) {
+    for (const Vec3& x : inputs)
         for (int k = 0; k < 3; ++k) {
             double a = std::fabs(x[k]);
             if (a != 0 && !(a >= 0x1p-480 && a <= 0x1p+480)) return false;
         }
-        return true;
-    };
-    if (!moderate(v) || !moderate(p) || !moderate(q)) return std::nullopt;
+    return true;
+}
+
+// Whether v x (p - q) = 0 exactly, p - q taken exactly: each component's four products of doubles
+// summed in an expansion. No value where a product could be inexact.
+inline std::optional<bool> cross_is_zero(Vec3 v, Vec3 p, Vec3 q) {
+    if (!exact_products({v, p, q})) return std::nullopt;
     for (int k = 0; k < 3; ++k) {
         int i = (k + 1) % 3, j = (k + 2) % 3;
         Expansion<8> e; // v_i (p_j - q_j) - v_j (p_i - q_i)
@@ -142,6 +147,37 @@ inline std::optional<bool> cross_is_zero(Vec3 v, Vec3 p, Vec3 q) {
         if (e.sign() != 0) return false;
     }
     return true;
+}
+
+// The sign of (a - a') . (b - b'), the differences taken exactly; no value where a product could
+// be inexact.
+inline std::optional<int> dot_sign(Vec3 a, Vec3 a_, Vec3 b, Vec3 b_) {
+    if (!exact_products({a, a_, b, b_})) return std::nullopt;
+    Expansion<24> e;
+    for (int k = 0; k < 3; ++k) {
+        e.add_product(a[k], b[k]);
+        e.add_product(-a[k], b_[k]);
+        e.add_product(-a_[k], b[k]);
+        e.add_product(a_[k], b_[k]);
+    }
+    return e.sign();
+}
+
+// The disc whose plane holds the line, or lateral, for a closed cylinder: dZ = v.h and
+// Z0 - end = (L0 - C).h or (L0 - H).h, h = H - C, each exactly (the exact form's Z is (P - C).h);
+// no value for other shapes, which the exact form answers.
+inline std::optional<Part> disc_holding_line(const Cylinder& s, const Line& l) {
+    if (!s.caps) return Part::lateral;
+    std::optional<int> dZ = dot_sign(l.v, Vec3{}, s.H, s.C);
+    if (!dZ) return std::nullopt;
+    if (*dZ != 0) return Part::lateral;
+    std::optional<int> base = dot_sign(l.L0, s.C, s.H, s.C), top = dot_sign(l.L0, s.H, s.H, s.C);
+    if (!base || !top) return std::nullopt;
+    return *base == 0 ? Part::base : *top == 0 ? Part::top : Part::lateral;
+}
+template <class S>
+std::optional<Part> disc_holding_line(const S&, const Line&) {
+    return std::nullopt;
 }
 
 // Whether the line runs exactly parallel to a cylinder's axis, which is where A = 0 (and then
@@ -213,6 +249,7 @@ class ExactForm final : public ExtentEnds {
     std::optional<Part> disc_holding() const override {
         asked_ = true;
         if (deferred_) return std::nullopt;
+        if (std::optional<Part> disc = disc_holding_line(shape_, line_)) return disc;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.dZ) != 0) return Part::lateral;
         if (q.lo_capped && sign(q.Z0 - q.lo) == 0) return Part::base;
