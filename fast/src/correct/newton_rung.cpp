@@ -246,9 +246,10 @@ LINEQUAD_INLINE int root_on_nappe(const LineForm& f,
 // The piece's hits from where its ends lie: side[i] for root i, at a rim where rim[i] is at_lo or
 // at_hi; `between`: the line is inside the quadric between the roots (A > 0), else outside.
 template <class Target>
-bool piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double>> (&root)[2],
-                const Side (&side)[2], const Side (&rim)[2], const Unit& unit, const Line& caller,
-                Query query, Result& r) {
+LINEQUAD_INLINE bool piece_hits(const LineForm& f, bool between,
+                                const std::optional<Enclosure<double>> (&root)[2],
+                                const Side (&side)[2], const Side (&rim)[2], const Unit& unit,
+                                const Line& caller, Query query, Result& r) {
     bool at_rim = rim[0] != side[0] || rim[1] != side[1];
     Enclosure<double> at[2];
     Part part[2];
@@ -310,23 +311,6 @@ bool piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<d
     return true;
 }
 
-template <class Target>
-bool closed_hits(const LineForm& f, const Leading<double>& A,
-                 const std::optional<Enclosure<double>> (&root)[2], const Unit& unit,
-                 const Line& caller, Query query, Result& r, const ExtentEnds* ends) {
-    Side side[2], rim[2];
-    for (int i = 0; i < 2; ++i) {
-        rim[i] = side_of(f, *root[i]);
-        if (near_end(rim[i]))
-            rim[i] = ends ? place_at_end(f, root, i, rim[i], *ends, unit).side : Side::unknown;
-        side[i] = rim[i] == Side::at_lo   ? Side::below
-                  : rim[i] == Side::at_hi ? Side::above
-                                          : rim[i];
-        if (side[i] == Side::unknown) return false;
-    }
-    return piece_hits<Target>(f, A.A > 0, root, side, rim, unit, caller, query, r);
-}
-
 // t rounded to Target in the caller's units, where its enclosure proves the rounding (add_hit's).
 template <class Target>
 std::optional<double> rounded_t_to(const Enclosure<double>& en, const Unit& unit) {
@@ -385,6 +369,26 @@ chord_in_disc(const Leading<double>& A, const std::optional<Enclosure<double>> (
     r.surface_part = *disc;
     r.s0 = *s0, r.s1 = *s1;
     return true;
+}
+
+template <class Target>
+bool closed_hits(const LineForm& f, const Leading<double>& A,
+                 const std::optional<Enclosure<double>> (&root)[2], const Unit& unit,
+                 const Line& caller, Query query, Result& r, const ExtentEnds* ends) {
+    Side side[2], rim[2];
+    for (int i = 0; i < 2; ++i) {
+        rim[i] = side_of(f, *root[i]);
+        if (near_end(rim[i]))
+            rim[i] = ends ? place_at_end(f, root, i, rim[i], *ends, unit).side : Side::unknown;
+        side[i] = rim[i] == Side::at_lo   ? Side::below
+                  : rim[i] == Side::at_hi ? Side::above
+                                          : rim[i];
+        // Z constant along the line, perhaps at an end: a line in a disc's plane.
+        if (side[i] == Side::unknown)
+            return ends && !(std::fabs(f.dZ) > f.e_dZ) &&
+                   chord_in_disc<Target>(A, root, unit, caller, r, *ends);
+    }
+    return piece_hits<Target>(f, A.A > 0, root, side, rim, unit, caller, query, r);
 }
 
 // g constant along the line (A = B = 0 exactly, which only `ends` proves: a line parallel to a
@@ -481,10 +485,7 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
             en[i] = root_near(local[i], A, estimate[i]);
             if (!en[i] || en[i]->smaller != (i == 0)) return false;
         }
-        if (closed_hits<Target>(f, A, en, unit, caller, query, r, ends)) return true;
-        // Z constant along the line, perhaps at an end: a line in a disc's plane.
-        return ends && !(std::fabs(f.dZ) > f.e_dZ) &&
-               chord_in_disc<Target>(A, en, unit, caller, r, *ends);
+        return closed_hits<Target>(f, A, en, unit, caller, query, r, ends);
     }
     // Both roots at once when both are needed; otherwise the second only if the first is not kept.
     Local<double> local[2];
