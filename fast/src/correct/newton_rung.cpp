@@ -243,8 +243,9 @@ LINEQUAD_INLINE int root_on_nappe(const LineForm& f,
 // A root exactly at an end (A > 0) is where the piece meets that end's disc at its rim: the disc
 // is that end of the piece (a rim belongs to its disc), and a piece that touches the extent only
 // there is one point, a rim the line grazes (tangent).
-// The piece's hits from where its ends lie: side[i] for root i, at a rim where rim[i] is at_lo or
-// at_hi; `between`: the line is inside the quadric between the roots (A > 0), else outside.
+// piece_hits: the hits from where the roots lie, side[i] for root i (at a rim where rim[i] is
+// at_lo or at_hi); `between`: the line is inside the quadric between the roots (A > 0), else
+// outside. closed_hits: where each root lies, then piece_hits.
 template <class Target>
 LINEQUAD_INLINE bool piece_hits(const LineForm& f, bool between,
                                 const std::optional<Enclosure<double>> (&root)[2],
@@ -362,6 +363,7 @@ chord_in_disc(const Leading<double>& A, const std::optional<Enclosure<double>> (
     if (order == 0) return false;
     r = Result();
     if (order > 0) return true;
+    // A range's end is Target's own value (a float solver refuses others): it is the answer.
     std::optional<double> s0 = from_root ? rounded_t_to<Target>(*root[0], unit) : caller.range.t0;
     std::optional<double> s1 = to_root ? rounded_t_to<Target>(*root[1], unit) : caller.range.t1;
     if (!s0 || !s1) return false;
