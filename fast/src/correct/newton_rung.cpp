@@ -461,6 +461,33 @@ template <int SigmaZ, Residual R>
     return k.outside ? 0 : k.inside ? 1 : -1;
 }
 
+// The root next to the estimate c where the local quadratic there leaves it unproven, or its
+// enclosure too wide to round t: an estimate far off in the root's scale (a line from far away,
+// whose double estimate lost bits to cancellation) leaves y = 4AG/G'^2 large, and the enclosure
+// with it. Up to four more Newton steps, each from the last one's root, each proof tried again;
+// the narrowest proven enclosure stands. The scalar ladder's (ends given); rare, so out of line.
+template <int SigmaZ, Residual R>
+[[gnu::noinline]] std::optional<Enclosure<double>>
+stepped_again(const LineForm& f, const Leading<double>& A, const Local<double>& L, double c,
+              std::optional<Enclosure<double>> en) {
+    if (en) { // proven: a step narrows it only where the quadratic term, not G's bound, widens it
+        double x0 = std::fabs(L.G / L.Gp), y = 4 * std::fabs(A.A) * x0 / std::fabs(L.Gp);
+        if (!(0.35 * y * std::fabs(L.G) > 2 * (L.e_G + x0 * L.e_Gp))) return en;
+    }
+    double next = en ? en->c + en->x : c - L.G / L.Gp;
+    for (int step = 0; step < 4 && std::isfinite(next); ++step) {
+        std::optional<Enclosure<double>> again = root_near(local_near<SigmaZ, R>(f, next), A, next);
+        if (!again || (en && (again->smaller != en->smaller || !(again->e < en->e)))) break;
+        en = again;
+        next = en->c + en->x;
+    }
+    return en;
+}
+// Unproven, or wider than 2^-64 of the root: far from what rounding t needs.
+LINEQUAD_INLINE bool too_wide(const std::optional<Enclosure<double>>& en) {
+    return !en || !(en->e <= 0x1p-64 * std::fabs(en->c));
+}
+
 template <int SigmaZ, class Target, Residual R>
 bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r,
            const ExtentEnds* ends) {
@@ -485,6 +512,8 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         }
         for (int i = 0; i < 2; ++i) {
             en[i] = root_near(local[i], A, estimate[i]);
+            if (ends && too_wide(en[i]))
+                en[i] = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en[i]);
             if (!en[i] || en[i]->smaller != (i == 0)) return false;
         }
         return closed_hits<Target>(f, A, en, unit, caller, query, r, ends);
@@ -496,6 +525,7 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
     for (int i = 0; i < 2; ++i) {
         if (!both) local[i] = local_near<SigmaZ, R>(f, estimate[i]);
         std::optional<Enclosure<double>> en = root_near(local[i], A, estimate[i]);
+        if (ends && too_wide(en)) en = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en);
         if (!en || en->smaller != (i == 0)) return false;
         int inside = kept(f, unit, *en);
         if (inside < 0 && ends)
