@@ -587,3 +587,37 @@ TEST_CASE(
     CHECK(lines == 1600);
     CHECK(on_newton >= lines * 8 / 10);
 }
+
+TEST_CASE("correct answers tangent lines on the Newton rung") {
+    // x = 5 = r from the axis x = 0, y = 0.2, along y (and up z): tangent to the cylinder where
+    // y = 0.2. Its ends and the lines' starts are not dyadic, so neither the rung's bounds nor
+    // the double-double rung's show the double root; the exact form does, and t = -B/A is then
+    // rational and rounded on the rung. Inside the extent: one tangent hit (a closed cylinder's
+    // too); beyond it: none. Each as the oracle answers it.
+    Vec3 C{0, 0.2, 0.3}, H{0, 0.2, 4.3};
+    struct Tangent {
+        Line line;
+        int hits;
+    };
+    const Tangent cases[] = {
+        {{{5, 1.7, 2.9}, {0, 1.5, 0.25}, Range::line}, 1}, // touches at z = 2.65, inside
+        {{{5, 1.7, 9.1}, {0, 1.5, 0.25}, Range::line}, 0}, // at z = 8.85, above the top
+        {{{5, 1.7, 2.9}, {0, 1.5, 0.25}, Range::ray}, 0},  // touches at t < 0
+    };
+    for (const Tangent& c : cases)
+        for (bool caps : {false, true}) {
+            Cylinder cylinder{C, H, 5, true, caps};
+            for (Query q : {Query{Need::all, true}, Query{Need::any, false}}) {
+                INFO("L0.z " << c.line.L0.z << " ray " << c.line.range.has_t0() << " caps " << caps
+                             << " need " << int(q.need));
+                Result got = correct_solve(cylinder, c.line, q);
+                check_same_answer(got, exact::intersect(cylinder, c.line, q));
+                CHECK(got.rung == Rung::newton);
+                REQUIRE(got.count == c.hits);
+                if (got.count == 1) {
+                    CHECK(got.hits[0].kind == HitKind::tangent);
+                    CHECK(got.hits[0].part == Part::lateral);
+                }
+            }
+        }
+}

@@ -98,6 +98,15 @@ inline BigFloat twice(const BigFloat& x) {
     return x.scaled(1);
 }
 
+// t times `to_rung` (a power of two: a quadratic's parameter into the rung's), exactly; no value
+// where a part would leave the normal range or the bound is not finite.
+inline std::optional<BoundedDD> in_rung_units(BoundedDD t, double to_rung) {
+    if (to_rung != 1) t = BoundedDD(t.hi * to_rung, t.lo * to_rung, t.e * to_rung);
+    auto tiny = [](double x) { return x != 0 && std::fabs(x) < 0x1p-960; };
+    if (tiny(t.hi) || tiny(t.lo) || tiny(t.e) || !std::isfinite(t.e)) return std::nullopt;
+    return t;
+}
+
 // Where the line crosses one end of q's extent: dZ^2 q(t_E) = (A N + 2 B dZ) N + C0 dZ^2 with
 // N = end - Z0 (the exact form's own test of a disc), and t_E = N / dZ enclosed, times
 // `to_rung` (a power of two: q's parameter into the rung's). No value where the end is not
@@ -115,10 +124,9 @@ std::optional<EndCrossing> end_crossing(const exact_form::LineQuadratic<NT>& q, 
     for (int s : {c.q_sign, c.A_sign, c.dZ_sign})
         if (s == undecided_sign) return std::nullopt;
     c.open = top ? q.hi_open : q.lo_open;
-    c.t = enclosure(N) / enclosure(q.dZ);
-    if (to_rung != 1) c.t = BoundedDD(c.t.hi * to_rung, c.t.lo * to_rung, c.t.e * to_rung);
-    auto tiny = [](double x) { return x != 0 && std::fabs(x) < 0x1p-960; };
-    if (tiny(c.t.hi) || tiny(c.t.lo) || tiny(c.t.e) || !std::isfinite(c.t.e)) return std::nullopt;
+    std::optional<BoundedDD> t = in_rung_units(enclosure(N) / enclosure(q.dZ), to_rung);
+    if (!t) return std::nullopt;
+    c.t = *t;
     return c;
 }
 
@@ -255,6 +263,14 @@ class ExactForm final : public ExtentEnds {
         if (q.lo_capped && sign(q.Z0 - q.lo) == 0) return Part::base;
         if (q.hi_capped && sign(q.Z0 - q.hi) == 0) return Part::top;
         return Part::lateral;
+    }
+
+    std::optional<BoundedDD> double_root(double t_factor) const override {
+        asked_ = true;
+        if (deferred_) return std::nullopt;
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        if (sign(q.A) == 0 || sign(q.B * q.B - q.A * q.C0) != 0) return std::nullopt;
+        return in_rung_units(enclosure(-q.B) / enclosure(q.A), 1 / t_factor);
     }
 
   private:

@@ -483,6 +483,27 @@ stepped_again(const LineForm& f, const Leading<double>& A, const Local<double>& 
     }
     return en;
 }
+// A tangency (a double root, which only `ends` proves: D = 0 exactly), A > 0: the line touches
+// the quadric at t = -B/A, rational, and meets the shape there alone, where that point lies
+// strictly inside the extent (a closed solid too: the quadric's inside is that point) and the
+// range. At an end, on two solids or unproven: the next rungs. Rare, so out of line.
+template <class Target>
+[[gnu::noinline]] bool tangent_hit(const LineForm& f, const Leading<double>& A, const Unit& unit,
+                                   const Line& caller, Query query, Result& r,
+                                   const ExtentEnds& ends) {
+    if (!(A.A > A.e) || f.discs == Discs::two_solids) return false;
+    std::optional<BoundedDD> t = ends.double_root(unit.t_factor);
+    if (!t) return false;
+    Enclosure<double> en{t->hi, t->lo, t->e, true, true};
+    int inside = kept(f, unit, en);
+    if (inside < 0) return false;
+    r = Result();
+    if (inside == 0) return true;
+    if (!add_hit<Target>(en, Part::lateral, unit, caller, query, r)) return false;
+    r.hits[0].kind = HitKind::tangent;
+    return true;
+}
+
 // Unproven, or wider than 2^-64 of the root: far from what rounding t needs.
 LINEQUAD_INLINE bool too_wide(const std::optional<Enclosure<double>>& en) {
     return !en || !(en->e <= 0x1p-64 * std::fabs(en->c));
@@ -496,7 +517,9 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         return ends && constant_g_hits<Target>(f, unit, caller, query, r, *ends);
     Estimates<double> est = estimates<SigmaZ>(f, A);
     if (!est.real)
-        return no_root_proven(A, est.vertex, [&](double c) { return local_near<SigmaZ, R>(f, c); });
+        return no_root_proven(A, est.vertex,
+                              [&](double c) { return local_near<SigmaZ, R>(f, c); }) ||
+               (ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends));
     double estimate[2] = {est.root[0], est.root[1]};
     if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
     if (f.discs != Discs::none) {
@@ -514,7 +537,8 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
             en[i] = root_near(local[i], A, estimate[i]);
             if (ends && too_wide(en[i]))
                 en[i] = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en[i]);
-            if (!en[i] || en[i]->smaller != (i == 0)) return false;
+            if (!en[i]) return ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends);
+            if (en[i]->smaller != (i == 0)) return false;
         }
         return closed_hits<Target>(f, A, en, unit, caller, query, r, ends);
     }
@@ -526,7 +550,8 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         if (!both) local[i] = local_near<SigmaZ, R>(f, estimate[i]);
         std::optional<Enclosure<double>> en = root_near(local[i], A, estimate[i]);
         if (ends && too_wide(en)) en = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en);
-        if (!en || en->smaller != (i == 0)) return false;
+        if (!en) return ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends);
+        if (en->smaller != (i == 0)) return false;
         int inside = kept(f, unit, *en);
         if (inside < 0 && ends)
             inside = kept_at_end<SigmaZ, R>(f, A, estimate, i, *en, *ends, unit);

@@ -54,6 +54,9 @@ class ExtentEnds {
     // Where the bounds cannot tell dZ from 0 on a closed shape: the disc whose plane holds the
     // line (dZ = 0 and Z0 at that end), or lateral where none does.
     virtual std::optional<Part> disc_holding() const = 0;
+    // Where the bounds prove no simple root: when g has a double root (B^2 - A C0 = 0, A != 0:
+    // a tangency), that root -B/A enclosed, in the rung's units.
+    virtual std::optional<BoundedDD> double_root(double t_factor) const = 0;
 
   protected:
     ~ExtentEnds() = default;
