@@ -10,7 +10,6 @@
 #include "numeric/big_float.hpp"
 #include "shapes/all.hpp"
 
-#include <array>
 #include <optional>
 #include <tuple>
 
