@@ -500,10 +500,11 @@ TEST_CASE("correct decides roots at and beside an extent's end on the Newton run
 
 TEST_CASE("correct answers lines parallel to a cylinder's axis on the Newton rung") {
     // A cylinder along z from C to H, its ends and the lines' starts not dyadic: the rung's
-    // bounds cannot tell A from 0, nor the double-double rung B, and only the exact form shows
-    // that g is constant along each line. Inside the quadric (C0 < 0) a closed cylinder meets the
-    // line at its two discs, in the order dZ's sign gives, and an open one nowhere; outside, no
-    // shape meets it. Each as the oracle answers it.
+    // bounds cannot tell A from 0, nor the double-double rung B; exact products show that each
+    // line is parallel to the axis (g constant along it), and the double-double bound gives C0's
+    // sign. Inside the quadric (C0 < 0) a closed cylinder meets the line at its two discs, in
+    // the order dZ's sign gives, and an open one nowhere; outside, no shape meets it. Each as the
+    // oracle answers it.
     Vec3 C{0.1, 0.2, 0.3}, H{0.1, 0.2, 4.3};
     struct Parallel {
         Line line;
