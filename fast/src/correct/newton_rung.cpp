@@ -504,9 +504,14 @@ template <class Target>
     return true;
 }
 
-// Unproven, or wider than 2^-64 of the root: far from what rounding t needs.
+// Unproven, or wider than 2^-64 of the root: far from what rounding t to a double needs. The
+// quick residual's enclosures are meant to be wider (a float's rounding needs 2^-24): never.
+template <Residual R>
 LINEQUAD_INLINE bool too_wide(const std::optional<Enclosure<double>>& en) {
-    return !en || !(en->e <= 0x1p-64 * std::fabs(en->c));
+    if constexpr (R == Residual::quick)
+        return false;
+    else
+        return !en || !(en->e <= 0x1p-64 * std::fabs(en->c));
 }
 
 template <int SigmaZ, class Target, Residual R>
@@ -535,7 +540,7 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         }
         for (int i = 0; i < 2; ++i) {
             en[i] = root_near(local[i], A, estimate[i]);
-            if (ends && too_wide(en[i]))
+            if (ends && too_wide<R>(en[i]))
                 en[i] = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en[i]);
             if (!en[i]) return ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends);
             if (en[i]->smaller != (i == 0)) return false;
@@ -549,7 +554,7 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
     for (int i = 0; i < 2; ++i) {
         if (!both) local[i] = local_near<SigmaZ, R>(f, estimate[i]);
         std::optional<Enclosure<double>> en = root_near(local[i], A, estimate[i]);
-        if (ends && too_wide(en)) en = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en);
+        if (ends && too_wide<R>(en)) en = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en);
         if (!en) return ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends);
         if (en->smaller != (i == 0)) return false;
         int inside = kept(f, unit, *en);
