@@ -30,6 +30,7 @@
 #include "correct/ladder.hpp"
 #include "correct/newton_rung.hpp"
 #include "correct/rungs.hpp"
+#include "forms/frame.hpp"
 #include "numeric/expansion.hpp"
 #include "shapes/all.hpp"
 #include "solve/solve.hpp"
@@ -141,22 +142,6 @@ inline bool exact_products(std::initializer_list<Vec3> inputs) {
     return true;
 }
 
-// Whether v x (p - q) = 0 exactly, p - q taken exactly: each component's four products of doubles
-// summed in an expansion. No value where a product could be inexact.
-inline std::optional<bool> cross_is_zero(Vec3 v, Vec3 p, Vec3 q) {
-    if (!exact_products({v, p, q})) return std::nullopt;
-    for (int k = 0; k < 3; ++k) {
-        int i = (k + 1) % 3, j = (k + 2) % 3;
-        Expansion<8> e; // v_i (p_j - q_j) - v_j (p_i - q_i)
-        e.add_product(v[i], p[j]);
-        e.add_product(-v[i], q[j]);
-        e.add_product(-v[j], p[i]);
-        e.add_product(v[j], q[i]);
-        if (e.sign() != 0) return false;
-    }
-    return true;
-}
-
 // The sign of (a - a') . (b - b'), the differences taken exactly; no value where a product could
 // be inexact.
 inline std::optional<int> dot_sign(Vec3 a, Vec3 a_, Vec3 b, Vec3 b_) {
@@ -188,16 +173,24 @@ std::optional<Part> disc_holding_line(const S&, const Line&) {
     return std::nullopt;
 }
 
+// Whether v x (H - C) = 0 exactly: each component k is det[e_k, v, H - C], whose exact sign the
+// frames' orientation test gives (filtered, then expansions, then BigFloat).
+inline bool cross_is_zero(Vec3 v, Vec3 C, Vec3 H) {
+    for (Vec3 axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}})
+        if (cone_det_sign_exact(axis, v, C, H) != 0) return false;
+    return true;
+}
+
 // Whether the line runs exactly parallel to a cylinder's axis, which is where A = 0 (and then
 // B = 0: g is constant along the line); no value for other shapes, which the exact form answers.
 inline std::optional<bool> exactly_parallel(const Cylinder& s, const Line& l) {
-    return cross_is_zero(l.v, s.H, s.C);
+    return cross_is_zero(l.v, s.C, s.H);
 }
 inline std::optional<bool> exactly_parallel(const EllipticCylinder& s, const Line& l) {
-    return cross_is_zero(l.v, s.c, Vec3{});
+    return cross_is_zero(l.v, Vec3{}, s.c);
 }
 inline std::optional<bool> exactly_parallel(const CapsuleSide& s, const Line& l) {
-    return cross_is_zero(l.v, s.H, s.C);
+    return cross_is_zero(l.v, s.C, s.H);
 }
 template <class S>
 std::optional<bool> exactly_parallel(const S&, const Line&) {

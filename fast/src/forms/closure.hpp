@@ -175,9 +175,7 @@ ClosedPoints<BT> close(const BoundaryPoint<BT>* lateral, int n, const AxialQuadr
     int solids[max_hits];
     for (int i = 0; i < out.n; ++i) {
         const BoundaryPoint<BT>& p = out.p[i];
-        if (!e.caps.two_solids)
-            solids[i] = 1;
-        else if (p.part != Part::lateral)
+        if (p.part != Part::lateral)
             solids[i] = p.part == Part::base ? 1 : 2;
         else {
             int z = sign_of(p.z);
