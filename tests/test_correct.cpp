@@ -15,6 +15,7 @@
 #include <gmp.h>
 #include <mpfr.h>
 
+#include <array>
 #include <cstring>
 #include <string>
 
@@ -113,6 +114,57 @@ TEST_CASE("BigFloat differences that cancel whole low limbs are exact") {
     CHECK(sign(x - y) < 0);
     CHECK(sign(x - y + p64) == 0);
     CHECK(sign(y - x - p64) == 0);
+}
+
+namespace {
+
+// x as an exact rational, read back through leading() alone: its hi + lo taken off until nothing
+// is left, each step removing at least 104 bits. For values whose bits lie above about 2^-750: a
+// step's rounded lo can leave a remainder some 127 bits below x's lowest bit, and leading() needs
+// its top above 2^-773.
+Q exact_value(BigFloat x) {
+    Q sum;
+    for (int step = 0; sign(x) != 0; ++step) {
+        REQUIRE(step < 200);
+        BigFloat::Leading l = x.leading();
+        REQUIRE(std::isfinite(l.err));
+        sum = sum + Q(l.hi) + Q(l.lo);
+        x = x - BigFloat(l.hi) - BigFloat(l.lo);
+    }
+    return sum;
+}
+
+} // namespace
+
+TEST_CASE("BigFloat sums and products of several limbs equal GMP's exactly") {
+    // Values of one to many limbs: sums of products of doubles whose exponents lie 0 to 160 bits
+    // apart, so that sums meet operands from zero to several limbs apart (and the one-limb sums
+    // and products the exact forms mostly make, d < 63 or not), of either sign, cancelling or not.
+    std::mt19937_64 rng(29);
+    auto near_double = [&](int spread) {
+        double m = std::uniform_real_distribution<double>(1, 2)(rng);
+        double x = std::ldexp(m, int(rng() % unsigned(spread + 1)) - spread / 2);
+        return rng() % 2 ? -x : x;
+    };
+    for (int i = 0; i < 4000; ++i) {
+        int spread = std::array<int, 4>{0, 62, 130, 160}[rng() % 4];
+        BigFloat x, y;
+        Q qx, qy;
+        for (int k = 0, n = 1 + int(rng() % 4); k < n; ++k) {
+            double a = near_double(spread), b = near_double(spread), c = near_double(spread);
+            x = x + BigFloat(a) * BigFloat(b);
+            qx = qx + Q(a) * Q(b);
+            y = y - BigFloat(c);
+            qy = qy - Q(c);
+        }
+        if (rng() % 4 == 0) y = y + x, qy = qy + qx; // cancels x's leading limbs in x - y
+        INFO("case " << i);
+        REQUIRE(mpq_equal(exact_value(x + y).q, (qx + qy).q));
+        REQUIRE(mpq_equal(exact_value(x - y).q, (qx - qy).q));
+        REQUIRE(mpq_equal(exact_value(x * y).q, (qx * qy).q));
+        REQUIRE(mpq_equal(exact_value(y * x * x).q, (qy * qx * qx).q));
+        REQUIRE(sign(x - x) == 0);
+    }
 }
 
 namespace {

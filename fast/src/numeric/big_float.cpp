@@ -16,25 +16,6 @@
 
 namespace linequad {
 
-namespace {
-
-// Limb i of y shifted left by 64 words + s bits (s < 64), formed as it is read.
-struct Shifted {
-    const Limbs& y;
-    std::size_t words;
-    unsigned s;
-    std::size_t size() const { return y.size() + words + (s != 0); }
-    std::uint64_t operator[](std::size_t i) const {
-        if (i < words) return 0;
-        std::size_t j = i - words;
-        std::uint64_t lo = j < y.size() ? y[j] << s : 0;
-        std::uint64_t hi = s != 0 && j >= 1 && j - 1 < y.size() ? y[j - 1] >> (64 - s) : 0;
-        return lo | hi;
-    }
-};
-
-} // namespace
-
 // From the encoding: the significand (with its hidden bit, unless subnormal) times 2^(e - 1075),
 // its trailing zero bits moved into the exponent. x is finite.
 BigFloat::BigFloat(double x) {
@@ -82,14 +63,41 @@ LINEQUAD_LIMB_LOOP void BigFloat::normalize() {
     exp_ += long(words) * 64 + s;
 }
 
+// x + y 2^d, one limb each, y's exponent d < 63 above x's: the exact forms' most common sum (of
+// two products of doubles, or two doubles), done in 128 bits (below 2^64 + 2^126).
+void BigFloat::sum_of_limbs(const BigFloat& x, int x_sign, const BigFloat& y, int y_sign, long d,
+                            BigFloat& r) {
+    using U = unsigned __int128;
+    U xm = x.mag[0], ym = U(y.mag[0]) << d, m;
+    if (x_sign == y_sign) {
+        m = xm + ym, r.sign_ = x_sign;
+    } else if (ym >= xm) {
+        m = ym - xm, r.sign_ = y_sign;
+    } else {
+        m = xm - ym, r.sign_ = x_sign;
+    }
+    if (m == 0) {
+        r.sign_ = 0;
+        return;
+    }
+    // x is odd (normal), so only d = 0 can leave trailing zeros.
+    std::uint64_t lo = std::uint64_t(m), hi = std::uint64_t(m >> 64);
+    int zeros = lo != 0 ? __builtin_ctzll(lo) : 64 + __builtin_ctzll(hi);
+    m >>= zeros;
+    r.exp_ = x.exp_ + zeros;
+    r.mag.set_two(std::uint64_t(m), std::uint64_t(m >> 64));
+}
+
 // In one pass: x, the operand of the smaller exponent, as it is; y shifted onto it as it is read;
 // their sum or difference limb by limb. A difference that borrows out of the top was y - x:
 // negated (two's complement) and given y's sign.
 LINEQUAD_LIMB_LOOP BigFloat BigFloat::sum(const BigFloat& a, const BigFloat& b, int b_sign) {
-    if (b_sign == 0) return a;
-    if (a.sign_ == 0) {
-        BigFloat r = b;
-        r.sign_ = b_sign;
+    // Every return is of r, built in place (two named results would each be moved out, and a
+    // move of limbs held in place copies them).
+    BigFloat r;
+    if (b_sign == 0 || a.sign_ == 0) {
+        r = b_sign == 0 ? a : b;
+        if (b_sign != 0) r.sign_ = b_sign;
         return r;
     }
     bool a_lower = a.exp_ <= b.exp_;
@@ -97,37 +105,50 @@ LINEQUAD_LIMB_LOOP BigFloat BigFloat::sum(const BigFloat& a, const BigFloat& b, 
     const BigFloat& y = a_lower ? b : a;
     int x_sign = a_lower ? a.sign_ : b_sign, y_sign = a_lower ? b_sign : a.sign_;
     unsigned long d = static_cast<unsigned long>(y.exp_ - x.exp_);
-    Shifted ys{y.mag, d / 64, unsigned(d % 64)};
-    std::size_t n = std::max(x.mag.size(), ys.size());
-    BigFloat r;
+    std::size_t nx = x.mag.size(), ny = y.mag.size();
+    if (nx == 1 && ny == 1 && d < 63) {
+        sum_of_limbs(x, x_sign, y, y_sign, long(d), r);
+        return r;
+    }
+    std::size_t words = d / 64;
+    unsigned s = unsigned(d % 64);
+    std::size_t n = std::max(nx, ny + words + (s != 0));
     r.exp_ = x.exp_;
     r.sign_ = x_sign;
-    r.mag.resize(n + 1);
-    std::uint64_t carry = 0; // or borrow
-    if (x_sign == y_sign) {
-        for (std::size_t i = 0; i < n; ++i) {
-            std::uint64_t xi = i < x.mag.size() ? x.mag[i] : 0, s = xi + ys[i];
-            std::uint64_t c1 = s < xi;
-            r.mag[i] = s + carry;
-            carry = c1 | (r.mag[i] < s);
-        }
-        r.mag[n] = carry;
-    } else {
-        for (std::size_t i = 0; i < n; ++i) {
-            std::uint64_t xi = i < x.mag.size() ? x.mag[i] : 0, yi = ys[i], t = xi - yi;
-            std::uint64_t b1 = xi < yi;
-            r.mag[i] = t - carry;
+    r.mag.resize_for_writing(n + 1);
+    // Distinct objects (r is new): the loops need not reload the limbs after every store.
+    const std::uint64_t* __restrict xp = x.mag.data();
+    const std::uint64_t* __restrict yp = y.mag.data();
+    std::uint64_t* __restrict rp = r.mag.data();
+    // Below y's lowest limb: x's limbs, or zeros past them.
+    std::size_t i = 0;
+    for (; i < words; ++i)
+        rp[i] = i < nx ? xp[i] : 0;
+    bool add = x_sign == y_sign;
+    std::uint64_t carry = 0, below = 0; // carry or borrow; the y limb below the current one
+    for (std::size_t j = 0; i < n; ++i, ++j) {
+        std::uint64_t yj = j < ny ? yp[j] : 0;
+        std::uint64_t yi = s == 0 ? yj : (yj << s) | (below >> (64 - s));
+        below = yj;
+        std::uint64_t xi = i < nx ? xp[i] : 0;
+        if (add) {
+            std::uint64_t t = xi + yi, c1 = t < xi;
+            rp[i] = t + carry;
+            carry = c1 | (rp[i] < t);
+        } else {
+            std::uint64_t t = xi - yi, b1 = xi < yi;
+            rp[i] = t - carry;
             carry = b1 | (t < carry);
         }
-        r.mag[n] = 0;
-        if (carry != 0) {
-            std::uint64_t c = 1;
-            for (std::size_t i = 0; i < n; ++i) {
-                r.mag[i] = ~r.mag[i] + c;
-                c = c != 0 && r.mag[i] == 0;
-            }
-            r.sign_ = y_sign;
+    }
+    rp[n] = add ? carry : 0;
+    if (!add && carry != 0) {
+        std::uint64_t c = 1;
+        for (i = 0; i < n; ++i) {
+            rp[i] = ~rp[i] + c;
+            c = c != 0 && rp[i] == 0;
         }
+        r.sign_ = y_sign;
     }
     while (!r.mag.empty() && r.mag.back() == 0)
         r.mag.pop_back();
@@ -135,20 +156,38 @@ LINEQUAD_LIMB_LOOP BigFloat BigFloat::sum(const BigFloat& a, const BigFloat& b, 
     return r;
 }
 
+// Schoolbook, the first row writing the limbs the others add to.
 LINEQUAD_LIMB_LOOP BigFloat operator*(const BigFloat& a, const BigFloat& b) {
-    if (a.sign_ == 0 || b.sign_ == 0) return BigFloat();
-    BigFloat r;
+    using U = unsigned __int128;
+    BigFloat r; // the one result, built in place (as in sum)
+    if (a.sign_ == 0 || b.sign_ == 0) return r;
     r.sign_ = a.sign_ * b.sign_;
     r.exp_ = a.exp_ + b.exp_;
-    r.mag.assign(a.mag.size() + b.mag.size(), 0);
-    for (std::size_t i = 0; i < a.mag.size(); ++i) {
-        unsigned __int128 carry = 0;
-        for (std::size_t j = 0; j < b.mag.size(); ++j) {
-            unsigned __int128 t = (unsigned __int128)a.mag[i] * b.mag[j] + r.mag[i + j] + carry;
-            r.mag[i + j] = std::uint64_t(t);
+    std::size_t na = a.mag.size(), nb = b.mag.size();
+    if (na == 1 && nb == 1) { // a product of two doubles, the exact forms' most common value
+        U t = U(a.mag[0]) * b.mag[0];
+        r.mag.set_two(std::uint64_t(t), std::uint64_t(t >> 64));
+        return r;
+    }
+    r.mag.resize_for_writing(na + nb);
+    const std::uint64_t* __restrict ap = a.mag.data();
+    const std::uint64_t* __restrict bp = b.mag.data();
+    std::uint64_t* __restrict rp = r.mag.data();
+    U carry = 0;
+    for (std::size_t j = 0; j < nb; ++j) {
+        U t = U(ap[0]) * bp[j] + carry;
+        rp[j] = std::uint64_t(t);
+        carry = t >> 64;
+    }
+    rp[nb] = std::uint64_t(carry);
+    for (std::size_t i = 1; i < na; ++i) {
+        carry = 0;
+        for (std::size_t j = 0; j < nb; ++j) {
+            U t = U(ap[i]) * bp[j] + rp[i + j] + carry;
+            rp[i + j] = std::uint64_t(t);
             carry = t >> 64;
         }
-        r.mag[i + b.mag.size()] = std::uint64_t(carry);
+        rp[i + nb] = std::uint64_t(carry);
     }
     while (r.mag.back() == 0)
         r.mag.pop_back();
@@ -168,6 +207,37 @@ BigFloat::Approx BigFloat::approx() const {
     return {sign_ * m, e};
 }
 
+namespace {
+
+// The double nearest an integer |R| < 2^75 (ties to even), without libgcc's 128-bit conversion:
+// the bits below the top 64 folded into a sticky bit, far below the rounding position.
+double nearest_double(__int128 R) {
+    bool negative = R < 0;
+    auto m = static_cast<unsigned __int128>(negative ? -R : R);
+    auto high = std::uint64_t(m >> 64), low = std::uint64_t(m);
+    double d;
+    if (high == 0) {
+        d = double(low);
+    } else {
+        int shift = 64 - __builtin_clzll(high); // 1 to 11
+        std::uint64_t sticky = (low & ((std::uint64_t(1) << shift) - 1)) != 0;
+        d = double(std::uint64_t(m >> shift) | sticky) * double(std::uint64_t(1) << shift);
+    }
+    return negative ? -d : d;
+}
+
+// An integer-valued double |x| < 2^76 as a 128-bit integer, exactly.
+__int128 integer_of(double x) {
+    if (std::fabs(x) < 0x1p63) return std::int64_t(x);
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    int e = int((bits >> 52) & 0x7ff) - 1075; // 11 to 23 here
+    __int128 m = __int128((bits & ((std::uint64_t(1) << 52) - 1)) | (std::uint64_t(1) << 52)) << e;
+    return x < 0 ? -m : m;
+}
+
+} // namespace
+
 // |x| = (t1 2^64 + t2 + rho) 2^F, t1's top bit set, 0 <= rho < 1 (rho > 0 when any bit lies
 // below t2). hi = RN(t1), within 2^10 of it; R = (t1 - hi) 2^64 + t2 (|R| < 2^75) and its
 // rounding lo = RN(R) are exact in 128-bit integers, and so is R - lo.
@@ -183,12 +253,12 @@ BigFloat::Leading BigFloat::leading() const {
     long F = exp_ + 64 * (n - 1) + long(lead) - 127;
     if (F < -900 || F > 860) return {0, 0, INFINITY};
     double hi = double(t1);
-    __int128 R =
-        (__int128(t1) - __int128(static_cast<unsigned __int128>(hi))) * (__int128(1) << 64) +
-        __int128(t2);
-    double lo = double(R);
-    __int128 off = R - __int128(lo);
-    double err = double(off < 0 ? -off : off) + (rest ? 1 : 0); // exact: at most 2^22 + 1
+    // t1 - hi is within 2^10 of zero: exact modulo 2^64 (hi = 2^64 is 0 there).
+    auto t1_minus_hi = std::int64_t(t1 - (hi == 0x1p64 ? 0 : std::uint64_t(hi)));
+    __int128 R = __int128(t1_minus_hi) * (__int128(1) << 64) + __int128(t2);
+    double lo = nearest_double(R);
+    __int128 off = R - integer_of(lo);
+    double err = double(std::uint64_t(off < 0 ? -off : off)) + (rest ? 1 : 0); // exact: <= 2^22 + 1
     // Scaled by powers of two that are normal doubles (F in [-900, 860]), into results that are
     // normal too (hi in [2^63, 2^64], lo and err integers below 2^75): exact products, as ldexp
     // would give, without its library call.

@@ -37,6 +37,8 @@ class Limbs {
     std::uint64_t& operator[](std::size_t i) { return data_[i]; }
     std::uint64_t operator[](std::size_t i) const { return data_[i]; }
     std::uint64_t back() const { return data_[size_ - 1]; }
+    std::uint64_t* data() { return data_; }
+    const std::uint64_t* data() const { return data_; }
     void pop_back() { --size_; }
     void push_back(std::uint64_t x) {
         reserve(size_ + 1);
@@ -51,6 +53,16 @@ class Limbs {
     void assign(std::size_t n, std::uint64_t fill) {
         size_ = 0;
         resize(n, fill);
+    }
+    // n limbs whose values the caller writes next: no fill.
+    void resize_for_writing(std::size_t n) {
+        reserve(n);
+        size_ = n;
+    }
+    // The value hi 2^64 + lo (hi and lo not both zero), in one limb when hi is zero; in place.
+    void set_two(std::uint64_t lo, std::uint64_t hi) {
+        data_[0] = lo, data_[1] = hi;
+        size_ = hi != 0 ? 2 : 1;
     }
 
   private:
@@ -134,6 +146,8 @@ class BigFloat {
     void normalize();
     // a + b with b's sign taken as b_sign: a difference without a negated copy of b.
     static BigFloat sum(const BigFloat& a, const BigFloat& b, int b_sign);
+    static void sum_of_limbs(const BigFloat& x, int x_sign, const BigFloat& y, int y_sign, long d,
+                             BigFloat& r);
 };
 
 } // namespace linequad
