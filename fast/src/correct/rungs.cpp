@@ -143,13 +143,21 @@ struct Approx {
     }
 };
 
+// Den and sqrt(D) in bounded double-double, formed once for all the values of one root: its t
+// and its point's coordinates share them.
+struct RootBounds {
+    std::optional<BoundedDD> den, sqrt_d;
+};
+
 // (X + Y sqrt(D)) / Den rounded to the nearest value of Target (double or float), ties to even;
 // infinite beyond the range, +0 for an exact zero (the oracle's conventions).
 template <class Target>
 class ExactRounder {
   public:
-    ExactRounder(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den)
-        : X_(X), Y_(Y), D_(D), Den_(Den), sden_(sign(Den)), sy_(sign(D) == 0 ? 0 : sign(Y)) {}
+    ExactRounder(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den,
+                 RootBounds& shared)
+        : X_(X), Y_(Y), D_(D), Den_(Den), shared_(shared), sden_(sign(Den)),
+          sy_(sign(D) == 0 ? 0 : sign(Y)) {}
 
     double run() const {
         // A rounding the bound proves settles the value's sign as well, so the exact sign (a
@@ -168,6 +176,7 @@ class ExactRounder {
 
   private:
     const BigFloat &X_, &Y_, &D_, &Den_;
+    RootBounds& shared_;
     int sden_, sy_;
     // Formed when first needed, as most values never need them: Y^2 D, the same for every
     // comparison; and X^2 - Y^2 D where X and Y sqrt(D) differ in sign, where the form without
@@ -193,11 +202,13 @@ class ExactRounder {
     // the rounding: the search below is for values near a midpoint (ties among them) and beyond
     // the normal range.
     std::optional<double> proven() const {
-        BoundedDD x = bounded(X_), den = bounded(Den_), v;
+        if (!shared_.den) shared_.den = bounded(Den_);
+        BoundedDD x = bounded(X_), den = *shared_.den, v;
         if (sy_ == 0) {
             v = x / den;
         } else {
-            BoundedDD ysd = bounded(Y_) * sqrt(bounded(D_));
+            if (!shared_.sqrt_d) shared_.sqrt_d = sqrt(bounded(D_));
+            BoundedDD ysd = bounded(Y_) * *shared_.sqrt_d;
             int sx = sign(X_);
             v = sx == 0 || sx == sy_ ? (x + ysd) / den : bounded(conjugate()) / (den * (x - ysd));
         }
@@ -281,7 +292,8 @@ class ExactRounder {
 
 template <class Target>
 double round_exact(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den) {
-    return ExactRounder<Target>(X, Y, D, Den).run();
+    RootBounds own;
+    return ExactRounder<Target>(X, Y, D, Den, own).run();
 }
 template double round_exact<Binary64>(const BigFloat&, const BigFloat&, const BigFloat&,
                                       const BigFloat&);
@@ -311,13 +323,15 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) 
         Hit& h = r.hits[r.count++];
         h.kind = rt.kind;
         h.part = rt.part;
-        h.t = round_exact<Target>(rt.N, S, c.D, rt.Den);
+        RootBounds shared;
+        h.t = ExactRounder<Target>(rt.N, S, c.D, rt.Den, shared).run();
         h.p = {};
         if (!query.points) continue;
         // L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den
         for (int k = 0; k < 3; ++k) {
             BigFloat L0(l.L0[k]), v(l.v[k]);
-            double pk = round_exact<Target>(L0 * rt.Den + v * rt.N, v * S, c.D, rt.Den);
+            double pk =
+                ExactRounder<Target>(L0 * rt.Den + v * rt.N, v * S, c.D, rt.Den, shared).run();
             (k == 0 ? h.p.x : k == 1 ? h.p.y : h.p.z) = pk;
         }
     }

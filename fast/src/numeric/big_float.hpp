@@ -13,10 +13,11 @@ namespace linequad {
 
 // A BigFloat's limbs: up to `local` of them in place, more on the heap. The exact rung builds
 // and drops BigFloats by the million (an audit made nine million heap allocations from them),
-// and almost all of its values are products of a few doubles: eight limbs hold 512 bits.
+// and almost all of its values are products of a few doubles: twelve limbs hold 768 bits, enough
+// for the squares of a line from far away (with eight, its exact rung made 15 allocations a solve).
 class Limbs {
   public:
-    static constexpr std::size_t local = 8;
+    static constexpr std::size_t local = 12;
 
     Limbs() = default;
     Limbs(std::size_t n, std::uint64_t fill) { assign(n, fill); }
