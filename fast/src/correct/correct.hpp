@@ -24,7 +24,7 @@
 // rounding cell; the precise Newton rung, then the others, follow where it cannot prove. On a
 // convex shape closed by discs the Newton rung answers from the lateral roots and the discs' t,
 // which is rational and rounded directly (newton_rung.cpp); on two solids (a closed two-nappe
-// cone) only where the line misses the quadric.
+// cone) the same, on the scalar ladder.
 #pragma once
 
 #include "correct/ladder.hpp"

@@ -237,7 +237,10 @@ LINEQUAD_INLINE int root_on_nappe(const LineForm& f,
 // after t1 when A < 0 (a line steeper than a cone's generators: one ray in each nappe). The solid
 // meets it there, cut to the extent (Z is linear in t): each end of that piece is a lateral root
 // strictly between the extent's ends, or a disc crossed strictly inside it (the quadric's inside
-// at the disc's plane is the disc); a piece beyond one end: no hit. Every hit crosses. A side the
+// at the disc's plane is the disc); a piece beyond one end: no hit. Every hit crosses.
+// Two solids (a closed two-nappe cone, each nappe a convex solid): with A > 0 the piece lies in
+// one nappe (g < 0 between the roots never reaches the apex) and is found as above over both
+// nappes' extent; with A < 0 each ray is one solid's piece, and both count. A side the
 // bounds leave open, a disc the form has not (the quick form, the cone's apex end), a rounding not
 // proven: the next rungs.
 // A root exactly at an end (A > 0) is where the piece meets that end's disc at its rim: the disc
@@ -252,10 +255,11 @@ LINEQUAD_INLINE bool piece_hits(const LineForm& f, bool between,
                                 const Side (&side)[2], const Side (&rim)[2], const Unit& unit,
                                 const Line& caller, Query query, Result& r) {
     bool at_rim = rim[0] != side[0] || rim[1] != side[1];
-    Enclosure<double> at[2];
-    Part part[2];
-    ExactCoordinate exact[2];
-    // End k of the segment (0: entry, 1: exit): root i, or the disc beyond which it lies.
+    Enclosure<double> at[4]; // four on two solids
+    Part part[4];
+    ExactCoordinate exact[4];
+    // End k of the segment (0: entry, 1: exit; 2 and 3 a second solid's): root i, or the disc
+    // beyond which it lies.
     auto end_at = [&](int k, int i, Side s) {
         if (s == Side::within) {
             at[k] = *root[i], part[k] = Part::lateral;
@@ -281,6 +285,23 @@ LINEQUAD_INLINE bool piece_hits(const LineForm& f, bool between,
             points = 1;
         } else if (!end_at(0, 0, side[0]) || !end_at(1, 1, side[1])) {
             return false;
+        }
+    } else if (f.discs == Discs::two_solids) {
+        // One ray in each nappe (distinct roots are never the apex, where g has a double root),
+        // each the segment of that nappe's solid: from its root away from the other root, Z
+        // running to that nappe's disc (`away`), or nothing where the root lies beyond it. Root
+        // 0's ray comes first in t.
+        if (at_rim || !(std::fabs(f.dZ) > f.e_dZ)) return false;
+        points = 0;
+        for (int i = 0; i < 2; ++i) {
+            Side away = (f.dZ > 0) == (i == 1) ? Side::above : Side::below;
+            if (side[i] == away) continue;
+            if (side[i] != Side::within) return false;
+            int root_end = i == 0 ? 1 : 0;
+            if (!end_at(points + root_end, i, Side::within) ||
+                !end_at(points + 1 - root_end, i, away))
+                return false;
+            points += 2;
         }
     } else {
         if (at_rim) return false;
@@ -528,8 +549,9 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
     double estimate[2] = {est.root[0], est.root[1]};
     if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
     if (f.discs != Discs::none) {
-        // A closed shape: both roots before any hit (closed_hits); two solids, the next rungs.
-        if (f.discs == Discs::two_solids) return false;
+        // A closed shape: both roots before any hit (closed_hits). Two solids (a closed two-nappe
+        // cone) only on the scalar ladder (ends given), the batch lanes' first rung declines them.
+        if (f.discs == Discs::two_solids && !ends) return false;
         std::optional<Enclosure<double>> en[2];
         Local<double> local[2];
         if constexpr (R == Residual::double_double) {

@@ -339,8 +339,8 @@ struct ShapeTraits<EllipticCone> {
                 // The base disc at z = -1 (and the top at z = 1).
                 if (precise && s.caps) {
                     f.planes = DiscPlanesT<T>{{}, {}, -det, two ? det : BoundedDD(0), true, two};
-                    // The base's plane through C, spanned by a and b (a closed two-nappe cone's
-                    // discs the rung does not answer).
+                    // The base's plane through C, spanned by a and b: an exact coordinate for
+                    // the base's points (one nappe's only).
                     int k = axis_across(s.a, s.b);
                     if (k >= 0 && !two) f.planes->axis = k, f.planes->lo_at = s.C[k];
                 }
