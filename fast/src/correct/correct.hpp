@@ -173,11 +173,16 @@ std::optional<Part> disc_holding_line(const S&, const Line&) {
     return std::nullopt;
 }
 
-// Whether v x (H - C) = 0 exactly: each component k is det[e_k, v, H - C], whose exact sign the
-// frames' orientation test gives (filtered, then expansions, then BigFloat).
+// Whether v x (H - C) = 0 exactly: each component k is det[e_k, v, H - C] = (e_k x v).(H - C),
+// e_k x v exact (v's components moved). Its sign by dot_sign's expansion, or where a product
+// could be inexact from the frames' orientation test (which scales its inputs first).
 inline bool cross_is_zero(Vec3 v, Vec3 C, Vec3 H) {
-    for (Vec3 axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}})
-        if (cone_det_sign_exact(axis, v, C, H) != 0) return false;
+    const Vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const Vec3 moved[3] = {{0, -v.z, v.y}, {v.z, 0, -v.x}, {-v.y, v.x, 0}}; // e_k x v
+    for (int k = 0; k < 3; ++k) {
+        std::optional<int> s = dot_sign(H, C, moved[k], Vec3{});
+        if ((s ? *s : cone_det_sign_exact(axes[k], v, C, H)) != 0) return false;
+    }
     return true;
 }
 

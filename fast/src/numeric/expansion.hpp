@@ -18,6 +18,7 @@ class Expansion {
   public:
     // Grow-Expansion: adds one double exactly.
     void add(double b) {
+        if (b == 0) return; // exact, and common: a product with a zero factor
         std::size_t out = 0;
         double q = b;
         for (std::size_t i = 0; i < size_; ++i) {
@@ -44,7 +45,7 @@ class Expansion {
     }
 
   private:
-    double terms_[Capacity] = {};
+    double terms_[Capacity]; // the first size_ of them hold the sum
     std::size_t size_ = 0;
 };
 
