@@ -84,14 +84,11 @@ inline bool moderate(double extent, const Line& l) {
 }
 
 // A quadratic's value as a double-double enclosure: a BoundedDD as it is, a BigFloat from its
-// leading bits.
+// leading bits (numeric/big_float.hpp).
 inline BoundedDD enclosure(const BoundedDD& x) {
     return x;
 }
-inline BoundedDD enclosure(const BigFloat& x) {
-    BigFloat::Leading n = x.leading();
-    return {n.hi, n.lo, n.err};
-}
+using linequad::enclosure;
 inline BoundedDD twice(const BoundedDD& x) {
     return {2 * x.hi, 2 * x.lo, 2 * x.e};
 }

@@ -159,6 +159,9 @@ class ExactRounder {
         : X_(X), Y_(Y), D_(D), Den_(Den), shared_(shared), sden_(sign(Den)),
           sy_(sign(D) == 0 ? 0 : sign(Y)) {}
 
+    // The value in bounded double-double, as proven() formed it (run() forms it first).
+    const std::optional<BoundedDD>& enclosed() const { return enclosed_; }
+
     double run() const {
         // A rounding the bound proves settles the value's sign as well, so the exact sign (a
         // comparison of squares) is formed only for the values it leaves open; a zero from the
@@ -182,6 +185,7 @@ class ExactRounder {
     // comparison; and X^2 - Y^2 D where X and Y sqrt(D) differ in sign, where the form without
     // cancellation is conjugate / (Den (X - Y sqrt(D))).
     mutable std::optional<BigFloat> y2d_, conjugate_;
+    mutable std::optional<BoundedDD> enclosed_;
 
     const BigFloat& y2d() const {
         if (!y2d_) y2d_ = sy_ == 0 ? BigFloat() : Y_ * Y_ * D_;
@@ -202,23 +206,18 @@ class ExactRounder {
     // the rounding: the search below is for values near a midpoint (ties among them) and beyond
     // the normal range.
     std::optional<double> proven() const {
-        if (!shared_.den) shared_.den = bounded(Den_);
-        BoundedDD x = bounded(X_), den = *shared_.den, v;
+        if (!shared_.den) shared_.den = enclosure(Den_);
+        BoundedDD x = enclosure(X_), den = *shared_.den, v;
         if (sy_ == 0) {
             v = x / den;
         } else {
-            if (!shared_.sqrt_d) shared_.sqrt_d = sqrt(bounded(D_));
-            BoundedDD ysd = bounded(Y_) * *shared_.sqrt_d;
+            if (!shared_.sqrt_d) shared_.sqrt_d = sqrt(enclosure(D_));
+            BoundedDD ysd = enclosure(Y_) * *shared_.sqrt_d;
             int sx = sign(X_);
-            v = sx == 0 || sx == sy_ ? (x + ysd) / den : bounded(conjugate()) / (den * (x - ysd));
+            v = sx == 0 || sx == sy_ ? (x + ysd) / den : enclosure(conjugate()) / (den * (x - ysd));
         }
+        enclosed_ = v;
         return round_proven<Target>(v, 1.0);
-    }
-
-    static BoundedDD bounded(const BigFloat& b) {
-        BigFloat::Leading l = b.leading();
-        TwoTerm z = fast_two_sum(l.hi, l.lo);
-        return {z.hi, z.lo, l.err == 0 ? 0 : dd_detail::up(l.err)};
     }
 
     double guess() const {
@@ -324,15 +323,23 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) 
         h.kind = rt.kind;
         h.part = rt.part;
         RootBounds shared;
-        h.t = ExactRounder<Target>(rt.N, S, c.D, rt.Den, shared).run();
+        ExactRounder<Target> t(rt.N, S, c.D, rt.Den, shared);
+        h.t = t.run();
         h.p = {};
         if (!query.points) continue;
-        // L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den
+        // L0 + t v from t's enclosure, as the double-double rung forms it, where its bound
+        // proves the rounding (t needs about 53 + k bits for a line 2^k sizes away); else
+        // exactly, L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den.
         for (int k = 0; k < 3; ++k) {
-            BigFloat L0(l.L0[k]), v(l.v[k]);
-            double pk =
-                ExactRounder<Target>(L0 * rt.Den + v * rt.N, v * S, c.D, rt.Den, shared).run();
-            (k == 0 ? h.p.x : k == 1 ? h.p.y : h.p.z) = pk;
+            std::optional<double> pk;
+            if (t.enclosed())
+                pk = round_proven<Target>(BoundedDD(l.L0[k]) + BoundedDD(l.v[k]) * *t.enclosed(),
+                                          1.0);
+            if (!pk) {
+                BigFloat L0(l.L0[k]), v(l.v[k]);
+                pk = ExactRounder<Target>(L0 * rt.Den + v * rt.N, v * S, c.D, rt.Den, shared).run();
+            }
+            (k == 0 ? h.p.x : k == 1 ? h.p.y : h.p.z) = *pk;
         }
     }
     return r;

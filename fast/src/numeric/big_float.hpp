@@ -4,6 +4,8 @@
 // promise once a product underflows. Only ring operations: the rung never divides.
 #pragma once
 
+#include "numeric/bounded_dd.hpp"
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -150,5 +152,13 @@ class BigFloat {
     static void sum_of_limbs(const BigFloat& x, int x_sign, const BigFloat& y, int y_sign, long d,
                              BigFloat& r);
 };
+
+// x enclosed in bounded double-double from its leading bits: the filters' view of an exact value
+// (an infinite bound beyond double's normal range, whose signs are then undecided).
+inline BoundedDD enclosure(const BigFloat& x) {
+    BigFloat::Leading l = x.leading();
+    TwoTerm z = fast_two_sum(l.hi, l.lo);
+    return {z.hi, z.lo, l.err == 0 ? 0 : dd_detail::up(l.err)};
+}
 
 } // namespace linequad
