@@ -231,8 +231,14 @@ class ExactForm final : public ExtentEnds {
         if (dd_)
             if (std::optional<EndCrossing> c = end_crossing(*dd_, top, dd_t_factor_ / t_factor))
                 return c;
-        return end_crossing(quadratic(), top, 1 / t_factor);
+        std::optional<EndCrossing> c = end_crossing(quadratic(), top, 1 / t_factor);
+        exact_zero_ = exact_zero_ || (c && c->q_sign == 0); // a root at the end: a rim
+        return c;
     }
+
+    // Whether the exact form showed an exact zero (a root at an end, a double root, g constant
+    // or a line in a disc's plane), where a filter's bounds never decide.
+    bool exact_zero() const { return exact_zero_; }
 
     // A cylinder's parallel line is shown by a few exact products and C0's sign by the
     // double-double rung's bound (but on the surface); the exact form answers the rest.
@@ -246,6 +252,7 @@ class ExactForm final : public ExtentEnds {
         }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) != 0) return std::nullopt;
+        exact_zero_ = true;
         return sign(q.C0);
     }
 
@@ -255,6 +262,7 @@ class ExactForm final : public ExtentEnds {
         if (std::optional<Part> disc = disc_holding_line(shape_, line_)) return disc;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.dZ) != 0) return Part::lateral;
+        exact_zero_ = true;
         if (q.lo_capped && sign(q.Z0 - q.lo) == 0) return Part::base;
         if (q.hi_capped && sign(q.Z0 - q.hi) == 0) return Part::top;
         return Part::lateral;
@@ -265,6 +273,7 @@ class ExactForm final : public ExtentEnds {
         if (deferred_) return std::nullopt;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) == 0 || sign(q.B * q.B - q.A * q.C0) != 0) return std::nullopt;
+        exact_zero_ = true;
         return in_rung_units(enclosure(-q.B) / enclosure(q.A), 1 / t_factor);
     }
 
@@ -273,7 +282,7 @@ class ExactForm final : public ExtentEnds {
     const Line& line_;
     int orientation_;
     bool deferred_ = false;
-    mutable bool asked_ = false;
+    mutable bool asked_ = false, exact_zero_ = false;
     mutable std::optional<exact_form::LineQuadratic<BigFloat>> q_;
     const exact_form::LineQuadratic<BoundedDD>* dd_ = nullptr;
     double dd_t_factor_ = 1;
@@ -364,7 +373,7 @@ struct CorrectTo {
             if (as_given ? newton(src, Unit{1, 1, l}) : u && newton(AsGiven<S>{*unit}, *u))
                 return r;
         }
-        r = exact_rung<Target>(exact.quadratic(), l, q);
+        r = exact_rung<Target>(exact.quadratic(), l, q, !exact.exact_zero());
         mark_certain<Target>(r, Rung::exact);
         return r;
     }

@@ -37,9 +37,10 @@ BoundedDD root_value(const SurdRoot<BoundedDD>& r, const BoundedDD& sqrt_D,
 } // namespace
 
 template <class Target>
-bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query query, Result& r) {
-    Classification<BoundedDD> c =
-        exact_form::classify(q, exact_form::parameter_range<BoundedDD>(u.line.range), query.need);
+bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query query, Result& r,
+                        const BoundedDD* given_D) {
+    Classification<BoundedDD> c = exact_form::classify(
+        q, exact_form::parameter_range<BoundedDD>(u.line.range), query.need, given_D);
     switch (c.outcome) {
     case Outcome::undecided:
         return false;
@@ -75,9 +76,9 @@ bool double_double_rung(const LineQuadratic<BoundedDD>& q, const Unit& u, Query 
 }
 
 template bool double_double_rung<Binary64>(const LineQuadratic<BoundedDD>&, const Unit&, Query,
-                                           Result&);
+                                           Result&, const BoundedDD*);
 template bool double_double_rung<Binary32>(const LineQuadratic<BoundedDD>&, const Unit&, Query,
-                                           Result&);
+                                           Result&, const BoundedDD*);
 
 // ---- Rung 3: exact ----
 
@@ -299,11 +300,36 @@ template double round_exact<Binary64>(const BigFloat&, const BigFloat&, const Bi
 template double round_exact<Binary32>(const BigFloat&, const BigFloat&, const BigFloat&,
                                       const BigFloat&);
 
+namespace {
+
+// Each of q's values enclosed from its exact one (numeric/big_float.hpp's enclosure).
+LineQuadratic<BoundedDD> enclosed(const LineQuadratic<BigFloat>& q) {
+    LineQuadratic<BoundedDD> e;
+    e.A = enclosure(q.A), e.B = enclosure(q.B), e.C0 = enclosure(q.C0);
+    e.Z0 = enclosure(q.Z0), e.dZ = enclosure(q.dZ), e.lo = enclosure(q.lo);
+    e.hi = enclosure(q.hi);
+    e.lo_bounded = q.lo_bounded, e.hi_bounded = q.hi_bounded;
+    e.lo_capped = q.lo_capped, e.hi_capped = q.hi_capped, e.two_solids = q.two_solids;
+    e.lo_open = q.lo_open, e.hi_open = q.hi_open;
+    return e;
+}
+
+} // namespace
+
 template <class Target>
-Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) {
-    Classification<BigFloat> c =
-        exact_form::classify(q, exact_form::parameter_range<BigFloat>(l.range), query.need);
+Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query, bool filter_first) {
     Result r;
+    // D exactly: the double-double rung's D, formed from rounded coefficients, loses the bits
+    // that cancel in B^2 - A C0 (near a tangency, an apex, or from far away); enclosed from
+    // its exact value, the filter's roots carry some 100 bits.
+    BigFloat D = q.B * q.B - q.A * q.C0;
+    if (filter_first) {
+        BoundedDD D_enclosed = enclosure(D);
+        if (double_double_rung<Target>(enclosed(q), Unit{1, 1, l}, query, r, &D_enclosed)) return r;
+        r = Result();
+    }
+    Classification<BigFloat> c =
+        exact_form::classify(q, exact_form::parameter_range<BigFloat>(l.range), query.need, &D);
     if (c.outcome == Outcome::none) return r; // exact: never undecided
     BigFloat zero;
     if (c.outcome == Outcome::on_surface) {
@@ -345,7 +371,7 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query) 
     return r;
 }
 
-template Result exact_rung<Binary64>(const LineQuadratic<BigFloat>&, const Line&, Query);
-template Result exact_rung<Binary32>(const LineQuadratic<BigFloat>&, const Line&, Query);
+template Result exact_rung<Binary64>(const LineQuadratic<BigFloat>&, const Line&, Query, bool);
+template Result exact_rung<Binary32>(const LineQuadratic<BigFloat>&, const Line&, Query, bool);
 
 } // namespace linequad::detail

@@ -392,10 +392,11 @@ bool close(const LineQuadratic<NT>& q, const SurdSign<NT>& surd, SurdRoot<NT>* r
 } // namespace detail
 
 // Which roots of q are hits of a line over `range`, in the order of t, as many as `need` asks
-// for; or the on-surface interval; or undecided (only for a filtered NT).
+// for; or the on-surface interval; or undecided (only for a filtered NT). `given_D`, where the
+// caller has it: B^2 - A C0 formed elsewhere (exactly, or enclosed from its exact value).
 template <class NT>
-Classification<NT> classify(const LineQuadratic<NT>& q, const ParameterRange<NT>& range,
-                            Need need) {
+Classification<NT> classify(const LineQuadratic<NT>& q, const ParameterRange<NT>& range, Need need,
+                            const NT* given_D = nullptr) {
     Classification<NT> c;
     c.outcome = Outcome::undecided;
     bool closed = q.lo_capped || q.hi_capped;
@@ -427,7 +428,7 @@ Classification<NT> classify(const LineQuadratic<NT>& q, const ParameterRange<NT>
             sden[n] = sb, roots[n++] = {-q.C0, NT(2) * q.B, 0, HitKind::cross};
         }
     } else {
-        c.D = q.B * q.B - q.A * q.C0;
+        c.D = given_D ? *given_D : NT(q.B * q.B - q.A * q.C0);
         int sd = sign(c.D);
         if (sd == undecided) return c;
         if (sd > 0) {
