@@ -139,6 +139,24 @@ TEST_CASE("correct32 rounds once, where rounding the double answer again would b
     CHECK(got.hits[1].bound == 0x1p-24); // half a float ulp
 }
 
+TEST_CASE("correct32 rounds a line grazing a disc's rim in its plane from the lateral root") {
+    // A closed two-nappe cone along x (apex (-3, -5, -1), top disc in the plane x = 1) and a line
+    // in that plane along -z, touching the top disc's rim at one point (a tangent hit, part
+    // top). The exact rung's filter classifies it in double-double; the root it stands for is
+    // the lateral one, (-B) / A, not a disc crossing (there dZ = 0). Found by the audit
+    // (cap_plane, axis frames, seed 105), where the float's rounding fell to the exact root.
+    EllipticCone cone{{-7, -5, -1}, {-3, -5, -1}, {0, 1, 0}, {0, 0, 1}, true, true, 2};
+    Line l{{1, -6, 0x1.da5fdep-1}, {0, 0, -1}, Range::line};
+    for (Query q : {Query{Need::all, true}, Query{Need::nearest, true}}) {
+        Result want = exact::intersect(cone, l, q, Precision::binary32);
+        REQUIRE(want.count == 1);
+        CHECK(want.hits[0].kind == HitKind::tangent);
+        CHECK(want.hits[0].part == Part::top);
+        check_same_answer(correct32_solve(cone, l, q), want);
+        check_same_answer(correct::intersect(cone, l, q), exact::intersect(cone, l, q));
+    }
+}
+
 TEST_CASE("correct32 equals the oracle's float answer bit for bit on every family") {
     const Query queries[] = {{Need::all, true}, {Need::nearest, false}, {Need::any, true}};
     std::uint64_t by_rung[4] = {};

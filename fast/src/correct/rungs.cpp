@@ -316,6 +316,59 @@ LineQuadratic<BoundedDD> enclosed(const LineQuadratic<BigFloat>& q) {
 
 } // namespace
 
+namespace {
+
+// The exact root that a filter's root stands for, as classify() forms it: a disc's at
+// (end - Z0) / dZ (where dZ != 0: a line in the disc's plane grazes its rim at a lateral root),
+// a lateral one at (-B + S sqrt(D)) / A, or -C0 / 2B where A = 0.
+SurdRoot<BigFloat> exact_root(const LineQuadratic<BigFloat>& q, const SurdRoot<BoundedDD>& r) {
+    if ((r.part == Part::base || r.part == Part::top) && sign(q.dZ) != 0)
+        return {(r.part == Part::base ? q.lo : q.hi) - q.Z0, q.dZ, 0, r.kind, r.part};
+    if (sign(q.A) == 0) return {-q.C0, BigFloat(2.0) * q.B, 0, r.kind, r.part};
+    return {-q.B, q.A, r.S, r.kind, r.part};
+}
+
+// The hits at the exact roots, each t and point rounded to Target: t from `enclosed[i]` (the
+// filter's enclosure of root i, where it has one) where its bound proves the rounding, else
+// exactly.
+template <class Target>
+void add_hits(const SurdRoot<BigFloat>* roots, const std::optional<BoundedDD>* enclosed, int count,
+              const BigFloat& D, const Line& l, Query query, Result& r) {
+    for (int i = 0; i < count; ++i) {
+        const SurdRoot<BigFloat>& rt = roots[i];
+        BigFloat S(rt.S);
+        Hit& h = r.hits[r.count++];
+        h.kind = rt.kind;
+        h.part = rt.part;
+        RootBounds shared;
+        ExactRounder<Target> exact_t(rt.N, S, D, rt.Den, shared);
+        std::optional<BoundedDD> t = enclosed[i];
+        std::optional<double> rounded = t ? round_proven<Target>(*t, 1.0) : std::nullopt;
+        if (rounded) {
+            h.t = *rounded;
+        } else {
+            h.t = exact_t.run();
+            t = exact_t.enclosed();
+        }
+        h.p = {};
+        if (!query.points) continue;
+        // L0 + t v from t's enclosure, as the double-double rung forms it, where its bound
+        // proves the rounding (t needs about 53 + k bits for a line 2^k sizes away); else
+        // exactly, L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den.
+        for (int k = 0; k < 3; ++k) {
+            std::optional<double> pk;
+            if (t) pk = round_proven<Target>(BoundedDD(l.L0[k]) + BoundedDD(l.v[k]) * *t, 1.0);
+            if (!pk) {
+                BigFloat L0(l.L0[k]), v(l.v[k]);
+                pk = ExactRounder<Target>(L0 * rt.Den + v * rt.N, v * S, D, rt.Den, shared).run();
+            }
+            (k == 0 ? h.p.x : k == 1 ? h.p.y : h.p.z) = *pk;
+        }
+    }
+}
+
+} // namespace
+
 template <class Target>
 Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query, bool filter_first) {
     Result r;
@@ -324,15 +377,30 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query, 
     // its exact value, the filter's roots carry some 100 bits.
     BigFloat D = q.B * q.B - q.A * q.C0;
     if (filter_first) {
+        // The classification in double-double, from every value's enclosure; its roots then
+        // rounded from their exact forms (a point at a zero coordinate, or a tie, needs them).
         BoundedDD D_enclosed = enclosure(D);
-        if (double_double_rung<Target>(enclosed(q), Unit{1, 1, l}, query, r, &D_enclosed)) return r;
-        r = Result();
+        LineQuadratic<BoundedDD> e = enclosed(q);
+        Classification<BoundedDD> c = exact_form::classify(
+            e, exact_form::parameter_range<BoundedDD>(l.range), query.need, &D_enclosed);
+        if (c.outcome == Outcome::none) return r;
+        if (c.outcome == Outcome::hits) {
+            SurdRoot<BigFloat> roots[max_hits];
+            std::optional<BoundedDD> t[max_hits];
+            BoundedDD sqrt_D = sign(c.D) == 0 ? BoundedDD() : sqrt(c.D);
+            for (int i = 0; i < c.count; ++i) {
+                roots[i] = exact_root(q, c.roots[i]);
+                t[i] = root_value(c.roots[i], sqrt_D, e);
+            }
+            add_hits<Target>(roots, t, c.count, D, l, query, r);
+            return r;
+        }
     }
     Classification<BigFloat> c =
         exact_form::classify(q, exact_form::parameter_range<BigFloat>(l.range), query.need, &D);
     if (c.outcome == Outcome::none) return r; // exact: never undecided
-    BigFloat zero;
     if (c.outcome == Outcome::on_surface) {
+        BigFloat zero;
         r.on_surface = true;
         r.surface_part = c.surface_part;
         auto end = [&](const exact_form::Fraction<BigFloat>& f) {
@@ -342,32 +410,8 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query, 
         r.s1 = c.s1.bounded ? end(c.s1) : INFINITY;
         return r;
     }
-    for (int i = 0; i < c.count; ++i) {
-        const SurdRoot<BigFloat>& rt = c.roots[i];
-        BigFloat S(rt.S);
-        Hit& h = r.hits[r.count++];
-        h.kind = rt.kind;
-        h.part = rt.part;
-        RootBounds shared;
-        ExactRounder<Target> t(rt.N, S, c.D, rt.Den, shared);
-        h.t = t.run();
-        h.p = {};
-        if (!query.points) continue;
-        // L0 + t v from t's enclosure, as the double-double rung forms it, where its bound
-        // proves the rounding (t needs about 53 + k bits for a line 2^k sizes away); else
-        // exactly, L0 + t v = (L0 Den + v N + v S sqrt(D)) / Den.
-        for (int k = 0; k < 3; ++k) {
-            std::optional<double> pk;
-            if (t.enclosed())
-                pk = round_proven<Target>(BoundedDD(l.L0[k]) + BoundedDD(l.v[k]) * *t.enclosed(),
-                                          1.0);
-            if (!pk) {
-                BigFloat L0(l.L0[k]), v(l.v[k]);
-                pk = ExactRounder<Target>(L0 * rt.Den + v * rt.N, v * S, c.D, rt.Den, shared).run();
-            }
-            (k == 0 ? h.p.x : k == 1 ? h.p.y : h.p.z) = *pk;
-        }
-    }
+    const std::optional<BoundedDD> none[max_hits];
+    add_hits<Target>(c.roots, none, c.count, c.D, l, query, r);
     return r;
 }
 
