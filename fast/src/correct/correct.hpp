@@ -214,6 +214,14 @@ class ExactForm final : public ExtentEnds {
             q_ = ShapeTraits<S>::template exact_quadratic<BigFloat>(shape_, line_, orientation_);
         return *q_;
     }
+    // D = B^2 - A C0, exactly: for a tangency and for the exact rung.
+    const BigFloat& discriminant() const {
+        if (!D_) {
+            const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+            D_ = q.B * q.B - q.A * q.C0;
+        }
+        return *D_;
+    }
 
     // Deferred, at() only notes that the rung asked: the double-double rung, cheaper than the
     // exact form, answers a root beside an end first; the Newton rung is asked again after it.
@@ -272,7 +280,7 @@ class ExactForm final : public ExtentEnds {
         asked_ = true;
         if (deferred_) return std::nullopt;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
-        if (sign(q.A) == 0 || sign(q.B * q.B - q.A * q.C0) != 0) return std::nullopt;
+        if (sign(q.A) == 0 || sign(discriminant()) != 0) return std::nullopt;
         exact_zero_ = true;
         return in_rung_units(enclosure(-q.B) / enclosure(q.A), 1 / t_factor);
     }
@@ -284,6 +292,7 @@ class ExactForm final : public ExtentEnds {
     bool deferred_ = false;
     mutable bool asked_ = false, exact_zero_ = false;
     mutable std::optional<exact_form::LineQuadratic<BigFloat>> q_;
+    mutable std::optional<BigFloat> D_;
     const exact_form::LineQuadratic<BoundedDD>* dd_ = nullptr;
     double dd_t_factor_ = 1;
 };
@@ -373,7 +382,7 @@ struct CorrectTo {
             if (as_given ? newton(src, Unit{1, 1, l}) : u && newton(AsGiven<S>{*unit}, *u))
                 return r;
         }
-        r = exact_rung<Target>(exact.quadratic(), l, q, !exact.exact_zero());
+        r = exact_rung<Target>(exact.quadratic(), exact.discriminant(), l, q, !exact.exact_zero());
         mark_certain<Target>(r, Rung::exact);
         return r;
     }

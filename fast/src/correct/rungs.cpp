@@ -370,12 +370,12 @@ void add_hits(const SurdRoot<BigFloat>* roots, const std::optional<BoundedDD>* e
 } // namespace
 
 template <class Target>
-Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query, bool filter_first) {
+Result exact_rung(const LineQuadratic<BigFloat>& q, const BigFloat& D, const Line& l, Query query,
+                  bool filter_first) {
     Result r;
-    // D exactly: the double-double rung's D, formed from rounded coefficients, loses the bits
-    // that cancel in B^2 - A C0 (near a tangency, an apex, or from far away); enclosed from
-    // its exact value, the filter's roots carry some 100 bits.
-    BigFloat D = q.B * q.B - q.A * q.C0;
+    // D exact: the double-double rung's D, formed from rounded coefficients, loses the bits that
+    // cancel in B^2 - A C0 (near a tangency, an apex, or from far away); enclosed from its exact
+    // value, the filter's roots carry some 100 bits.
     if (filter_first) {
         // The classification in double-double, from every value's enclosure; its roots then
         // rounded from their exact forms (a point at a zero coordinate, or a tie, needs them).
@@ -415,7 +415,9 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const Line& l, Query query, 
     return r;
 }
 
-template Result exact_rung<Binary64>(const LineQuadratic<BigFloat>&, const Line&, Query, bool);
-template Result exact_rung<Binary32>(const LineQuadratic<BigFloat>&, const Line&, Query, bool);
+template Result exact_rung<Binary64>(const LineQuadratic<BigFloat>&, const BigFloat&, const Line&,
+                                     Query, bool);
+template Result exact_rung<Binary32>(const LineQuadratic<BigFloat>&, const BigFloat&, const Line&,
+                                     Query, bool);
 
 } // namespace linequad::detail

@@ -22,12 +22,12 @@ bool double_double_rung(const exact_form::LineQuadratic<BoundedDD>& q, const Uni
 template <class Target>
 double round_exact(const BigFloat& X, const BigFloat& Y, const BigFloat& D, const BigFloat& Den);
 
-// The quadratic of the line as given, exactly: always the answer, rounded to Target. With
-// `filter_first` (no exact zero is known), its coefficients and D = B^2 - A C0, each exact, are
+// The quadratic of the line as given, exactly, and its D = B^2 - A C0: always the answer,
+// rounded to Target. With `filter_first` (no exact zero is known), the coefficients and D are
 // first enclosed in double-double and classified there: the exact classification only where
 // those bounds cannot decide.
 template <class Target>
-Result exact_rung(const exact_form::LineQuadratic<BigFloat>& q, const Line& l, Query query,
-                  bool filter_first);
+Result exact_rung(const exact_form::LineQuadratic<BigFloat>& q, const BigFloat& D, const Line& l,
+                  Query query, bool filter_first);
 
 } // namespace linequad::detail
