@@ -697,6 +697,35 @@ TEST_CASE("correct answers tangent lines on the Newton rung") {
         }
 }
 
+TEST_CASE("correct answers a tangent to a closed two-nappe cone on the Newton rung") {
+    // The cone x^2 + y^2 = z^2 about the apex (0, 0.2, 0), -1 <= z <= 1, both nappes closed, and
+    // lines along y in its tangent planes x = z and x = -z: g = (y - 0.2)^2 along each, a double
+    // root where it touches a generator. 0.45 is not dyadic: only the exact form shows D = 0,
+    // and t = -B/A is then rounded on the rung. Inside either nappe's extent: one tangent hit;
+    // beyond the top: none; behind a ray's start: none. Each as the oracle answers it.
+    EllipticCone cone{{0, 0.2, -1}, {0, 0.2, 0}, {1, 0, 0}, {0, 1, 0}, true, true, 2};
+    struct Tangent {
+        Line line;
+        int hits;
+    };
+    const Tangent cases[] = {
+        {{{0.45, 1.7, 0.45}, {0, 1.5, 0}, Range::line}, 1},   // the upper nappe, z = 0.45
+        {{{0.45, 1.7, -0.45}, {0, 1.5, 0}, Range::line}, 1},  // the lower one, z = -0.45
+        {{{-0.45, 1.7, 0.45}, {0, -1.5, 0}, Range::line}, 1}, // x = -z, upper
+        {{{1.45, 1.7, 1.45}, {0, 1.5, 0}, Range::line}, 0},   // z = 1.45, beyond the top
+        {{{0.45, 1.7, 0.45}, {0, 1.5, 0}, Range::ray}, 0},    // touches at t = -1
+    };
+    for (const Tangent& c : cases)
+        for (Query q : {Query{Need::all, true}, Query{Need::nearest, true}}) {
+            INFO("L0 " << c.line.L0.x << " " << c.line.L0.z << " ray " << c.line.range.has_t0());
+            Result got = correct_solve(cone, c.line, q);
+            check_same_answer(got, exact::intersect(cone, c.line, q));
+            CHECK(got.rung == Rung::newton);
+            REQUIRE(got.count == c.hits);
+            if (got.count == 1) CHECK(got.hits[0].kind == HitKind::tangent);
+        }
+}
+
 TEST_CASE("correct answers lines through a closed two-nappe cone's two solids on the Newton rung") {
     // Random closed two-nappe cones (apex H, base C at z = -1, the top disc at z = 1) and lines
     // through a point inside each nappe's solid: steeper than the generators, one ray in each

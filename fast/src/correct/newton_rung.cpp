@@ -506,13 +506,14 @@ stepped_again(const LineForm& f, const Leading<double>& A, const Local<double>& 
 }
 // A tangency (a double root, which only `ends` proves: D = 0 exactly), A > 0: the line touches
 // the quadric at t = -B/A, rational, and meets the shape there alone, where that point lies
-// strictly inside the extent (a closed solid too: the quadric's inside is that point) and the
-// range. At an end, on two solids or unproven: the next rungs. Rare, so out of line.
+// strictly inside the extent (a closed solid too, and either of two solids, the apex between
+// them included: the quadric's inside is that point) and the range. At an end or unproven: the
+// next rungs. Rare, so out of line.
 template <class Target>
 [[gnu::noinline]] bool tangent_hit(const LineForm& f, const Leading<double>& A, const Unit& unit,
                                    const Line& caller, Query query, Result& r,
                                    const ExtentEnds& ends) {
-    if (!(A.A > A.e) || f.discs == Discs::two_solids) return false;
+    if (!(A.A > A.e)) return false;
     std::optional<BoundedDD> t = ends.double_root(unit.t_factor);
     if (!t) return false;
     Enclosure<double> en{t->hi, t->lo, t->e, true, true};
