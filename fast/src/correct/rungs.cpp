@@ -314,10 +314,6 @@ LineQuadratic<BoundedDD> enclosed(const LineQuadratic<BigFloat>& q) {
     return e;
 }
 
-} // namespace
-
-namespace {
-
 // The exact root that a filter's root stands for, as classify() forms it: a disc's at
 // (end - Z0) / dZ (where dZ != 0: a line in the disc's plane grazes its rim at a lateral root),
 // a lateral one at (-B + S sqrt(D)) / A, or -C0 / 2B where A = 0.
