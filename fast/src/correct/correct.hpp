@@ -244,8 +244,8 @@ class ExactForm final : public ExtentEnds {
         return c;
     }
 
-    // Whether the exact form showed an exact zero (a root at an end, a double root, g constant
-    // or a line in a disc's plane), where a filter's bounds never decide.
+    // Whether the exact form showed an exact zero (a root at an end, a double root, g or Z
+    // constant along the line), where a filter's bounds would most likely not decide.
     bool exact_zero() const { return exact_zero_; }
 
     // A cylinder's parallel line is shown by a few exact products and C0's sign by the
