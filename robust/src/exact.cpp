@@ -191,33 +191,18 @@ Verdict decide(const ShapeT& shape, const Line& l, Need need) {
     return v;
 }
 
-// The exact classification of decided hits, without deciding anything again: each root rebuilt
-// from the exact quadratic by the form classify() gave it (exact_form.hpp), which the root's
-// part and S and the decided signs of A and dZ name:
-//   a disc crossed (dZ != 0):        N = end - Z0, Den = dZ, S = 0
-//   a rim grazed in a disc's plane:  N = -B, Den = A, S = 0
-//   lateral, A = 0:                  N = -C0, Den = 2B, S = 0 (D = 0)
-//   lateral, A != 0:                 N = -B, Den = A, S as decided (D = B^2 - A C0, or 0 if < 0)
+// The exact classification of decided hits, without classifying again: each root rebuilt
+// from the exact quadratic by the form classify() gave it (exact_form::exact_root); D is
+// B^2 - A C0, or 0 where A = 0 or D < 0.
 template <class NT>
 exact_form::Classification<NT> rebuilt(const Verdict& v, const exact_form::LineQuadratic<NT>& q) {
     exact_form::Classification<NT> c;
     c.outcome = exact_form::Outcome::hits;
     c.count = v.c.count;
-    bool flat_A = sign(v.q.A) == 0, flat_dZ = sign(v.q.dZ) == 0;
-    c.D = flat_A ? NT(0) : NT(q.B * q.B - q.A * q.C0);
+    c.D = sign(v.q.A) == 0 ? NT(0) : NT(q.B * q.B - q.A * q.C0);
     if (CGAL::sign(c.D) < 0) c.D = NT(0);
-    for (int k = 0; k < c.count; ++k) {
-        const exact_form::SurdRoot<Interval>& from = v.c.roots[k];
-        exact_form::SurdRoot<NT>& r = c.roots[k];
-        r.kind = from.kind, r.part = from.part, r.S = from.S;
-        if (from.part != Part::lateral && !flat_dZ) {
-            r.N = (from.part == Part::base ? q.lo : q.hi) - q.Z0, r.Den = q.dZ;
-        } else if (from.part == Part::lateral && flat_A) {
-            r.N = -q.C0, r.Den = NT(2) * q.B;
-        } else {
-            r.N = -q.B, r.Den = q.A;
-        }
-    }
+    for (int k = 0; k < c.count; ++k)
+        c.roots[k] = exact_form::exact_root(q, v.c.roots[k]);
     return c;
 }
 

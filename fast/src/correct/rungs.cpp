@@ -314,16 +314,6 @@ LineQuadratic<BoundedDD> enclosed(const LineQuadratic<BigFloat>& q) {
     return e;
 }
 
-// The exact root that a filter's root stands for, as classify() forms it: a disc's at
-// (end - Z0) / dZ (where dZ != 0: a line in the disc's plane grazes its rim at a lateral root),
-// a lateral one at (-B + S sqrt(D)) / A, or -C0 / 2B where A = 0.
-SurdRoot<BigFloat> exact_root(const LineQuadratic<BigFloat>& q, const SurdRoot<BoundedDD>& r) {
-    if ((r.part == Part::base || r.part == Part::top) && sign(q.dZ) != 0)
-        return {(r.part == Part::base ? q.lo : q.hi) - q.Z0, q.dZ, 0, r.kind, r.part};
-    if (sign(q.A) == 0) return {-q.C0, BigFloat(2.0) * q.B, 0, r.kind, r.part};
-    return {-q.B, q.A, r.S, r.kind, r.part};
-}
-
 // The hits at the exact roots, each t and point rounded to Target: t from `enclosed[i]` (the
 // filter's enclosure of root i, where it has one) where its bound proves the rounding, else
 // exactly.
@@ -385,7 +375,7 @@ Result exact_rung(const LineQuadratic<BigFloat>& q, const BigFloat& D, const Lin
             std::optional<BoundedDD> t[max_hits];
             BoundedDD sqrt_D = sign(c.D) == 0 ? BoundedDD() : sqrt(c.D);
             for (int i = 0; i < c.count; ++i) {
-                roots[i] = exact_root(q, c.roots[i]);
+                roots[i] = exact_form::exact_root(q, c.roots[i]);
                 t[i] = root_value(c.roots[i], sqrt_D, e);
             }
             add_hits<Target>(roots, t, c.count, D, l, query, r);

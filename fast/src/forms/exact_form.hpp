@@ -146,7 +146,20 @@ struct SurdRoot {
     int S = 0;
     HitKind kind = HitKind::cross;
     Part part = Part::lateral;
+    // A disc's crossing, (end - Z0) / dZ; else a root of the quadratic (part names a disc there
+    // too for a line in its plane grazing the rim).
+    bool disc = false;
 };
+
+// The exact root that a filter's root (classified in a bounded or interval type) stands for,
+// formed from the exact quadratic q as classify() formed it: a disc's crossing at
+// (end - Z0) / dZ, a root of the quadratic at (-B + S sqrt(D)) / A, or -C0 / 2B where A = 0.
+template <class NT, class Filtered>
+SurdRoot<NT> exact_root(const LineQuadratic<NT>& q, const SurdRoot<Filtered>& r) {
+    if (r.disc) return {(r.part == Part::base ? q.lo : q.hi) - q.Z0, q.dZ, 0, r.kind, r.part, true};
+    if (sign(q.A) == 0) return {-q.C0, NT(2) * q.B, 0, r.kind, r.part};
+    return {-q.B, q.A, r.S, r.kind, r.part};
+}
 
 // An end of the on-surface interval: (num + S sqrt(D)) / den with den > 0, or unbounded. S is 0
 // but for a chord of a disc.
@@ -350,7 +363,7 @@ bool close(const LineQuadratic<NT>& q, const SurdSign<NT>& surd, SurdRoot<NT>* r
             NT N = end - q.Z0;
             int inside = sign(NT((q.A * N + NT(2) * q.B * q.dZ) * N + q.C0 * q.dZ * q.dZ));
             if (inside == undecided) return false;
-            if (inside <= 0) sden[n] = sdz, roots[n++] = {N, q.dZ, 0, HitKind::cross, part};
+            if (inside <= 0) sden[n] = sdz, roots[n++] = {N, q.dZ, 0, HitKind::cross, part, true};
             return true;
         };
         if (q.lo_capped && !disc(q.lo, Part::base)) return false;

@@ -22,7 +22,6 @@ class Limbs {
     static constexpr std::size_t local = 12;
 
     Limbs() = default;
-    Limbs(std::size_t n, std::uint64_t fill) { assign(n, fill); }
     Limbs(const Limbs& o) { copy_from(o); }
     Limbs(Limbs&& o) noexcept { take(o); }
     Limbs& operator=(const Limbs& o) {
@@ -52,10 +51,6 @@ class Limbs {
         reserve(n);
         if (n > size_) std::fill(data_ + size_, data_ + n, fill);
         size_ = n;
-    }
-    void assign(std::size_t n, std::uint64_t fill) {
-        size_ = 0;
-        resize(n, fill);
     }
     // n limbs whose values the caller writes next: no fill.
     void resize_for_writing(std::size_t n) {
