@@ -491,9 +491,9 @@ template <int SigmaZ, Residual R>
 [[gnu::noinline]] std::optional<Enclosure<double>>
 stepped_again(const LineForm& f, const Leading<double>& A, const Local<double>& L, double c,
               std::optional<Enclosure<double>> en) {
-    if (en) { // proven: a step narrows it only where the quadratic term, not G's bound, widens it
+    if (en) { // proven: a step narrows it only where the step's size, not G's bound, widens it
         double x0 = std::fabs(L.G / L.Gp), y = 4 * std::fabs(A.A) * x0 / std::fabs(L.Gp);
-        if (!(0.35 * y * std::fabs(L.G) > 2 * (L.e_G + x0 * L.e_Gp))) return en;
+        if (!(x0 * (L.e_Gp + y * std::fabs(L.Gp) * A.e / std::fabs(A.A)) > L.e_G)) return en;
     }
     double next = en ? en->c + en->x : c - L.G / L.Gp;
     for (int step = 0; step < 4 && std::isfinite(next); ++step) {
@@ -526,6 +526,63 @@ template <class Target>
     return true;
 }
 
+// Root `smaller` (or the larger one) of g from its local quadratic at c, expanded again about
+// c + x_c, x_c that quadratic's own root in double: where no double lies near enough to one root
+// for the proof at a double (two roots within a few ulps of each other: a thin shape, a near
+// tangency; a root of a line from far away, an ulp from every double). Exactly,
+// g(c + x_c + x) = A x^2 + (G' + 2 A x_c) x + (G + x_c (G' + A x_c)); the new coefficients are
+// rounded in double, each within the bounds of G, G' and A carried through and its roundings
+// (four for the constant term, two for the slope), and the proof is the same. The scalar rung's;
+// rare, so out of line.
+[[gnu::noinline]] std::optional<Enclosure<double>>
+root_beside(const Local<double>& L, const Leading<double>& A, double c, bool smaller) {
+    using std::fabs;
+    double D = difference_of_products(L.Gp, L.Gp, 4 * A.A, L.G);
+    if (!(D > 0)) return std::nullopt;
+    double q = -0.5 * (L.Gp + std::copysign(std::sqrt(D), L.Gp));
+    double xa = q / A.A, xb = L.G / q;
+    double x_c = (xa < xb) == smaller ? xa : xb;
+    if (!std::isfinite(x_c)) return std::nullopt;
+    double ax = fabs(x_c), Ax = A.A * x_c;
+    Local<double> at;
+    at.G = L.G + x_c * (L.Gp + Ax);
+    at.e_G =
+        (L.e_G + ax * L.e_Gp + ax * ax * A.e + 4 * u * (fabs(L.G) + ax * (fabs(L.Gp) + fabs(Ax)))) *
+            F::cover(32) +
+        F::underflow_floor;
+    at.Gp = L.Gp + 2 * Ax;
+    at.e_Gp = (L.e_Gp + 2 * ax * A.e + 2 * u * (fabs(L.Gp) + 2 * fabs(Ax))) * F::cover(32) +
+              F::underflow_floor;
+    Enclosure<double> en = newton::root_near(at, A, c);
+    if (!en.proven || en.smaller != smaller) return std::nullopt;
+    double x = x_c + en.x; // one rounding more
+    en.e = (en.e + u * fabs(x)) * F::cover(4) + F::denorm_min;
+    en.x = x;
+    return en;
+}
+
+// The roots' estimates again, from g's local quadratic at the vertex c = -B/A: g(c + x) =
+// A x^2 + G' x + G with G in double-double. Where B^2 and A C0 cancel (a line from far away, a
+// thin shape), the estimates from the coefficients' high parts lose their bits, even whether
+// the roots are real; the vertex keeps its own to an ulp, and G those that cancel. Sorted; false
+// where the local quadratic shows no two real roots. The scalar rung's; rare, so out of line.
+[[gnu::noinline]] bool estimates_at_vertex(const Leading<double>& A, const Local<double>& at_vertex,
+                                           double vertex, double (&estimate)[2]) {
+    const Local<double>& L = at_vertex;
+    double D = difference_of_products(L.Gp, L.Gp, 4 * A.A, L.G);
+    if (!(D > 0)) return false;
+    double q = -0.5 * (L.Gp + std::copysign(std::sqrt(D), L.Gp));
+    estimate[0] = vertex + q / A.A, estimate[1] = vertex + L.G / q;
+    if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
+    return std::isfinite(estimate[0]) && std::isfinite(estimate[1]);
+}
+template <int SigmaZ, Residual R>
+bool estimates_at_vertex(const LineForm& f, const Leading<double>& A, double vertex,
+                         double (&estimate)[2]) {
+    return std::isfinite(vertex) &&
+           estimates_at_vertex(A, local_near<SigmaZ, R>(f, vertex), vertex, estimate);
+}
+
 // Unproven, or wider than 2^-64 of the root: far from what rounding t to a double needs. The
 // quick residual's enclosures are meant to be wider (a float's rounding needs 2^-24): never.
 template <Residual R>
@@ -543,12 +600,44 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
     if (!(std::fabs(A.A) > A.e)) // nearly parallel to the axis or to a generator
         return ends && constant_g_hits<Target>(f, unit, caller, query, r, *ends);
     Estimates<double> est = estimates<SigmaZ>(f, A);
-    if (!est.real)
-        return no_root_proven(A, est.vertex,
-                              [&](double c) { return local_near<SigmaZ, R>(f, c); }) ||
-               (ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends));
     double estimate[2] = {est.root[0], est.root[1]};
+    bool recentred = false; // the estimates taken (or tried) again at the vertex
+    if (!est.real) {
+        bool finite = std::isfinite(est.vertex);
+        Local<double> at_vertex{};
+        if (finite) {
+            at_vertex = local_near<SigmaZ, R>(f, est.vertex);
+            if (newton::no_root_proven(A, est.vertex, at_vertex)) return true;
+        }
+        // The vertex's estimates on the scalar ladder only: the batch lanes decline here.
+        if (!ends || !finite || !estimates_at_vertex(A, at_vertex, est.vertex, estimate))
+            return ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends);
+        recentred = true;
+    }
     if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
+    // The root next to estimate i, from its local quadratic, stepped again where it is too wide.
+    auto root_at = [&](int i, const Local<double>& local) {
+        std::optional<Enclosure<double>> en = root_near(local, A, estimate[i]);
+        if (ends && too_wide<R>(en)) en = stepped_again<SigmaZ, R>(f, A, local, estimate[i], en);
+        return en;
+    };
+    // On the scalar ladder (the batch lanes prove what one step proves): unproven, or too wide
+    // to round.
+    auto unsettled = [&](const std::optional<Enclosure<double>>& en) {
+        return ends && too_wide<R>(en);
+    };
+    // A root unsettled from the coefficients' estimates: once more from the vertex's (once).
+    auto recentre = [&]() {
+        if (recentred) return false;
+        recentred = true;
+        return estimates_at_vertex<SigmaZ, R>(f, A, est.vertex, estimate);
+    };
+    // And still unsettled: expanded about the local quadratic's own root (the scalar ladder's).
+    auto beside = [&](int i, const Local<double>& local, std::optional<Enclosure<double>> en) {
+        if (!unsettled(en)) return en;
+        std::optional<Enclosure<double>> b = root_beside(local, A, estimate[i], i == 0);
+        return b && (!en || b->e < en->e) ? b : en;
+    };
     if (f.discs != Discs::none) {
         // A closed shape: both roots before any hit (closed_hits). Two solids (a closed two-nappe
         // cone) only on the scalar ladder (ends given), the batch lanes' first rung declines them.
@@ -561,10 +650,13 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
             for (int i = 0; i < 2; ++i)
                 local[i] = local_near<SigmaZ, R>(f, estimate[i]);
         }
+        for (int i = 0; i < 2; ++i)
+            en[i] = root_at(i, local[i]);
+        if ((unsettled(en[0]) || unsettled(en[1])) && recentre())
+            for (int i = 0; i < 2; ++i)
+                en[i] = root_at(i, local[i] = local_near<SigmaZ, R>(f, estimate[i]));
         for (int i = 0; i < 2; ++i) {
-            en[i] = root_near(local[i], A, estimate[i]);
-            if (ends && too_wide<R>(en[i]))
-                en[i] = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en[i]);
+            en[i] = beside(i, local[i], en[i]);
             if (!en[i]) return ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends);
             if (en[i]->smaller != (i == 0)) return false;
         }
@@ -576,8 +668,12 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
     if (both) newton::local_at<SigmaZ>(f, estimate, local);
     for (int i = 0; i < 2; ++i) {
         if (!both) local[i] = local_near<SigmaZ, R>(f, estimate[i]);
-        std::optional<Enclosure<double>> en = root_near(local[i], A, estimate[i]);
-        if (ends && too_wide<R>(en)) en = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en);
+        std::optional<Enclosure<double>> en = root_at(i, local[i]);
+        if (unsettled(en) && recentre()) { // new estimates: the other root's local quadratic too
+            both = false;
+            en = root_at(i, local[i] = local_near<SigmaZ, R>(f, estimate[i]));
+        }
+        en = beside(i, local[i], en);
         if (!en) return ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends);
         if (en->smaller != (i == 0)) return false;
         int inside = kept(f, unit, *en);

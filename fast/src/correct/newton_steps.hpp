@@ -130,12 +130,15 @@ void local_at(const LineFormT<T>& f, const T (&c)[N], Local<T> (&out)[N]) {
             g[n].add_small(T(2.0) * sh * uk.lo);
             g[n].add_small(sg * uk.lo * uk.lo);
             propagated[n] = propagated[n] + uk.e * (T(2.0) * (fabs(uk.hi) + fabs(uk.lo)) + uk.e);
-            // G': gamma_3 sum |u_k U1_k| for the rounding (4u covers it; four terms, 5u), and the
-            // parts left out
-            Gp[n] = Gp[n] + sh * b.hi;
-            products[n] = products[n] + fabs(uk.hi * b.hi);
-            e_Gp[n] = e_Gp[n] + (fabs(uk.hi) * bound_of_hi(b) +
-                                 (fabs(uk.lo) + uk.e) * (fabs(b.hi) + bound_of_hi(b)));
+            // G' from u_k(c) rounded once, hi + lo: uk is unnormalized, and where U0 and c U1
+            // cancel (a line from far away) lo lies far above hi's ulp. gamma_3 sum |u_k U1_k|
+            // for the rounding (4u covers it; four terms, 5u), and the parts left out: u_k's
+            // rounding, its bound, U1's low part and bound.
+            T un = uk.hi + uk.lo, an = fabs(un);
+            Gp[n] = Gp[n] + (sg * un) * b.hi;
+            products[n] = products[n] + fabs(un * b.hi);
+            e_Gp[n] = e_Gp[n] +
+                      (an * bound_of_hi(b) + (T(u) * an + uk.e) * (fabs(b.hi) + bound_of_hi(b)));
         }
     }
     for (int n = 0; n < N; ++n) {
@@ -201,26 +204,41 @@ struct Enclosure {
 };
 
 // The root next to c, where the local quadratic proves it (see newton_rung.hpp): with
-// y = 4 A G / G'^2 and |y| <= 1/2 there are two distinct real roots (the discriminant is
-// G'^2 (1 - y) > 0); the one nearer c is x* = (-G/G') phi(y), phi(y) = 2 / (1 + sqrt(1 - y)),
-// and |phi(y) - 1| = |y| / (1 + sqrt(1 - y))^2 <= 0.35 |y|. |-G/G' - x0| is at most
-// (e_G + |x0| e_G') / |G'| + u |x0| (the perturbed quotient and its rounding). The other root is
-// at -G'/A - x*, on the side of -sgn(G' A): |2 x*| < |G'/A| when |y| <= 1/2.
+// Y = 4 A G / G'^2 and |Y| <= 1/2 there are two distinct real roots (the discriminant is
+// G'^2 (1 - Y) > 0); the one nearer c is x* = X0 phi(Y), X0 = -G/G', phi(Y) = 2 / (1 + sqrt(1 -
+// Y)). The other root is at -G'/A - x*, on the side of -sgn(G' A): |2 x*| < |G'/A| when |Y| <= 1/2.
+// phi is taken at y = -4 A x0 / G' from the computed x0 = -G/G', not bounded by its first term:
+// where the roots lie close (a near tangency seen from far away) an estimate an ulp off still
+// leaves |Y| near 2^-8, and X0 alone would enclose the root only to some 2^-72 of t.
+// For |Y| <= 1/2, 0.89 <= phi <= 1.18 and |phi'| <= 0.57, so x1 = x0 phi(y) errs by at most
+//  - 1.18 E0, E0 = (e_G + |x0| e_G') / |G'| + u |x0|: x0 from X0 (the perturbed quotient, its
+//    rounding);
+//  - 0.57 |x0| |Y - y|, |Y - y| <= 4 (e_A |X0| + |A| E0 + |A x0| e_G' / |G'|) / |G'| + 4u |y|;
+//  - 6u |x1|: phi's and the product's roundings.
 template <class T>
 LINEQUAD_INLINE Enclosure<T> root_near(const Local<T>& L, const Leading<T>& A, T c) {
     using std::fabs;
+    using std::sqrt;
     T P = (fabs(L.Gp) - L.e_Gp) * T(F::shrink(8));              // |G'| >= P
     Mask<T> proven = (P >= T(0x1p-1000)) & (P <= T(0x1p+1000)); // not NaN
-    // Bounds from 1/P (normal, so each rounding is relative: 1 + 2^-48 covers a dozen). y is
+    // Bounds from 1/P (normal, so each rounding is relative: 1 + 2^-48 covers a dozen). y_max is
     // formed from two ratios of like quantities, so that no product of two small ones underflows.
-    T inv_P = T(1.0) / P, G_max = fabs(L.G) + L.e_G;
-    T y = T(4.0) * upper_product((fabs(A.A) + A.e) * inv_P, G_max * inv_P);
-    proven = proven & (y <= T(0.5));
-    T x0 = -L.G / L.Gp;
-    T e = ((L.e_G + fabs(x0) * L.e_Gp + T(0.35) * y * G_max) * inv_P + T(u) * fabs(x0)) *
-              T(F::cover(32)) +
-          T(F::subnormal_slack);
-    return {c, x0, e, differ<Mask<T>>(T(0.0) < L.Gp, T(0.0) < A.A), proven};
+    T inv_P = T(1.0) / P, A_max = fabs(A.A) + A.e, X0_max = (fabs(L.G) + L.e_G) * inv_P;
+    T y_max = T(4.0) * upper_product(A_max * inv_P, X0_max);
+    proven = proven & (y_max <= T(0.5));
+    T x0 = -L.G / L.Gp, ax0 = fabs(x0);
+    T y = T(-4.0) * (A.A * x0) / L.Gp;
+    T x1 = x0 * (T(2.0) / (T(1.0) + sqrt(fabs(T(1.0) - y)))); // |y| <= y_max where proven
+    T E0 = (L.e_G + ax0 * L.e_Gp) * inv_P + T(u) * ax0;
+    T e_y = T(4.0) *
+                (upper_product(A.e, X0_max) + upper_product(A_max, E0) +
+                 upper_product(A_max * ax0, L.e_Gp * inv_P)) *
+                inv_P +
+            T(4 * u) * fabs(y);
+    T e =
+        (T(1.18) * E0 + T(0.57) * upper_product(ax0, e_y) + T(6 * u) * fabs(x1)) * T(F::cover(32)) +
+        T(F::subnormal_slack);
+    return {c, x1, e, differ<Mask<T>>(T(0.0) < L.Gp, T(0.0) < A.A), proven};
 }
 
 // Whether g has no real root: at c (near the vertex), g(c + x) = A x^2 + G' x + G with
