@@ -96,8 +96,8 @@ inline BigFloat twice(const BigFloat& x) {
     return x.scaled(1);
 }
 
-// t times `to_rung` (a power of two: a quadratic's parameter into the rung's), exactly; no value
-// where a part would leave the normal range or the bound is not finite.
+// t times `to_rung` (a power of two: a quadratic's parameter, or a coefficient, into the rung's
+// units), exactly; no value where a part would leave the normal range or the bound is not finite.
 inline std::optional<BoundedDD> in_rung_units(BoundedDD t, double to_rung) {
     if (to_rung != 1) t = BoundedDD(t.hi * to_rung, t.lo * to_rung, t.e * to_rung);
     auto tiny = [](double x) { return x != 0 && std::fabs(x) < 0x1p-960; };
@@ -153,20 +153,34 @@ inline std::optional<int> dot_sign(Vec3 a, Vec3 a_, Vec3 b, Vec3 b_) {
     return e.sign();
 }
 
-// The disc whose plane holds the line, or lateral, for a closed cylinder: dZ = v.h and
-// Z0 - end = (L0 - C).h or (L0 - H).h, h = H - C, each exactly (the exact form's Z is (P - C).h);
-// no value for other shapes, which the exact form answers.
-inline std::optional<Part> disc_holding_line(const Cylinder& s, const Line& l) {
-    if (!s.caps) return Part::lateral;
+// Where Z0 lies against the extent, from sgn(Z0 - lo) and sgn(Z0 - hi): -2 below it, -1 in the
+// base's plane, 0 strictly within, 1 in the top's plane, 2 above (ExtentEnds::constant_z).
+inline int level_of(int against_lo, int against_hi) {
+    return against_lo < 0    ? -2
+           : against_lo == 0 ? -1
+           : against_hi < 0  ? 0
+           : against_hi == 0 ? 1
+                             : 2;
+}
+
+// For a closed cylinder: whether Z is constant along the line (dZ = v.h = 0) and then its level,
+// from Z0 - end = (L0 - C).h or (L0 - H).h, h = H - C, each exactly (the exact form's Z is
+// (P - C).h); no value for other shapes, which the exact form answers.
+struct ConstantZ {
+    bool constant;
+    int level; // where constant
+};
+inline std::optional<ConstantZ> constant_z_of_line(const Cylinder& s, const Line& l) {
+    if (!s.caps) return std::nullopt;
     std::optional<int> dZ = dot_sign(l.v, Vec3{}, s.H, s.C);
     if (!dZ) return std::nullopt;
-    if (*dZ != 0) return Part::lateral;
+    if (*dZ != 0) return ConstantZ{false, 0};
     std::optional<int> base = dot_sign(l.L0, s.C, s.H, s.C), top = dot_sign(l.L0, s.H, s.H, s.C);
     if (!base || !top) return std::nullopt;
-    return *base == 0 ? Part::base : *top == 0 ? Part::top : Part::lateral;
+    return ConstantZ{true, level_of(*base, *top)};
 }
 template <class S>
-std::optional<Part> disc_holding_line(const S&, const Line&) {
+std::optional<ConstantZ> constant_z_of_line(const S&, const Line&) {
     return std::nullopt;
 }
 
@@ -234,8 +248,7 @@ class ExactForm final : public ExtentEnds {
     }
 
     std::optional<EndCrossing> at(bool top, double t_factor) const override {
-        asked_ = true;
-        if (deferred_) return std::nullopt;
+        if (deferred()) return std::nullopt;
         if (dd_)
             if (std::optional<EndCrossing> c = end_crossing(*dd_, top, dd_t_factor_ / t_factor))
                 return c;
@@ -250,42 +263,67 @@ class ExactForm final : public ExtentEnds {
 
     // A cylinder's parallel line is shown by a few exact products and C0's sign by the
     // double-double rung's bound (but on the surface); the exact form answers the rest.
+    // Exact products, cheaper than the double-double rung, answer before any deferral.
     std::optional<int> constant_sign() const override {
-        asked_ = true;
-        if (deferred_) return std::nullopt;
-        if (std::optional<bool> parallel = exactly_parallel(shape_, line_)) {
-            if (!*parallel) return std::nullopt;
-            if (dd_)
-                if (int s = sign(dd_->C0); s != undecided_sign) return s;
-        }
+        std::optional<bool> parallel = exactly_parallel(shape_, line_);
+        if (parallel && !*parallel) return std::nullopt;
+        if (deferred()) return std::nullopt;
+        if (parallel && dd_)
+            if (int s = sign(dd_->C0); s != undecided_sign) return s;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) != 0) return std::nullopt;
         exact_zero_ = true;
         return sign(q.C0);
     }
 
-    std::optional<Part> disc_holding() const override {
-        asked_ = true;
-        if (deferred_) return std::nullopt;
-        if (std::optional<Part> disc = disc_holding_line(shape_, line_)) return disc;
+    std::optional<int> constant_z() const override {
+        if (std::optional<ConstantZ> z = constant_z_of_line(shape_, line_))
+            return z->constant ? std::optional<int>(z->level) : std::nullopt;
+        if (deferred()) return std::nullopt;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
-        if (sign(q.dZ) != 0) return Part::lateral;
+        if (sign(q.dZ) != 0) return std::nullopt;
         exact_zero_ = true;
-        if (q.lo_capped && sign(q.Z0 - q.lo) == 0) return Part::base;
-        if (q.hi_capped && sign(q.Z0 - q.hi) == 0) return Part::top;
-        return Part::lateral;
+        int level =
+            level_of(q.lo_bounded ? sign(q.Z0 - q.lo) : 1, q.hi_bounded ? sign(q.Z0 - q.hi) : -1);
+        if ((level == -1 && !q.lo_capped) || (level == 1 && !q.hi_capped)) return std::nullopt;
+        return level;
     }
 
     std::optional<BoundedDD> double_root(double t_factor) const override {
-        asked_ = true;
-        if (deferred_) return std::nullopt;
+        if (deferred()) return std::nullopt;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) == 0 || sign(discriminant()) != 0) return std::nullopt;
         exact_zero_ = true;
         return in_rung_units(enclosure(-q.B) / enclosure(q.A), 1 / t_factor);
     }
 
+    // At t = c t_factor (the caller's units): G = C0 + t (2B + A t) and G' / 2 = B + A t exactly;
+    // in the rung's units G' and A carry t_factor and its square.
+    std::optional<ExactLocal> local_at(double c, double t_factor) const override {
+        double t = c * t_factor;
+        if (!std::isfinite(t)) return std::nullopt;
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        BigFloat at(t), half_slope = q.B + q.A * at, G = q.C0 + at * (half_slope + q.B);
+        std::optional<BoundedDD> A = in_rung_units(enclosure(q.A), t_factor * t_factor),
+                                 Gp = in_rung_units(enclosure(half_slope), 2 * t_factor),
+                                 G0 = in_rung_units(enclosure(G), 1);
+        if (!A || !Gp || !G0) return std::nullopt;
+        return ExactLocal{{A->hi, bound_of_hi(*A)},
+                          {G0->hi, bound_of_hi(*G0), Gp->hi, bound_of_hi(*Gp)}};
+    }
+    std::optional<BoundedDD> crossing(bool top, double t_factor) const override {
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        if (!(top ? q.hi_bounded : q.lo_bounded) || sign(q.dZ) == 0) return std::nullopt;
+        return in_rung_units(enclosure((top ? q.hi : q.lo) - q.Z0) / enclosure(q.dZ), 1 / t_factor);
+    }
+
   private:
+    // Notes that the rung asked; while deferred, no answer.
+    bool deferred() const {
+        asked_ = true;
+        return deferred_;
+    }
+
     const S& shape_;
     const Line& line_;
     int orientation_;

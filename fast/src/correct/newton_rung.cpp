@@ -45,6 +45,30 @@ LINEQUAD_INLINE int kept(const LineForm& f, const Unit& unit, const Enclosure<do
     return k.outside ? 0 : k.inside ? 1 : -1;
 }
 
+// Root `smaller` (or the larger one) next to c, where the rung's bounds, absolute, are wide
+// beside it or beside a coordinate of its point: the same proof at c (a double next to the root)
+// on the exact form's local quadratic there (`ends`), whose G is enclosed relatively. Rare, so
+// out of line.
+[[gnu::noinline]] std::optional<Enclosure<double>>
+root_from_exact_form(const ExtentEnds& ends, double t_factor, double c, bool smaller) {
+    std::optional<ExactLocal> q = ends.local_at(c, t_factor);
+    if (!q || !(std::fabs(q->A.A) > q->A.e)) return std::nullopt;
+    Enclosure<double> en = newton::root_near(q->at, q->A, c);
+    if (!en.proven || en.smaller != smaller) return std::nullopt;
+    return en;
+}
+
+// A disc's crossing whose enclosure `t` is too wide beside t (a line starting a few ulps from
+// the disc's plane, whose Z0 - end the rung bounds absolutely): from the exact form. Rare, so
+// out of line.
+[[gnu::noinline]] std::optional<Enclosure<double>>
+exact_crossing(const ExtentEnds& ends, bool low, const Unit& unit,
+               std::optional<Enclosure<double>> t) {
+    std::optional<BoundedDD> exact = ends.crossing(!low, unit.t_factor);
+    if (!exact) return t;
+    return Enclosure<double>{exact->hi, exact->lo, exact->e, true, true};
+}
+
 // A coordinate of the hit point known exactly (a disc's plane perpendicular to its axis), or none.
 struct ExactCoordinate {
     int axis = -1;
@@ -54,8 +78,9 @@ struct ExactCoordinate {
 // The hit, t and its point correctly rounded to Target in the caller's units; false when a bound
 // does not prove a rounding.
 template <class Target>
-LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, Part part, const Unit& unit,
-                             const Line& caller, Query q, Result& r, ExactCoordinate exact = {}) {
+LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, const Unit& unit,
+                                     const Line& caller, Query q, Result& r,
+                                     ExactCoordinate exact) {
     if constexpr (std::is_same_v<Target, Binary32>) {
         // A float's rounding cell is 2^29 times a double's: t = c + x and each coordinate
         // fma(t, v_k, L0_k) in double, each with one rounding added to its bound, nearly always
@@ -120,6 +145,28 @@ LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, Part part, const Unit&
         ++r.count;
         return true;
     }
+}
+
+// The same, and where a bound does not prove a rounding (t or a coordinate a few ulps from zero,
+// the rung's bounds absolute: a line starting beside the surface, a hit beside a coordinate
+// plane), once more from an enclosure from the exact form (`ends`): a lateral root's from its
+// coefficients, a disc's crossing exactly. Only that case out of line.
+template <class Target>
+[[gnu::noinline]] bool add_tighter_hit(const Enclosure<double>& en, Part part, const Unit& unit,
+                                       const Line& caller, Query q, Result& r,
+                                       ExactCoordinate exact, const ExtentEnds& ends) {
+    std::optional<Enclosure<double>> tighter =
+        part == Part::lateral ? root_from_exact_form(ends, unit.t_factor, en.c + en.x, en.smaller)
+                              : exact_crossing(ends, part == Part::base, unit, std::nullopt);
+    return tighter && tighter->e < en.e &&
+           add_rounded_hit<Target>(*tighter, part, unit, caller, q, r, exact);
+}
+template <class Target>
+LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, Part part, const Unit& unit,
+                             const Line& caller, Query q, Result& r, ExactCoordinate exact = {},
+                             const ExtentEnds* ends = nullptr) {
+    return add_rounded_hit<Target>(en, part, unit, caller, q, r, exact) ||
+           (ends && add_tighter_hit<Target>(en, part, unit, caller, q, r, exact, *ends));
 }
 
 // ---- Shapes closed by discs ----
@@ -250,10 +297,10 @@ LINEQUAD_INLINE int root_on_nappe(const LineForm& f,
 // at_lo or at_hi); `between`: the line is inside the quadric between the roots (A > 0), else
 // outside. closed_hits: where each root lies, then piece_hits.
 template <class Target>
-LINEQUAD_INLINE bool piece_hits(const LineForm& f, bool between,
-                                const std::optional<Enclosure<double>> (&root)[2],
-                                const Side (&side)[2], const Side (&rim)[2], const Unit& unit,
-                                const Line& caller, Query query, Result& r) {
+LINEQUAD_INLINE bool
+piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double>> (&root)[2],
+           const Side (&side)[2], const Side (&rim)[2], const Unit& unit, const Line& caller,
+           Query query, Result& r, const ExtentEnds* ends) {
     bool at_rim = rim[0] != side[0] || rim[1] != side[1];
     Enclosure<double> at[4]; // four on two solids
     Part part[4];
@@ -269,6 +316,8 @@ LINEQUAD_INLINE bool piece_hits(const LineForm& f, bool between,
         if (!f.planes || !(low ? f.planes->at_lo : f.planes->at_hi)) return false;
         std::optional<Enclosure<double>> t =
             plane_crossing(*f.planes, low ? f.planes->lo : f.planes->hi);
+        if (ends && !(t && t->e <= 0x1p-64 * std::fabs(t->c)))
+            t = exact_crossing(*ends, low, unit, t);
         if (!t) return false;
         at[k] = *t, part[k] = low ? Part::base : Part::top;
         // In the caller's units (a scaled scene's planes are not): the plane's coordinate.
@@ -325,7 +374,7 @@ LINEQUAD_INLINE bool piece_hits(const LineForm& f, bool between,
         auto [t, e_t] = t_of(at[i]);
         Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
         if (k.outside) continue;
-        if (!k.inside || !add_hit<Target>(at[i], part[i], unit, caller, query, r, exact[i]))
+        if (!k.inside || !add_hit<Target>(at[i], part[i], unit, caller, query, r, exact[i], ends))
             return false;
         if (query.need != Need::all) break;
     }
@@ -349,15 +398,11 @@ std::optional<double> rounded_t_to(const Enclosure<double>& en, const Unit& unit
 // A line in a disc's plane (dZ = 0 and Z0 at that end, exactly, which only `ends` proves) with
 // both lateral roots proven and A > 0: the chord between them is the disc's, and the line lies
 // on the shape there. The answer is that chord cut to the range, each end the root or the
-// range's end beyond it, or nothing where they cross (the exact form's in_disc_plane). Rare, so
-// out of line.
+// range's end beyond it, or nothing where they cross (the exact form's in_disc_plane).
 template <class Target>
-[[gnu::noinline]] bool
-chord_in_disc(const Leading<double>& A, const std::optional<Enclosure<double>> (&root)[2],
-              const Unit& unit, const Line& caller, Result& r, const ExtentEnds& ends) {
+bool chord_in_disc(const Leading<double>& A, const std::optional<Enclosure<double>> (&root)[2],
+                   Part disc, const Unit& unit, const Line& caller, Result& r) {
     if (!(A.A > A.e)) return false;
-    std::optional<Part> disc = ends.disc_holding();
-    if (!disc || *disc == Part::lateral) return false;
     const Interval& range = unit.line.range; // in the rung's units; its ends exact
     EnclosedT<double> t[2] = {t_of(*root[0]), t_of(*root[1])};
     // sgn(root i - x) for an exact x, or 0 where the bounds cannot tell.
@@ -389,9 +434,26 @@ chord_in_disc(const Leading<double>& A, const std::optional<Enclosure<double>> (
     std::optional<double> s1 = to_root ? rounded_t_to<Target>(*root[1], unit) : caller.range.t1;
     if (!s0 || !s1) return false;
     r.on_surface = true;
-    r.surface_part = *disc;
+    r.surface_part = disc;
     r.s0 = *s0, r.s1 = *s1;
     return true;
+}
+
+// Z constant along the line (dZ = 0 exactly, which only `ends` proves) and the roots' sides
+// left open by the bounds: Z0 a few ulps from an end. In that disc's plane, its chord; elsewhere
+// both roots lie on Z0's side of the extent. Rare, so out of line.
+template <class Target>
+[[gnu::noinline]] bool constant_z_hits(const LineForm& f, const Leading<double>& A,
+                                       const std::optional<Enclosure<double>> (&root)[2],
+                                       const Unit& unit, const Line& caller, Query query, Result& r,
+                                       const ExtentEnds& ends) {
+    std::optional<int> level = ends.constant_z();
+    if (!level) return false;
+    if (*level == -1 || *level == 1)
+        return chord_in_disc<Target>(A, root, *level < 0 ? Part::base : Part::top, unit, caller, r);
+    Side s = *level < 0 ? Side::below : *level == 0 ? Side::within : Side::above;
+    const Side side[2] = {s, s};
+    return piece_hits<Target>(f, A.A > 0, root, side, side, unit, caller, query, r, &ends);
 }
 
 template <class Target>
@@ -409,9 +471,9 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
         // Z constant along the line, perhaps at an end: a line in a disc's plane.
         if (side[i] == Side::unknown)
             return ends && !(std::fabs(f.dZ) > f.e_dZ) &&
-                   chord_in_disc<Target>(A, root, unit, caller, r, *ends);
+                   constant_z_hits<Target>(f, A, root, unit, caller, query, r, *ends);
     }
-    return piece_hits<Target>(f, A.A > 0, root, side, rim, unit, caller, query, r);
+    return piece_hits<Target>(f, A.A > 0, root, side, rim, unit, caller, query, r, ends);
 }
 
 // g constant along the line (A = B = 0 exactly, which only `ends` proves: a line parallel to a
@@ -429,7 +491,7 @@ template <class Target>
     Side first = f.dZ > 0 ? Side::below : Side::above, last = f.dZ > 0 ? Side::above : Side::below;
     const std::optional<Enclosure<double>> no_roots[2];
     const Side side[2] = {first, last};
-    return piece_hits<Target>(f, true, no_roots, side, side, unit, caller, query, r);
+    return piece_hits<Target>(f, true, no_roots, side, side, unit, caller, query, r, &ends);
 }
 
 } // namespace
@@ -632,11 +694,19 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         recentred = true;
         return estimates_at_vertex<SigmaZ, R>(f, A, est.vertex, estimate);
     };
-    // And still unsettled: expanded about the local quadratic's own root (the scalar ladder's).
+    // And still unsettled: expanded about the local quadratic's own root, then, for a root
+    // nearer t = 0 than a sixteenth of the roots' distance (|G'/A|), from the exact form's local
+    // quadratic (the scalar ladder's).
     auto beside = [&](int i, const Local<double>& local, std::optional<Enclosure<double>> en) {
+        auto narrower = [&](std::optional<Enclosure<double>> b) {
+            if (b && (!en || b->e < en->e)) en = b;
+        };
         if (!unsettled(en)) return en;
-        std::optional<Enclosure<double>> b = root_beside(local, A, estimate[i], i == 0);
-        return b && (!en || b->e < en->e) ? b : en;
+        narrower(root_beside(local, A, estimate[i], i == 0));
+        double t = en ? en->c + en->x : estimate[i];
+        if (unsettled(en) && std::fabs(t) * 16 * std::fabs(A.A) <= std::fabs(local.Gp))
+            narrower(root_from_exact_form(*ends, unit.t_factor, t, i == 0));
+        return en;
     };
     if (f.discs != Discs::none) {
         // A closed shape: both roots before any hit (closed_hits). Two solids (a closed two-nappe
@@ -681,7 +751,7 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
             inside = kept_at_end<SigmaZ, R>(f, A, estimate, i, *en, *ends, unit);
         if (inside < 0) return false;
         if (inside == 0) continue;
-        if (!add_hit<Target>(*en, Part::lateral, unit, caller, query, r)) return false;
+        if (!add_hit<Target>(*en, Part::lateral, unit, caller, query, r, {}, ends)) return false;
         if (query.need != Need::all) break; // the smaller root first: also the nearest
     }
     return true;

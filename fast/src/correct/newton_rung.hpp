@@ -42,6 +42,13 @@ struct EndCrossing {
     bool open; // the end belongs to another part (a capsule side's seam): a root there is not kept
     BoundedDD t; // t_E, in the rung's units
 };
+// g's local quadratic at a point c, g(c + x) = A x^2 + G' x + G, from the exact form: G, G' and A
+// each formed exactly, then enclosed (a multiple of the line form's g: the same roots).
+struct ExactLocal {
+    newton::Leading<double> A;
+    newton::Local<double> at;
+};
+
 // The ladder's answers to what the rung's bounds leave open, exactly, from the exact form (the
 // exact rung's, formed once and only when asked).
 class ExtentEnds {
@@ -51,12 +58,21 @@ class ExtentEnds {
     // Where the bounds cannot tell A from 0: when g is constant along the line (A = B = 0), the
     // sign of C0 (-1 inside the quadric, 0 on it, 1 outside); no value where it is not.
     virtual std::optional<int> constant_sign() const = 0;
-    // Where the bounds cannot tell dZ from 0 on a closed shape: the disc whose plane holds the
-    // line (dZ = 0 and Z0 at that end), or lateral where none does.
-    virtual std::optional<Part> disc_holding() const = 0;
+    // Where the bounds cannot tell dZ from 0 on a closed shape: when Z is constant along the line
+    // (dZ = 0), Z0's level: -2 below the extent, -1 in the base's plane (the line in that disc's
+    // plane), 0 strictly within, 1 in the top's plane, 2 above; no value where dZ != 0, or where
+    // the line lies in the plane of an end with no disc.
+    virtual std::optional<int> constant_z() const = 0;
     // Where the bounds prove no simple root: when g has a double root (B^2 - A C0 = 0, A != 0:
     // a tangency), that root -B/A enclosed, in the rung's units.
     virtual std::optional<BoundedDD> double_root(double t_factor) const = 0;
+    // Where a root or a point's coordinate lies a few ulps from zero (a line starting on or
+    // beside the surface, or a disc's plane; a hit beside a coordinate plane), the rung's bounds,
+    // absolute, are wide beside it; the exact form's values are not. g's local quadratic at c,
+    // and an end's crossing t_E, in the rung's units. Never deferred: the double-double rung's
+    // bounds are as wide.
+    virtual std::optional<ExactLocal> local_at(double c, double t_factor) const = 0;
+    virtual std::optional<BoundedDD> crossing(bool top, double t_factor) const = 0;
 
   protected:
     ~ExtentEnds() = default;
