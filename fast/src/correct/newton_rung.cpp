@@ -24,10 +24,17 @@ Local<double> local_at(const LineForm& f, double c) {
     return out[0];
 }
 
-// The enclosure of the root next to c, when the local quadratic proves one.
+// The enclosure of the root next to c, when the local quadratic proves one: about x0 (the first
+// try, the lanes' too), or about x0 phi(y) (narrower, for the scalar ladder's further tries).
 LINEQUAD_INLINE std::optional<Enclosure<double>> root_near(const Local<double>& L,
                                                            const Leading<double>& A, double c) {
     Enclosure<double> en = newton::root_near(L, A, c);
+    if (!en.proven) return std::nullopt;
+    return en;
+}
+LINEQUAD_INLINE std::optional<Enclosure<double>>
+root_near_tight(const Local<double>& L, const Leading<double>& A, double c) {
+    Enclosure<double> en = newton::root_near_tight(L, A, c);
     if (!en.proven) return std::nullopt;
     return en;
 }
@@ -53,7 +60,7 @@ LINEQUAD_INLINE int kept(const LineForm& f, const Unit& unit, const Enclosure<do
 root_from_exact_form(const ExtentEnds& ends, double t_factor, double c, bool smaller) {
     std::optional<ExactLocal> q = ends.local_at(c, t_factor);
     if (!q || !(std::fabs(q->A.A) > q->A.e)) return std::nullopt;
-    Enclosure<double> en = newton::root_near(q->at, q->A, c);
+    Enclosure<double> en = newton::root_near_tight(q->at, q->A, c);
     if (!en.proven || en.smaller != smaller) return std::nullopt;
     return en;
 }
@@ -147,19 +154,27 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
     }
 }
 
-// The same, and where a bound does not prove a rounding (t or a coordinate a few ulps from zero,
-// the rung's bounds absolute: a line starting beside the surface, a hit beside a coordinate
-// plane), once more from an enclosure from the exact form (`ends`): a lateral root's from its
-// coefficients, a disc's crossing exactly. Only that case out of line.
+// Where the rung's bounds, absolute, leave a value a few ulps from zero undecided or unrounded
+// (t or a coordinate: a line starting beside the surface or a disc's plane, a hit beside a
+// coordinate plane): the hit's enclosure once more from the exact form (`ends`), a lateral
+// root's from its local quadratic, a disc's crossing exactly; no value where it is not narrower.
+LINEQUAD_INLINE std::optional<Enclosure<double>> tighter(const Enclosure<double>& en, Part part,
+                                                         const Unit& unit, const ExtentEnds& ends) {
+    std::optional<Enclosure<double>> t =
+        part == Part::lateral ? root_from_exact_form(ends, unit.t_factor, en.c + en.x, en.smaller)
+                              : exact_crossing(ends, part == Part::base, unit, std::nullopt);
+    if (!t || !(t->e < en.e)) return std::nullopt;
+    return t;
+}
+
+// The same, and where a bound does not prove a rounding, once more from a tighter enclosure.
+// Only that case out of line.
 template <class Target>
 [[gnu::noinline]] bool add_tighter_hit(const Enclosure<double>& en, Part part, const Unit& unit,
                                        const Line& caller, Query q, Result& r,
                                        ExactCoordinate exact, const ExtentEnds& ends) {
-    std::optional<Enclosure<double>> tighter =
-        part == Part::lateral ? root_from_exact_form(ends, unit.t_factor, en.c + en.x, en.smaller)
-                              : exact_crossing(ends, part == Part::base, unit, std::nullopt);
-    return tighter && tighter->e < en.e &&
-           add_rounded_hit<Target>(*tighter, part, unit, caller, q, r, exact);
+    std::optional<Enclosure<double>> t = tighter(en, part, unit, ends);
+    return t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact);
 }
 template <class Target>
 LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, Part part, const Unit& unit,
@@ -307,7 +322,7 @@ piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double
     ExactCoordinate exact[4];
     // End k of the segment (0: entry, 1: exit; 2 and 3 a second solid's): root i, or the disc
     // beyond which it lies.
-    auto end_at = [&](int k, int i, Side s) {
+    auto end_at = [&](int k, int i, Side s) LINEQUAD_INLINE_LAMBDA {
         if (s == Side::within) {
             at[k] = *root[i], part[k] = Part::lateral;
             return true;
@@ -316,8 +331,7 @@ piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double
         if (!f.planes || !(low ? f.planes->at_lo : f.planes->at_hi)) return false;
         std::optional<Enclosure<double>> t =
             plane_crossing(*f.planes, low ? f.planes->lo : f.planes->hi);
-        if (ends && !(t && t->e <= 0x1p-64 * std::fabs(t->c)))
-            t = exact_crossing(*ends, low, unit, t);
+        if (!t && ends) t = exact_crossing(*ends, low, unit, t); // dZ's sign unproven
         if (!t) return false;
         at[k] = *t, part[k] = low ? Part::base : Part::top;
         // In the caller's units (a scaled scene's planes are not): the plane's coordinate.
@@ -373,6 +387,12 @@ piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double
     for (int i = 0; i < points; ++i) {
         auto [t, e_t] = t_of(at[i]);
         Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
+        if (!k.outside && !k.inside && ends) // t a few ulps from the range's end, 0 most often
+            if (std::optional<Enclosure<double>> narrower = tighter(at[i], part[i], unit, *ends)) {
+                at[i] = *narrower;
+                auto [t2, e_t2] = t_of(at[i]);
+                k = Kept<double>().range(unit.line.range, t2, e_t2);
+            }
         if (k.outside) continue;
         if (!k.inside || !add_hit<Target>(at[i], part[i], unit, caller, query, r, exact[i], ends))
             return false;
@@ -553,13 +573,17 @@ template <int SigmaZ, Residual R>
 [[gnu::noinline]] std::optional<Enclosure<double>>
 stepped_again(const LineForm& f, const Leading<double>& A, const Local<double>& L, double c,
               std::optional<Enclosure<double>> en) {
-    if (en) { // proven: a step narrows it only where the step's size, not G's bound, widens it
+    if (en) { // proven: a step narrows it only where the step's size, not G's bound, widens it,
+              // and the step is more than the ulps by which the next centre, a double, may miss
         double x0 = std::fabs(L.G / L.Gp), y = 4 * std::fabs(A.A) * x0 / std::fabs(L.Gp);
-        if (!(x0 * (L.e_Gp + y * std::fabs(L.Gp) * A.e / std::fabs(A.A)) > L.e_G)) return en;
+        if (!(x0 * (L.e_Gp + y * std::fabs(L.Gp) * A.e / std::fabs(A.A)) > L.e_G) ||
+            !(x0 > 0x1p-51 * std::fabs(c)))
+            return en;
     }
     double next = en ? en->c + en->x : c - L.G / L.Gp;
     for (int step = 0; step < 4 && std::isfinite(next); ++step) {
-        std::optional<Enclosure<double>> again = root_near(local_near<SigmaZ, R>(f, next), A, next);
+        std::optional<Enclosure<double>> again =
+            root_near_tight(local_near<SigmaZ, R>(f, next), A, next);
         if (!again || (en && (again->smaller != en->smaller || !(again->e < en->e)))) break;
         en = again;
         next = en->c + en->x;
@@ -615,7 +639,7 @@ root_beside(const Local<double>& L, const Leading<double>& A, double c, bool sma
     at.Gp = L.Gp + 2 * Ax;
     at.e_Gp = (L.e_Gp + 2 * ax * A.e + 2 * u * (fabs(L.Gp) + 2 * fabs(Ax))) * F::cover(32) +
               F::underflow_floor;
-    Enclosure<double> en = newton::root_near(at, A, c);
+    Enclosure<double> en = newton::root_near_tight(at, A, c);
     if (!en.proven || en.smaller != smaller) return std::nullopt;
     double x = x_c + en.x; // one rounding more
     en.e = (en.e + u * fabs(x)) * F::cover(4) + F::denorm_min;
@@ -655,6 +679,54 @@ LINEQUAD_INLINE bool too_wide(const std::optional<Enclosure<double>>& en) {
         return !en || !(en->e <= 0x1p-64 * std::fabs(en->c));
 }
 
+// The roots' estimates and their local quadratics (local[i] g's at estimate[i] where fresh[i]),
+// and the further tries that narrow a root unproven or too wide to round: the scalar ladder's,
+// and only for a root that is needed (one beyond the extent is not). More steps from it; then
+// from the estimates from the vertex (once, both roots'); then the local quadratic expanded about
+// its own root. Every proven enclosure holds the root, from whichever estimate: the narrowest
+// stands.
+template <int SigmaZ, Residual R>
+struct Roots {
+    const LineForm& f;
+    const Leading<double>& A;
+    double vertex;
+    double estimate[2];
+    bool recentred; // the estimates taken (or tried) again at the vertex
+    Local<double> local[2] = {};
+    bool fresh[2] = {false, false};
+
+    std::optional<Enclosure<double>> prove(int i) {
+        if (!fresh[i]) local[i] = local_near<SigmaZ, R>(f, estimate[i]), fresh[i] = true;
+        return root_near(local[i], A, estimate[i]);
+    }
+    [[gnu::noinline]] std::optional<Enclosure<double>>
+    settled(int i, std::optional<Enclosure<double>> en) {
+        auto narrower = [&](const std::optional<Enclosure<double>>& b) {
+            if (b && (!en || b->e < en->e)) en = b;
+        };
+        if (!fresh[i]) narrower(prove(i)); // the other root's settling moved this estimate
+        narrower(root_near_tight(local[i], A, estimate[i]));
+        if (!too_wide<R>(en)) return en;
+        if (too_wide<R>(en)) en = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en);
+        if (too_wide<R>(en) && !recentred) {
+            recentred = true;
+            double before[2] = {estimate[0], estimate[1]};
+            if (estimates_at_vertex<SigmaZ, R>(f, A, vertex, estimate))
+                for (int j = 0; j < 2; ++j)
+                    fresh[j] = fresh[j] && estimate[j] == before[j];
+            if (!fresh[i]) {
+                prove(i);
+                std::optional<Enclosure<double>> again = root_near_tight(local[i], A, estimate[i]);
+                if (too_wide<R>(again))
+                    again = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], again);
+                narrower(again);
+            }
+        }
+        if (too_wide<R>(en)) narrower(root_beside(local[i], A, estimate[i], i == 0));
+        return en;
+    }
+};
+
 template <int SigmaZ, class Target, Residual R>
 bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r,
            const ExtentEnds* ends) {
@@ -662,8 +734,9 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
     if (!(std::fabs(A.A) > A.e)) // nearly parallel to the axis or to a generator
         return ends && constant_g_hits<Target>(f, unit, caller, query, r, *ends);
     Estimates<double> est = estimates<SigmaZ>(f, A);
-    double estimate[2] = {est.root[0], est.root[1]};
-    bool recentred = false; // the estimates taken (or tried) again at the vertex
+    Roots<SigmaZ, R> roots{f, A, est.vertex, {est.root[0], est.root[1]}, false};
+    double(&estimate)[2] = roots.estimate;
+    Local<double>(&local)[2] = roots.local;
     if (!est.real) {
         bool finite = std::isfinite(est.vertex);
         Local<double> at_vertex{};
@@ -674,81 +747,70 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         // The vertex's estimates on the scalar ladder only: the batch lanes decline here.
         if (!ends || !finite || !estimates_at_vertex(A, at_vertex, est.vertex, estimate))
             return ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends);
-        recentred = true;
+        roots.recentred = true;
     }
     if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
-    // The root next to estimate i, from its local quadratic, stepped again where it is too wide.
-    auto root_at = [&](int i, const Local<double>& local) {
-        std::optional<Enclosure<double>> en = root_near(local, A, estimate[i]);
-        if (ends && too_wide<R>(en)) en = stepped_again<SigmaZ, R>(f, A, local, estimate[i], en);
-        return en;
-    };
-    // On the scalar ladder (the batch lanes prove what one step proves): unproven, or too wide
-    // to round.
+    // On the scalar ladder (the batch lanes prove what one step proves): unproven, or wider than
+    // one step leaves a root whose estimate was near (2^-100 of t): the enclosure about
+    // x0 phi(y) first, from the same local quadratic.
     auto unsettled = [&](const std::optional<Enclosure<double>>& en) {
-        return ends && too_wide<R>(en);
-    };
-    // A root unsettled from the coefficients' estimates: once more from the vertex's (once).
-    auto recentre = [&]() {
-        if (recentred) return false;
-        recentred = true;
-        return estimates_at_vertex<SigmaZ, R>(f, A, est.vertex, estimate);
-    };
-    // And still unsettled: expanded about the local quadratic's own root, then, for a root
-    // nearer t = 0 than a sixteenth of the roots' distance (|G'/A|), from the exact form's local
-    // quadratic (the scalar ladder's).
-    auto beside = [&](int i, const Local<double>& local, std::optional<Enclosure<double>> en) {
-        auto narrower = [&](std::optional<Enclosure<double>> b) {
-            if (b && (!en || b->e < en->e)) en = b;
-        };
-        if (!unsettled(en)) return en;
-        narrower(root_beside(local, A, estimate[i], i == 0));
-        double t = en ? en->c + en->x : estimate[i];
-        if (unsettled(en) && std::fabs(t) * 16 * std::fabs(A.A) <= std::fabs(local.Gp))
-            narrower(root_from_exact_form(*ends, unit.t_factor, t, i == 0));
-        return en;
+        if constexpr (R == Residual::quick)
+            return ends && !en;
+        else
+            return ends && !(en && en->e <= 0x1p-88 * std::fabs(en->c));
     };
     if (f.discs != Discs::none) {
         // A closed shape: both roots before any hit (closed_hits). Two solids (a closed two-nappe
         // cone) only on the scalar ladder (ends given), the batch lanes' first rung declines them.
         if (f.discs == Discs::two_solids && !ends) return false;
         std::optional<Enclosure<double>> en[2];
-        Local<double> local[2];
         if constexpr (R == Residual::double_double) {
             newton::local_at<SigmaZ>(f, estimate, local);
+            roots.fresh[0] = roots.fresh[1] = true;
+            for (int i = 0; i < 2; ++i)
+                en[i] = root_near(local[i], A, estimate[i]);
         } else {
             for (int i = 0; i < 2; ++i)
-                local[i] = local_near<SigmaZ, R>(f, estimate[i]);
+                en[i] = roots.prove(i);
         }
-        for (int i = 0; i < 2; ++i)
-            en[i] = root_at(i, local[i]);
-        if ((unsettled(en[0]) || unsettled(en[1])) && recentre())
-            for (int i = 0; i < 2; ++i)
-                en[i] = root_at(i, local[i] = local_near<SigmaZ, R>(f, estimate[i]));
+        if (unsettled(en[0]) || unsettled(en[1]))
+            for (int i = 0; i < 2; ++i) {
+                Side s = en[i] ? side_of(f, *en[i]) : Side::unknown;
+                if (unsettled(en[i]) && s != Side::below && s != Side::above)
+                    en[i] = roots.settled(i, en[i]);
+            }
         for (int i = 0; i < 2; ++i) {
-            en[i] = beside(i, local[i], en[i]);
             if (!en[i]) return ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends);
             if (en[i]->smaller != (i == 0)) return false;
         }
         return closed_hits<Target>(f, A, en, unit, caller, query, r, ends);
     }
     // Both roots at once when both are needed; otherwise the second only if the first is not kept.
-    Local<double> local[2];
     bool both = R == Residual::double_double && query.need == Need::all;
-    if (both) newton::local_at<SigmaZ>(f, estimate, local);
+    if (both) {
+        newton::local_at<SigmaZ>(f, estimate, local);
+        roots.fresh[0] = roots.fresh[1] = true;
+    }
     for (int i = 0; i < 2; ++i) {
-        if (!both) local[i] = local_near<SigmaZ, R>(f, estimate[i]);
-        std::optional<Enclosure<double>> en = root_at(i, local[i]);
-        if (unsettled(en) && recentre()) { // new estimates: the other root's local quadratic too
-            both = false;
-            en = root_at(i, local[i] = local_near<SigmaZ, R>(f, estimate[i]));
-        }
-        en = beside(i, local[i], en);
+        std::optional<Enclosure<double>> en = roots.prove(i);
+        if (!en && ends) en = roots.settled(i, en);
         if (!en) return ends && tangent_hit<Target>(f, A, unit, caller, query, r, *ends);
         if (en->smaller != (i == 0)) return false;
         int inside = kept(f, unit, *en);
-        if (inside < 0 && ends)
-            inside = kept_at_end<SigmaZ, R>(f, A, estimate, i, *en, *ends, unit);
+        if (inside != 0 && unsettled(en)) { // a hit, or undecided: narrowed first
+            en = roots.settled(i, en);      // proven still: at worst as it was
+            if (en->smaller != (i == 0)) return false;
+            inside = kept(f, unit, *en);
+        }
+        if (inside < 0 && ends) { // t a few ulps from the range's end (0 most often), or an end
+            auto [t, e_t] = t_of(*en);
+            Kept<double> by_range = Kept<double>().range(unit.line.range, t, e_t);
+            if (!by_range.inside && !by_range.outside)
+                if (std::optional<Enclosure<double>> narrower =
+                        tighter(*en, Part::lateral, unit, *ends))
+                    inside = kept(f, unit, *(en = narrower));
+            if (inside < 0) inside = kept_at_end<SigmaZ, R>(f, A, estimate, i, *en, *ends, unit);
+        }
         if (inside < 0) return false;
         if (inside == 0) continue;
         if (!add_hit<Target>(*en, Part::lateral, unit, caller, query, r, {}, ends)) return false;

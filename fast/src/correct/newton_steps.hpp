@@ -205,20 +205,20 @@ struct Enclosure {
 
 // The root next to c, where the local quadratic proves it (see newton_rung.hpp): with
 // Y = 4 A G / G'^2 and |Y| <= 1/2 there are two distinct real roots (the discriminant is
-// G'^2 (1 - Y) > 0); the one nearer c is x* = X0 phi(Y), X0 = -G/G', phi(Y) = 2 / (1 + sqrt(1 -
-// Y)). The other root is at -G'/A - x*, on the side of -sgn(G' A): |2 x*| < |G'/A| when |Y| <= 1/2.
-// phi is taken at y = -4 A x0 / G' from the computed x0 = -G/G', not bounded by its first term:
-// where the roots lie close (a near tangency seen from far away) an estimate an ulp off still
-// leaves |Y| near 2^-8, and X0 alone would enclose the root only to some 2^-72 of t.
-// For |Y| <= 1/2, 0.89 <= phi <= 1.18 and |phi'| <= 0.57, so x1 = x0 phi(y) errs by at most
-//  - 1.18 E0, E0 = (e_G + |x0| e_G') / |G'| + u |x0|: x0 from X0 (the perturbed quotient, its
-//    rounding);
-//  - 0.57 |x0| |Y - y|, |Y - y| <= 4 (e_A |X0| + |A| E0 + |A x0| e_G' / |G'|) / |G'| + 4u |y|;
-//  - 6u |x1|: phi's and the product's roundings.
+// G'^2 (1 - Y) > 0); the one nearer c is x* = X0 phi(Y), X0 = -G/G', phi(Y) = 2 / (1 + sqrt(1 - Y))
+// and |phi(Y) - 1| = |Y| / (1 + sqrt(1 - Y))^2 <= 0.35 |Y|. |X0 - x0| for the computed
+// x0 = -G/G' is at most (e_G + |x0| e_G') / |G'| + u |x0| (the perturbed quotient and its
+// rounding). The other root is at -G'/A - x*, on the side of -sgn(G' A): |2 x*| < |G'/A| when
+// |Y| <= 1/2. The enclosure about x0 (root_near) is the first rung's, the lanes' too; the one about
+// x0 phi(y) (root_near_tight) is narrower where the estimate is off in a large root's scale.
 template <class T>
-LINEQUAD_INLINE Enclosure<T> root_near(const Local<T>& L, const Leading<T>& A, T c) {
+struct NearRoot {
+    T P, inv_P, A_max, X0_max, y_max, x0;
+    Mask<T> proven;
+};
+template <class T>
+LINEQUAD_INLINE NearRoot<T> near_root(const Local<T>& L, const Leading<T>& A) {
     using std::fabs;
-    using std::sqrt;
     T P = (fabs(L.Gp) - L.e_Gp) * T(F::shrink(8));              // |G'| >= P
     Mask<T> proven = (P >= T(0x1p-1000)) & (P <= T(0x1p+1000)); // not NaN
     // Bounds from 1/P (normal, so each rounding is relative: 1 + 2^-48 covers a dozen). y_max is
@@ -226,19 +226,42 @@ LINEQUAD_INLINE Enclosure<T> root_near(const Local<T>& L, const Leading<T>& A, T
     T inv_P = T(1.0) / P, A_max = fabs(A.A) + A.e, X0_max = (fabs(L.G) + L.e_G) * inv_P;
     T y_max = T(4.0) * upper_product(A_max * inv_P, X0_max);
     proven = proven & (y_max <= T(0.5));
-    T x0 = -L.G / L.Gp, ax0 = fabs(x0);
-    T y = T(-4.0) * (A.A * x0) / L.Gp;
-    T x1 = x0 * (T(2.0) / (T(1.0) + sqrt(fabs(T(1.0) - y)))); // |y| <= y_max where proven
-    T E0 = (L.e_G + ax0 * L.e_Gp) * inv_P + T(u) * ax0;
+    return {P, inv_P, A_max, X0_max, y_max, -L.G / L.Gp, proven};
+}
+template <class T>
+LINEQUAD_INLINE Enclosure<T> root_near(const Local<T>& L, const Leading<T>& A, T c) {
+    using std::fabs;
+    NearRoot<T> n = near_root(L, A);
+    T e = ((L.e_G + fabs(n.x0) * L.e_Gp) * n.inv_P + T(0.35) * n.y_max * n.X0_max +
+           T(u) * fabs(n.x0)) *
+              T(F::cover(32)) +
+          T(F::subnormal_slack);
+    return {c, n.x0, e, differ<Mask<T>>(T(0.0) < L.Gp, T(0.0) < A.A), n.proven};
+}
+// phi taken at y = -4 A x0 / G', not bounded by its first term: where the roots lie close (a
+// near tangency seen from far away) an estimate an ulp off leaves |Y| near 2^-8, and the
+// enclosure about x0 is some 2^-72 of t wide; this one, 2^-100. For |Y| <= 1/2,
+// 0.89 <= phi <= 1.18 and |phi'| <= 0.57, so x1 = x0 phi(y) errs by at most
+//  - 1.18 E0, E0 = (e_G + |x0| e_G') / |G'| + u |x0|: x0 from X0;
+//  - 0.57 |x0| |Y - y|, |Y - y| <= 4 (e_A |X0| + |A| E0 + |A x0| e_G' / |G'|) / |G'| + 4u |y|;
+//  - 6u |x1|: phi's and the product's roundings.
+template <class T>
+LINEQUAD_INLINE Enclosure<T> root_near_tight(const Local<T>& L, const Leading<T>& A, T c) {
+    using std::fabs;
+    using std::sqrt;
+    NearRoot<T> n = near_root(L, A);
+    T ax0 = fabs(n.x0), y = T(-4.0) * (A.A * n.x0) / L.Gp;
+    T x1 = n.x0 * (T(2.0) / (T(1.0) + sqrt(fabs(T(1.0) - y)))); // |y| <= y_max where proven
+    T E0 = (L.e_G + ax0 * L.e_Gp) * n.inv_P + T(u) * ax0;
     T e_y = T(4.0) *
-                (upper_product(A.e, X0_max) + upper_product(A_max, E0) +
-                 upper_product(A_max * ax0, L.e_Gp * inv_P)) *
-                inv_P +
+                (upper_product(A.e, n.X0_max) + upper_product(n.A_max, E0) +
+                 upper_product(n.A_max * ax0, L.e_Gp * n.inv_P)) *
+                n.inv_P +
             T(4 * u) * fabs(y);
     T e =
         (T(1.18) * E0 + T(0.57) * upper_product(ax0, e_y) + T(6 * u) * fabs(x1)) * T(F::cover(32)) +
         T(F::subnormal_slack);
-    return {c, x1, e, differ<Mask<T>>(T(0.0) < L.Gp, T(0.0) < A.A), proven};
+    return {c, x1, e, differ<Mask<T>>(T(0.0) < L.Gp, T(0.0) < A.A), n.proven};
 }
 
 // Whether g has no real root: at c (near the vertex), g(c + x) = A x^2 + G' x + G with
