@@ -261,9 +261,9 @@ class ExactForm final : public ExtentEnds {
     // constant along the line), where a filter's bounds would most likely not decide.
     bool exact_zero() const { return exact_zero_; }
 
-    // A cylinder's parallel line is shown by a few exact products and C0's sign by the
-    // double-double rung's bound (but on the surface); the exact form answers the rest.
-    // Exact products, cheaper than the double-double rung, answer before any deferral.
+    // A cylinder's parallel line is shown by a few exact products (cheaper than the double-double
+    // rung: before any deferral) and C0's sign by the double-double rung's bound (but on the
+    // surface); the exact form answers the rest.
     std::optional<int> constant_sign() const override {
         std::optional<bool> parallel = exactly_parallel(shape_, line_);
         if (parallel && !*parallel) return std::nullopt;

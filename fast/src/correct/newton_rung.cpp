@@ -65,14 +65,13 @@ root_from_exact_form(const ExtentEnds& ends, double t_factor, double c, bool sma
     return en;
 }
 
-// A disc's crossing whose enclosure `t` is too wide beside t (a line starting a few ulps from
-// the disc's plane, whose Z0 - end the rung bounds absolutely): from the exact form. Rare, so
-// out of line.
-[[gnu::noinline]] std::optional<Enclosure<double>>
-exact_crossing(const ExtentEnds& ends, bool low, const Unit& unit,
-               std::optional<Enclosure<double>> t) {
+// A disc's crossing from the exact form, where the rung's cannot decide or round it (a line
+// starting a few ulps from the disc's plane, whose Z0 - end the rung bounds absolutely; dZ's sign
+// unproven). Rare, so out of line.
+[[gnu::noinline]] std::optional<Enclosure<double>> exact_crossing(const ExtentEnds& ends, bool low,
+                                                                  const Unit& unit) {
     std::optional<BoundedDD> exact = ends.crossing(!low, unit.t_factor);
-    if (!exact) return t;
+    if (!exact) return std::nullopt;
     return Enclosure<double>{exact->hi, exact->lo, exact->e, true, true};
 }
 
@@ -162,7 +161,7 @@ LINEQUAD_INLINE std::optional<Enclosure<double>> tighter(const Enclosure<double>
                                                          const Unit& unit, const ExtentEnds& ends) {
     std::optional<Enclosure<double>> t =
         part == Part::lateral ? root_from_exact_form(ends, unit.t_factor, en.c + en.x, en.smaller)
-                              : exact_crossing(ends, part == Part::base, unit, std::nullopt);
+                              : exact_crossing(ends, part == Part::base, unit);
     if (!t || !(t->e < en.e)) return std::nullopt;
     return t;
 }
@@ -331,7 +330,7 @@ piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double
         if (!f.planes || !(low ? f.planes->at_lo : f.planes->at_hi)) return false;
         std::optional<Enclosure<double>> t =
             plane_crossing(*f.planes, low ? f.planes->lo : f.planes->hi);
-        if (!t && ends) t = exact_crossing(*ends, low, unit, t); // dZ's sign unproven
+        if (!t && ends) t = exact_crossing(*ends, low, unit); // dZ's sign unproven
         if (!t) return false;
         at[k] = *t, part[k] = low ? Part::base : Part::top;
         // In the caller's units (a scaled scene's planes are not): the plane's coordinate.
@@ -707,7 +706,7 @@ struct Roots {
         if (!fresh[i]) narrower(prove(i)); // the other root's settling moved this estimate
         narrower(root_near_tight(local[i], A, estimate[i]));
         if (!too_wide<R>(en)) return en;
-        if (too_wide<R>(en)) en = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en);
+        en = stepped_again<SigmaZ, R>(f, A, local[i], estimate[i], en);
         if (too_wide<R>(en) && !recentred) {
             recentred = true;
             double before[2] = {estimate[0], estimate[1]};

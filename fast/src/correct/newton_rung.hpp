@@ -8,9 +8,10 @@
 // double-double with a bound. Then, at a point c near a root,
 // g(c + x) = A x^2 + G' x + G holds exactly, with G = g(c) in double-double and G', A in double,
 // each with a bound. When y = 4 A G / G'^2 is at most 1/2 in magnitude, there is a root at
-// c + x* with x* = (-G / G') 2 / (1 + sqrt(1 - y)), computed with its bound: existence, a
-// simple root, which of the two roots it is (the other is at -G'/A - x*), and an enclosure
-// about 2^-100 |t| wide, from one evaluation. The extent, the range, t and the points
+// c + x* with x* = (-G / G') 2 / (1 + sqrt(1 - y)), within |x0| 0.35 |y| of x0 = -G / G':
+// existence, a simple root, which of the two roots it is (the other is at -G'/A - x*), and an
+// enclosure about 2^-100 |t| wide, from one evaluation (narrower about x0 phi(y) where a root
+// needs it: newton_steps.hpp). The extent, the range, t and the points
 // are then decided on the enclosure; whatever the bounds leave open goes to the next rung.
 // The arithmetic is written once, over the number type (newton_steps.hpp): newton_rung.cpp
 // branches on its proofs for one line, the batch kernels (simd/correct_lanes.hpp) combine them as
