@@ -265,7 +265,8 @@ class ExactForm final : public ExtentEnds {
     // rung: before any deferral) and C0's sign by the double-double rung's bound (but on the
     // surface); the exact form answers the rest.
     std::optional<int> constant_sign() const override {
-        std::optional<bool> parallel = exactly_parallel(shape_, line_);
+        if (!parallel_) parallel_ = exactly_parallel(shape_, line_); // once: both Newton passes ask
+        std::optional<bool> parallel = *parallel_;
         if (parallel && !*parallel) return std::nullopt;
         if (deferred()) return std::nullopt;
         if (parallel && dd_)
@@ -331,6 +332,7 @@ class ExactForm final : public ExtentEnds {
     mutable bool asked_ = false, exact_zero_ = false;
     mutable std::optional<exact_form::LineQuadratic<BigFloat>> q_;
     mutable std::optional<BigFloat> D_;
+    mutable std::optional<std::optional<bool>> parallel_; // exactly_parallel's answer, once asked
     const exact_form::LineQuadratic<BoundedDD>* dd_ = nullptr;
     double dd_t_factor_ = 1;
 };

@@ -51,6 +51,11 @@ LINEQUAD_INLINE int kept(const LineForm& f, const Unit& unit, const Enclosure<do
     Kept<double> k = newton::kept(f, unit.line.range, en);
     return k.outside ? 0 : k.inside ? 1 : -1;
 }
+// The range's test alone (a disc's crossing, a root already placed against the extent).
+LINEQUAD_INLINE Kept<double> in_range(const Unit& unit, const Enclosure<double>& en) {
+    auto [t, e_t] = t_of(en);
+    return Kept<double>().range(unit.line.range, t, e_t);
+}
 
 // Root `smaller` (or the larger one) next to c, where the rung's bounds, absolute, are wide
 // beside it or beside a coordinate of its point: the same proof at c (a double next to the root)
@@ -384,14 +389,10 @@ piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double
         }
     }
     for (int i = 0; i < points; ++i) {
-        auto [t, e_t] = t_of(at[i]);
-        Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
+        Kept<double> k = in_range(unit, at[i]);
         if (!k.outside && !k.inside && ends) // t a few ulps from the range's end, 0 most often
-            if (std::optional<Enclosure<double>> narrower = tighter(at[i], part[i], unit, *ends)) {
-                at[i] = *narrower;
-                auto [t2, e_t2] = t_of(at[i]);
-                k = Kept<double>().range(unit.line.range, t2, e_t2);
-            }
+            if (std::optional<Enclosure<double>> narrower = tighter(at[i], part[i], unit, *ends))
+                k = in_range(unit, at[i] = *narrower);
         if (k.outside) continue;
         if (!k.inside || !add_hit<Target>(at[i], part[i], unit, caller, query, r, exact[i], ends))
             return false;
@@ -558,8 +559,7 @@ template <int SigmaZ, Residual R>
     case Side::within:
         break;
     }
-    auto [t, e_t] = t_of(at);
-    Kept<double> k = Kept<double>().range(unit.line.range, t, e_t);
+    Kept<double> k = in_range(unit, at);
     return k.outside ? 0 : k.inside ? 1 : -1;
 }
 
@@ -611,6 +611,17 @@ template <class Target>
     return true;
 }
 
+// The local quadratic's own roots x in double, A x^2 + G' x + G = 0 (the stable pair q / A,
+// G / q), sorted; false where it shows no two real roots or a root is not finite.
+inline bool local_roots(const Local<double>& L, const Leading<double>& A, double (&x)[2]) {
+    double D = difference_of_products(L.Gp, L.Gp, 4 * A.A, L.G);
+    if (!(D > 0)) return false;
+    double q = -0.5 * (L.Gp + std::copysign(std::sqrt(D), L.Gp));
+    x[0] = q / A.A, x[1] = L.G / q;
+    if (x[1] < x[0]) std::swap(x[0], x[1]);
+    return std::isfinite(x[0]) && std::isfinite(x[1]);
+}
+
 // Root `smaller` (or the larger one) of g from its local quadratic at c, expanded again about
 // c + x_c, x_c that quadratic's own root in double: where no double lies near enough to one root
 // for the proof at a double (two roots within a few ulps of each other: a thin shape, a near
@@ -622,12 +633,9 @@ template <class Target>
 [[gnu::noinline]] std::optional<Enclosure<double>>
 root_beside(const Local<double>& L, const Leading<double>& A, double c, bool smaller) {
     using std::fabs;
-    double D = difference_of_products(L.Gp, L.Gp, 4 * A.A, L.G);
-    if (!(D > 0)) return std::nullopt;
-    double q = -0.5 * (L.Gp + std::copysign(std::sqrt(D), L.Gp));
-    double xa = q / A.A, xb = L.G / q;
-    double x_c = (xa < xb) == smaller ? xa : xb;
-    if (!std::isfinite(x_c)) return std::nullopt;
+    double roots[2];
+    if (!local_roots(L, A, roots)) return std::nullopt;
+    double x_c = roots[smaller ? 0 : 1];
     double ax = fabs(x_c), Ax = A.A * x_c;
     Local<double> at;
     at.G = L.G + x_c * (L.Gp + Ax);
@@ -653,12 +661,9 @@ root_beside(const Local<double>& L, const Leading<double>& A, double c, bool sma
 // where the local quadratic shows no two real roots. The scalar rung's; rare, so out of line.
 [[gnu::noinline]] bool estimates_at_vertex(const Leading<double>& A, const Local<double>& at_vertex,
                                            double vertex, double (&estimate)[2]) {
-    const Local<double>& L = at_vertex;
-    double D = difference_of_products(L.Gp, L.Gp, 4 * A.A, L.G);
-    if (!(D > 0)) return false;
-    double q = -0.5 * (L.Gp + std::copysign(std::sqrt(D), L.Gp));
-    estimate[0] = vertex + q / A.A, estimate[1] = vertex + L.G / q;
-    if (estimate[1] < estimate[0]) std::swap(estimate[0], estimate[1]);
+    double x[2];
+    if (!local_roots(at_vertex, A, x)) return false;
+    estimate[0] = vertex + x[0], estimate[1] = vertex + x[1]; // sorted still (rounding is monotone)
     return std::isfinite(estimate[0]) && std::isfinite(estimate[1]);
 }
 template <int SigmaZ, Residual R>
@@ -802,8 +807,7 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
             inside = kept(f, unit, *en);
         }
         if (inside < 0 && ends) { // t a few ulps from the range's end (0 most often), or an end
-            auto [t, e_t] = t_of(*en);
-            Kept<double> by_range = Kept<double>().range(unit.line.range, t, e_t);
+            Kept<double> by_range = in_range(unit, *en);
             if (!by_range.inside && !by_range.outside)
                 if (std::optional<Enclosure<double>> narrower =
                         tighter(*en, Part::lateral, unit, *ends))
