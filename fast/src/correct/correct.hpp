@@ -217,11 +217,13 @@ std::optional<bool> exactly_parallel(const S&, const Line&) {
 // for a root its bounds leave next to an extent's end (ExtentEnds), and by the exact rung. An
 // end's signs come first from the double-double rung's quadratic, when it has run: its bounds
 // decide all but the lines through a rim, at a small part of the exact form's cost.
-template <class S>
+template <class Source>
 class ExactForm final : public ExtentEnds {
+    using S = typename Source::Shape;
+
   public:
-    ExactForm(const S& shape, const Line& l, int orientation)
-        : shape_(shape), line_(l), orientation_(orientation) {}
+    ExactForm(const Source& src, const Line& l, int orientation)
+        : src_(src), shape_(src.shape), line_(l), orientation_(orientation) {}
 
     const exact_form::LineQuadratic<BigFloat>& quadratic() const {
         if (!q_)
@@ -318,6 +320,20 @@ class ExactForm final : public ExtentEnds {
         return in_rung_units(enclosure((top ? q.hi : q.lo) - q.Z0) / enclosure(q.dZ), 1 / t_factor);
     }
 
+    // The line form's planes of every bounded end (for an open shape's, otherwise not formed),
+    // once: never deferred, as they cost a fraction of the double-double rung.
+    const DiscPlanes* end_planes(const Unit& unit) const override {
+        if constexpr (ShapeTraits<S>::has_line_form) {
+            if (unit.pos_factor != 1 || unit.t_factor != 1) return nullptr;
+            if (!planes_)
+                planes_ =
+                    ShapeTraits<S>::line_form(src_, line_.L0, line_.v, orientation_, true).planes;
+            return *planes_ ? &**planes_ : nullptr;
+        } else {
+            return nullptr;
+        }
+    }
+
   private:
     // Notes that the rung asked; while deferred, no answer.
     bool deferred() const {
@@ -325,6 +341,7 @@ class ExactForm final : public ExtentEnds {
         return deferred_;
     }
 
+    const Source& src_;
     const S& shape_;
     const Line& line_;
     int orientation_;
@@ -333,6 +350,7 @@ class ExactForm final : public ExtentEnds {
     mutable std::optional<exact_form::LineQuadratic<BigFloat>> q_;
     mutable std::optional<BigFloat> D_;
     mutable std::optional<std::optional<bool>> parallel_; // exactly_parallel's answer, once asked
+    mutable std::optional<std::optional<DiscPlanes>> planes_; // end_planes', once asked
     const exact_form::LineQuadratic<BoundedDD>* dd_ = nullptr;
     double dd_t_factor_ = 1;
 };
@@ -372,7 +390,7 @@ struct CorrectTo {
         using S = typename Source::Shape;
         using Traits = ShapeTraits<S>;
         Result r; // the one result, returned in place
-        ExactForm<S> exact(src.shape, l, orientation);
+        ExactForm<Source> exact(src, l, orientation);
         // The Newton rung on the scene as `unit` has it; r is left empty when the rung declines.
         auto newton = [&](const auto& scene, const Unit& unit) LINEQUAD_INLINE_LAMBDA {
             if constexpr (Traits::has_line_form) {

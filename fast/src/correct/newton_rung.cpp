@@ -230,22 +230,22 @@ LINEQUAD_INLINE std::optional<Enclosure<double>> plane_crossing(const DiscPlanes
     return Enclosure<double>{t.hi, t.lo, t.e, true, true};
 }
 
-// A closed shape's root next to an end, against that end's crossing, both enclosed to about
-// 2^-100 (the discs' planes are exact in double-double): a root a few ulps from a rim. Where
-// the enclosures meet (a root at the rim), unknown.
-LINEQUAD_INLINE Side beside_plane(const LineForm& f, const Enclosure<double>& root, bool top) {
-    if (!f.planes || !(std::fabs(f.planes->dZ.hi) > f.planes->dZ.e)) return Side::unknown;
-    std::optional<Enclosure<double>> end =
-        plane_crossing(*f.planes, top ? f.planes->hi : f.planes->lo);
+// A root next to an end, against that end's crossing, both enclosed to about 2^-100 (the ends'
+// planes are exact in double-double): a root a few ulps from a rim or a seam. Where the
+// enclosures meet (a root at the rim), unknown.
+LINEQUAD_INLINE Side beside_plane(const DiscPlanes& p, const Enclosure<double>& root, bool top) {
+    if (!(std::fabs(p.dZ.hi) > p.dZ.e)) return Side::unknown;
+    std::optional<Enclosure<double>> end = plane_crossing(p, top ? p.hi : p.lo);
     if (!end) return Side::unknown;
-    // root - end = (c_r - c_e) + (x_r - x_e): three roundings, each within u of a sum of these.
-    double d = (root.c - end->c) + (root.x - end->x);
+    // root - end = (c_r - c_e) + (x_r - x_e), c_r - c_e exactly: the two roundings left are
+    // each within u of their results (two denorm_min for underflow), a bound relative to the
+    // difference rather than to t, so that a root an ulp of t from the end is placed.
+    TwoTerm a = two_sum(root.c, -end->c);
+    double b = root.x - end->x, s = a.lo + b, d = a.hi + s;
     double bound =
-        root.e + end->e +
-        4 * u * (std::fabs(root.c) + std::fabs(end->c) + std::fabs(root.x) + std::fabs(end->x)) +
-        F::denorm_min;
+        root.e + end->e + 2 * u * (std::fabs(b) + std::fabs(s) + std::fabs(d)) + 2 * F::denorm_min;
     if (!(std::fabs(d) > bound)) return Side::unknown;
-    bool later = d > 0, rising = f.planes->dZ.hi > 0; // Z(root) > end iff later == rising
+    bool later = d > 0, rising = p.dZ.hi > 0; // Z(root) > end iff later == rising
     if (!top) return later == rising ? Side::within : Side::below;
     return later == rising ? Side::above : Side::within;
 }
@@ -273,7 +273,9 @@ LINEQUAD_INLINE Side side_of(const LineForm& f, const Enclosure<double>& en) {
                                          const std::optional<Enclosure<double>> (&root)[2], int i,
                                          Side near, const ExtentEnds& ends, const Unit& unit) {
     bool top = near == Side::near_hi;
-    if (Side s = beside_plane(f, *root[i], top); s != Side::unknown) return {s};
+    const DiscPlanes* planes = f.planes ? &*f.planes : ends.end_planes(unit);
+    if (planes)
+        if (Side s = beside_plane(*planes, *root[i], top); s != Side::unknown) return {s};
     return placed_at_end(root, i, top, ends, unit);
 }
 LINEQUAD_INLINE bool near_end(Side s) {

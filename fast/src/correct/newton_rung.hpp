@@ -74,6 +74,11 @@ class ExtentEnds {
     // bounds are as wide.
     virtual std::optional<ExactLocal> local_at(double c, double t_factor) const = 0;
     virtual std::optional<BoundedDD> crossing(bool top, double t_factor) const = 0;
+    // The planes of the extent's ends in double-double (DiscPlanes, without discs) for a shape
+    // whose form carries none, an open one: its Z in double leaves a root a few ulps from an end
+    // open, the planes place it against that end's crossing. For the scene as given (`unit`'s
+    // factors 1) only; none where the shape has no bounded end.
+    virtual const DiscPlanes* end_planes(const Unit& unit) const = 0;
 
   protected:
     ~ExtentEnds() = default;

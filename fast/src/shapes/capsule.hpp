@@ -112,9 +112,10 @@ struct ShapeTraits<CapsuleSide> {
     // The rung proves an extent decision only strictly, so an open end needs nothing more: a
     // root exactly at a seam is never proven inside, and goes to the exact rungs.
     template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
+                                  bool end_planes = false) {
         Cylinder c = side_cylinder(src.shape);
-        return Of::line_form<T>(AsGiven<Cylinder>{c}, L0, v, orientation);
+        return Of::line_form<T>(AsGiven<Cylinder>{c}, L0, v, orientation, end_planes);
     }
     template <class T = double, class Source>
     static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,
@@ -221,17 +222,25 @@ struct ShapeTraits<CapsuleEnd> {
     }
 
     template <bool precise, class T>
-    static LineFormT<T> form(const CapsuleEnd& s, Vec3T<T> L0, Vec3T<T> v) {
+    static LineFormT<T> form(const CapsuleEnd& s, Vec3T<T> L0, Vec3T<T> v,
+                             bool end_planes = false) {
         LineFormT<T> f = sphere_line_form<precise, T>(s.centre, s.r, L0, v);
         Vec3T<T> h = lanes_of<T>(difference_exact(s.centre, s.other).hi);
         Vec3T<T> w = difference_exact(L0, lanes_of<T>(s.centre)).hi;
         cylinder_axial(f, w, h, v); // Z = w.h + t v.h, w and h within u of their exact values
         f.lo_bounded = true;
+        if (precise && end_planes) { // the seam's plane Z = 0, from the exact differences
+            Vec3TwoTermT<T> h2 = difference_exact(lanes_of<T>(s.centre), lanes_of<T>(s.other));
+            Vec3TwoTermT<T> w2 = difference_exact(L0, lanes_of<T>(s.centre));
+            f.planes = DiscPlanesT<T>{dot_dd(w2, h2), dot_dd(v, h2), BoundedDD(0),
+                                      BoundedDD(0),   false,         false};
+        }
         return f;
     }
     template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
-        return form<true, T>(src.shape, L0, v);
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/,
+                                  bool end_planes = false) {
+        return form<true, T>(src.shape, L0, v, end_planes);
     }
     template <class T = double, class Source>
     static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,

@@ -326,9 +326,11 @@ struct ShapeTraits<Cylinder> {
 
     // ---- correct: the Newton rung's line form ----
 
-    // For the line L0 + t v in T: double, or a lane type (a line per lane).
+    // For the line L0 + t v in T: double, or a lane type (a line per lane). end_planes: the
+    // ends' planes of a finite open cylinder too (EndPlanes).
     template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/,
+                                  bool end_planes = false) {
         const Cylinder& s = src.shape;
         NewtonAxis axis = newton_axis(src);
         Vec3TwoTermT<T> h{lanes_of<T>(axis.h.hi), lanes_of<T>(axis.h.lo)};
@@ -346,9 +348,9 @@ struct ShapeTraits<Cylinder> {
         f.hi = axis.hh.hi, f.e_hi = bound_of_hi(axis.hh);
         f.lo_bounded = f.hi_bounded = s.finite;
         f.discs = discs_of(s);
-        if (s.caps) { // the discs at Z = 0 and Z = h.h: Z0 = w.h and dZ = v.h
+        if (s.caps || (end_planes && s.finite)) { // the ends at Z = 0 and Z = h.h
             f.planes =
-                DiscPlanesT<T>{dot_dd(w, h), dot_dd(v, h), BoundedDD(0), axis.hh, true, true};
+                DiscPlanesT<T>{dot_dd(w, h), dot_dd(v, h), BoundedDD(0), axis.hh, s.caps, s.caps};
             f.planes->axis = axis_along(s.H - s.C);
             if (f.planes->axis >= 0)
                 f.planes->lo_at = s.C[f.planes->axis], f.planes->hi_at = s.H[f.planes->axis];

@@ -320,7 +320,8 @@ struct ShapeTraits<EllipticCone> {
     // For the line L0 + t v in T: double, or a lane type (a line per lane). precise: the Newton
     // rung's, in double-double; else the hit test's quick form, in doubles with bounds.
     template <bool precise, class T, class Source>
-    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
+    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
+                             bool end_planes = false) {
         const EllipticCone& s = src.shape;
         return elliptic_line_form<precise>(
             adjugate_rows(src), L0, s.H, v, orientation,
@@ -337,8 +338,9 @@ struct ShapeTraits<EllipticCone> {
                 f.hi_bounded = !two || s.finite;
                 f.discs = discs_of(s);
                 // The base disc at z = -1 (and the top at z = 1).
-                if (precise && s.caps) {
-                    f.planes = DiscPlanesT<T>{{}, {}, -det, two ? det : BoundedDD(0), true, two};
+                if (precise && (s.caps || end_planes)) {
+                    f.planes = DiscPlanesT<T>{{},     {},           -det, two ? det : BoundedDD(0),
+                                              s.caps, s.caps && two};
                     // The base's plane through C, spanned by a and b: an exact coordinate for
                     // the base's points (one nappe's only).
                     int k = axis_across(s.a, s.b);
@@ -347,8 +349,9 @@ struct ShapeTraits<EllipticCone> {
             });
     }
     template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
-        return form<true, T>(src, L0, v, orientation);
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
+                                  bool end_planes = false) {
+        return form<true, T>(src, L0, v, orientation, end_planes);
     }
 
     // ---- correct: the hit test's quick line form (the same, in doubles with bounds) ----

@@ -223,8 +223,10 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
 
     // For the line L0 + t v in T: double, or a lane type (a line per lane). precise: the Newton
     // rung's, in double-double; else the hit test's quick form, in doubles with bounds.
+    // end_planes: the ends' planes of a finite open cylinder too (EndPlanes).
     template <bool precise, class T, class Source>
-    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
+    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
+                             bool end_planes = false) {
         const EllipticCylinder& s = src.shape;
         auto own = [&](LineFormT<T>& f, const BoundedDD& det, auto square) {
             f.sigma_z = 0;
@@ -233,8 +235,8 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
             f.hi = det.hi, f.e_hi = bound_of_hi(det); // 0 <= Z <= |det|
             f.lo_bounded = f.hi_bounded = s.finite;
             f.discs = discs_of(s);
-            if (precise && s.caps) {
-                f.planes = DiscPlanesT<T>{{}, {}, BoundedDD(0), det, true, true};
+            if (precise && (s.caps || (end_planes && s.finite))) {
+                f.planes = DiscPlanesT<T>{{}, {}, BoundedDD(0), det, s.caps, s.caps};
                 // The discs' planes through C and C + c, spanned by a and b.
                 int k = axis_across(s.a, s.b);
                 TwoTerm top = k >= 0 ? two_sum(s.C[k], s.c[k]) : TwoTerm{0, 0};

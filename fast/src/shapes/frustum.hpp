@@ -311,7 +311,8 @@ struct ShapeTraits<Frustum> {
     // ---- correct: the Newton rung's line form (four terms) ----
 
     template <class T = double, class Source>
-    static LineForm line_form(const Source& src, Vec3 L0, Vec3 v, int /*orientation*/) {
+    static LineForm line_form(const Source& src, Vec3 L0, Vec3 v, int /*orientation*/,
+                              bool end_planes = false) {
         static_assert(std::is_same_v<T, double>, "the frustum's line form is scalar");
         const Frustum& s = src.shape;
         Vec3TwoTerm h = difference_exact(s.C1, s.C0), w = difference_exact(L0, s.C0);
@@ -336,8 +337,8 @@ struct ShapeTraits<Frustum> {
         f.lo = 0, f.e_lo = 0, f.lo_bounded = true;
         f.hi = hh.hi, f.e_hi = bound_of_hi(hh), f.hi_bounded = s.finite;
         f.discs = discs_of(s);
-        if (s.caps) {
-            Closure discs = frustum_closure(s);
+        if (s.caps || (end_planes && s.finite)) {
+            Closure discs = s.caps ? frustum_closure(s) : Closure{};
             f.planes = DiscPlanes{wh, vh, BoundedDD(0), hh, discs.lo, discs.hi};
             f.planes->axis = axis_along(s.C1 - s.C0);
             if (f.planes->axis >= 0)
