@@ -320,6 +320,22 @@ class ExactForm final : public ExtentEnds {
         return in_rung_units(enclosure((top ? q.hi : q.lo) - q.Z0) / enclosure(q.dZ), 1 / t_factor);
     }
 
+    std::optional<BoundedDD> coordinate_at_end(bool top, int k) const override {
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        if (!(top ? q.hi_bounded : q.lo_bounded) || sign(q.dZ) == 0) return std::nullopt;
+        BigFloat N = (top ? q.hi : q.lo) - q.Z0;
+        BigFloat p = BigFloat(line_.L0[k]) * q.dZ + BigFloat(line_.v[k]) * N;
+        if (sign(p) == 0) return BoundedDD(0);
+        return enclosure(p) / enclosure(q.dZ);
+    }
+
+    bool zero_at_root(int k) const override {
+        if (line_.v[k] == 0) return false;
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        BigFloat L(line_.L0[k]), v(line_.v[k]);
+        return sign(q.A * L * L - (q.B * L * v).scaled(1) + q.C0 * v * v) == 0;
+    }
+
     // The line form's planes of every bounded end (for an open shape's, otherwise not formed),
     // once: never deferred, as they cost a fraction of the double-double rung.
     const DiscPlanes* end_planes(const Unit& unit) const override {

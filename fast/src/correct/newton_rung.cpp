@@ -80,18 +80,56 @@ root_from_exact_form(const ExtentEnds& ends, double t_factor, double c, bool sma
     return Enclosure<double>{exact->hi, exact->lo, exact->e, true, true};
 }
 
-// A coordinate of the hit point known exactly (a disc's plane perpendicular to its axis), or none.
+// A coordinate of the hit point known exactly (a disc's plane perpendicular to its axis), or none;
+// and the end whose plane's crossing the hit is, exactly (0 the base's, 1 the top's: a disc's
+// point, or a root at a rim), or -1. There each coordinate is rational, and where its enclosure
+// from t cannot round it (a coordinate a few ulps from zero, or zero), the exact form's can.
 struct ExactCoordinate {
     int axis = -1;
     double value = 0;
+    int end = -1;
 };
+
+// Coordinate k of the point where the line crosses an end's plane, from the exact form, rounded
+// to Target. Rare, so out of line.
+template <class Target>
+[[gnu::noinline]] std::optional<double> coordinate_at_end(const ExtentEnds& ends, bool top, int k) {
+    std::optional<BoundedDD> p = ends.coordinate_at_end(top, k);
+    if (!p) return std::nullopt;
+    return round_proven<Target>(*p, 1.0);
+}
+
+// Coordinate k of a lateral root's point where its bound cannot round it: 0 exactly when the line
+// crosses that coordinate plane at this root, at t* = -L0_k / v_k: t* inside the root's enclosure
+// (which holds one root), and a root (`ends`, exactly). Rare, so out of line.
+[[gnu::noinline]] bool zero_coordinate(const Enclosure<double>& en, const Unit& unit, int k,
+                                       const ExtentEnds& ends) {
+    BoundedDD t = BoundedDD(-unit.line.L0[k]) / BoundedDD(unit.line.v[k]);
+    // t* - (c + x) as beside_plane forms a difference: within `bound` of d.
+    TwoTerm a = two_sum(t.hi, -en.c);
+    double b = t.lo - en.x, s = a.lo + b, d = a.hi + s;
+    double bound = t.e + 2 * u * (std::fabs(b) + std::fabs(s) + std::fabs(d)) + 2 * F::denorm_min;
+    return (std::fabs(d) + bound) * F::cover(2) < en.e && ends.zero_at_root(k);
+}
+
+// A coordinate its bound leaves unrounded, from the exact form: at an end's crossing, or a
+// lateral root's zero.
+template <class Target>
+std::optional<double> exact_coordinate(const Enclosure<double>& en, Part part, const Unit& unit,
+                                       int k, ExactCoordinate exact, const ExtentEnds& ends) {
+    if (exact.end >= 0) return coordinate_at_end<Target>(ends, exact.end == 1, k);
+    if (part == Part::lateral && zero_coordinate(en, unit, k, ends)) return 0.0;
+    return std::nullopt;
+}
 
 // The hit, t and its point correctly rounded to Target in the caller's units; false when a bound
 // does not prove a rounding.
+// `ends`: where a coordinate is not proven, that coordinate from the exact form where it can
+// give it (add_tighter_hit's).
 template <class Target>
 LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, const Unit& unit,
-                                     const Line& caller, Query q, Result& r,
-                                     ExactCoordinate exact) {
+                                     const Line& caller, Query q, Result& r, ExactCoordinate exact,
+                                     const ExtentEnds* ends = nullptr) {
     if constexpr (std::is_same_v<Target, Binary32>) {
         // A float's rounding cell is 2^29 times a double's: t = c + x and each coordinate
         // fma(t, v_k, L0_k) in double, each with one rounding added to its bound, nearly always
@@ -118,6 +156,7 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
                 double e =
                     (std::fabs(v) * e_t + u * std::fabs(pk)) * F::cover(8) + F::underflow_floor;
                 std::optional<double> rk = round_proven<Target>({pk, 0, e}, unit.pos_factor);
+                if (!rk && ends) rk = exact_coordinate<Target>(en, part, unit, k, exact, *ends);
                 if (!rk) return false;
                 p[k] = *rk;
             }
@@ -148,7 +187,12 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
                 }
                 Rounded<double> pk =
                     rounded_point(en, unit.line.L0[k], unit.line.v[k], unit.pos_factor);
-                if (!pk.proven) return false;
+                if (!pk.proven) {
+                    std::optional<double> pe;
+                    if (ends) pe = exact_coordinate<Target>(en, part, unit, k, exact, *ends);
+                    if (!pe) return false;
+                    pk.value = *pe;
+                }
                 p[k] = pk.value;
             }
             h.p = {p[0], p[1], p[2]};
@@ -171,14 +215,16 @@ LINEQUAD_INLINE std::optional<Enclosure<double>> tighter(const Enclosure<double>
     return t;
 }
 
-// The same, and where a bound does not prove a rounding, once more from a tighter enclosure.
-// Only that case out of line.
+// The same, and where a bound does not prove a rounding: with the coordinates the exact form gives
+// (exact_coordinate: a coordinate at or beside zero is what fails most often), then once more
+// from a tighter enclosure. Only that case out of line.
 template <class Target>
 [[gnu::noinline]] bool add_tighter_hit(const Enclosure<double>& en, Part part, const Unit& unit,
                                        const Line& caller, Query q, Result& r,
                                        ExactCoordinate exact, const ExtentEnds& ends) {
+    if (add_rounded_hit<Target>(en, part, unit, caller, q, r, exact, &ends)) return true;
     std::optional<Enclosure<double>> t = tighter(en, part, unit, ends);
-    return t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact);
+    return t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact, &ends);
 }
 template <class Target>
 LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, Part part, const Unit& unit,
@@ -343,6 +389,7 @@ piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double
         // In the caller's units (a scaled scene's planes are not): the plane's coordinate.
         if (f.planes->axis >= 0 && unit.pos_factor == 1)
             exact[k] = {f.planes->axis, low ? f.planes->lo_at : f.planes->hi_at};
+        exact[k].end = low ? 0 : 1;
         return true;
     };
     int points = 2; // the piece's ends; one where it is a grazed rim
@@ -532,12 +579,13 @@ Local<double> local_near(const LineForm& f, double c) {
 
 // An open shape's root i whose bounds leave kept() open, placed by `ends` once the other root is
 // proven too: outside the extent, not kept; within it or at an end (kept unless another part
-// owns that end; `at` becomes the end's crossing, which is the root), kept where the range
-// proves it. 1, 0, or -1: undecided. Rare, so out of line.
+// owns that end; `at` becomes the end's crossing, which is the root, and `exact` says which),
+// kept where the range proves it. 1, 0, or -1: undecided. Rare, so out of line.
 template <int SigmaZ, Residual R>
 [[gnu::noinline]] int kept_at_end(const LineForm& f, const Leading<double>& A,
                                   const double (&estimate)[2], int i, Enclosure<double>& at,
-                                  const ExtentEnds& ends, const Unit& unit) {
+                                  ExactCoordinate& exact, const ExtentEnds& ends,
+                                  const Unit& unit) {
     std::optional<Enclosure<double>> root[2];
     root[i] = at;
     int j = 1 - i;
@@ -557,6 +605,7 @@ template <int SigmaZ, Residual R>
     case Side::at_hi:
         if (p.open) return 0;
         at = p.t_end;
+        exact.end = p.side == Side::at_hi ? 1 : 0;
         break;
     case Side::within:
         break;
@@ -808,17 +857,19 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
             if (en->smaller != (i == 0)) return false;
             inside = kept(f, unit, *en);
         }
+        ExactCoordinate exact;    // set where the root is an end's crossing (a rim)
         if (inside < 0 && ends) { // t a few ulps from the range's end (0 most often), or an end
             Kept<double> by_range = in_range(unit, *en);
             if (!by_range.inside && !by_range.outside)
                 if (std::optional<Enclosure<double>> narrower =
                         tighter(*en, Part::lateral, unit, *ends))
                     inside = kept(f, unit, *(en = narrower));
-            if (inside < 0) inside = kept_at_end<SigmaZ, R>(f, A, estimate, i, *en, *ends, unit);
+            if (inside < 0)
+                inside = kept_at_end<SigmaZ, R>(f, A, estimate, i, *en, exact, *ends, unit);
         }
         if (inside < 0) return false;
         if (inside == 0) continue;
-        if (!add_hit<Target>(*en, Part::lateral, unit, caller, query, r, {}, ends)) return false;
+        if (!add_hit<Target>(*en, Part::lateral, unit, caller, query, r, exact, ends)) return false;
         if (query.need != Need::all) break; // the smaller root first: also the nearest
     }
     return true;

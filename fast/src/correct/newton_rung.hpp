@@ -79,6 +79,14 @@ class ExtentEnds {
     // open, the planes place it against that end's crossing. For the scene as given (`unit`'s
     // factors 1) only; none where the shape has no bounded end.
     virtual const DiscPlanes* end_planes(const Unit& unit) const = 0;
+    // Coordinate k of the point where the line crosses an end's plane, (L0_k dZ + v_k (end - Z0))
+    // / dZ formed exactly, then enclosed (an exact zero is 0), in the caller's units: for a hit
+    // there whose coordinate lies a few ulps from zero, or at zero; none where the end is not
+    // bounded or dZ = 0.
+    virtual std::optional<BoundedDD> coordinate_at_end(bool top, int k) const = 0;
+    // Whether t* = -L0_k / v_k is a root of g, exactly (g(t*) v_k^2 = A L0_k^2 - 2 B L0_k v_k +
+    // C0 v_k^2 = 0): the line meets the surface on the plane of coordinate k = 0 there.
+    virtual bool zero_at_root(int k) const = 0;
 
   protected:
     ~ExtentEnds() = default;
