@@ -163,24 +163,67 @@ inline int level_of(int against_lo, int against_hi) {
                              : 2;
 }
 
-// For a closed cylinder: whether Z is constant along the line (dZ = v.h = 0) and then its level,
-// from Z0 - end = (L0 - C).h or (L0 - H).h, h = H - C, each exactly (the exact form's Z is
-// (P - C).h); no value for other shapes, which the exact form answers.
+// ExtentEnds::constant_z's answer for a closed shape, from a few exact products rather than the
+// exact form: no level where dZ != 0 or the line lies in the plane of an end without a disc.
 struct ConstantZ {
-    bool constant;
-    int level; // where constant
+    std::optional<int> level;
 };
-inline std::optional<ConstantZ> constant_z_of_line(const Cylinder& s, const Line& l) {
-    if (!s.caps) return std::nullopt;
-    std::optional<int> dZ = dot_sign(l.v, Vec3{}, s.H, s.C);
+// From the signs of dZ, Z0 - lo and Z0 - hi; the ends' discs as `discs` has them.
+inline ConstantZ constant_z_from(int dZ, int against_lo, int against_hi, Closure discs) {
+    if (dZ != 0) return {};
+    int level = level_of(against_lo, against_hi);
+    if ((level == -1 && !discs.lo) || (level == 1 && !discs.hi)) return {};
+    return {level};
+}
+// A cylinder or a frustum on the axis from C to H: Z = (P - C).h, h = H - C, between 0 and h.h;
+// dZ = v.h, Z0 - end = (L0 - C).h or (L0 - H).h, each exactly. No value where a product could be
+// inexact.
+inline std::optional<ConstantZ> constant_z_on_axis(Vec3 C, Vec3 H, const Line& l, Closure discs) {
+    std::optional<int> dZ = dot_sign(l.v, Vec3{}, H, C);
     if (!dZ) return std::nullopt;
-    if (*dZ != 0) return ConstantZ{false, 0};
-    std::optional<int> base = dot_sign(l.L0, s.C, s.H, s.C), top = dot_sign(l.L0, s.H, s.H, s.C);
+    if (*dZ != 0) return ConstantZ{};
+    std::optional<int> base = dot_sign(l.L0, C, H, C), top = dot_sign(l.L0, H, H, C);
     if (!base || !top) return std::nullopt;
-    return ConstantZ{true, level_of(*base, *top)};
+    return constant_z_from(0, *base, *top, discs);
+}
+inline std::optional<ConstantZ> constant_z_of_line(const Cylinder& s, const Line& l, int) {
+    if (!s.caps) return std::nullopt;
+    return constant_z_on_axis(s.C, s.H, l, both_ends(true));
+}
+inline std::optional<ConstantZ> constant_z_of_line(const Frustum& s, const Line& l, int) {
+    if (!s.caps) return std::nullopt;
+    return constant_z_on_axis(s.C0, s.C1, l, frustum_closure(s));
+}
+// The elliptic shapes: Z = sigma det[a b P - O] (O the frame's origin, sigma the orientation),
+// so dZ = sigma det[a b v] and Z0 - end a determinant of L0 less points, each sign exact.
+inline std::optional<ConstantZ> constant_z_of_line(const EllipticCylinder& s, const Line& l,
+                                                   int orientation) {
+    if (!s.caps) return std::nullopt;
+    int sigma = orientation < 0 ? -1 : 1; // 0 <= Z <= |det| = sigma det[a b c]
+    return constant_z_from(det3_sign_exact(s.a, s.b, l.v),
+                           sigma * det3_sign_exact(s.a, s.b, l.L0, s.C, Vec3{}),
+                           sigma * det3_sign_exact(s.a, s.b, l.L0, s.C, s.c), both_ends(true));
+}
+inline std::optional<ConstantZ> constant_z_of_line(const EllipticCone& s, const Line& l,
+                                                   int orientation) {
+    if (!s.caps) return std::nullopt;
+    // Z = sigma det[a b P - H], c = H - C: lo = -|det| (Z0 - lo = sigma det[a b L0 - C]), hi = 0
+    // (one nappe) or |det| (two: Z0 - hi = sigma det[a b L0 - H - c]), unbounded where not finite.
+    int sigma = orientation < 0 ? -1 : 1;
+    bool two = s.nappes == 2;
+    int lo = s.finite ? sigma * det3_sign_exact(s.a, s.b, l.L0, s.C, Vec3{}) : 1;
+    int hi = -1;
+    if (!two) {
+        hi = sigma * det3_sign_exact(s.a, s.b, l.L0, s.H, Vec3{});
+    } else if (s.finite) {
+        Vec3 twice_H = 2 * s.H, minus_C = -1 * s.C; // exact, unless 2 H overflows
+        if (!std::isfinite(max_abs(twice_H))) return std::nullopt;
+        hi = sigma * det3_sign_exact(s.a, s.b, l.L0, twice_H, minus_C);
+    }
+    return constant_z_from(det3_sign_exact(s.a, s.b, l.v), lo, hi, cone_extent(s).caps);
 }
 template <class S>
-std::optional<ConstantZ> constant_z_of_line(const S&, const Line&) {
+std::optional<ConstantZ> constant_z_of_line(const S&, const Line&, int) {
     return std::nullopt;
 }
 
@@ -280,8 +323,8 @@ class ExactForm final : public ExtentEnds {
     }
 
     std::optional<int> constant_z() const override {
-        if (std::optional<ConstantZ> z = constant_z_of_line(shape_, line_))
-            return z->constant ? std::optional<int>(z->level) : std::nullopt;
+        if (std::optional<ConstantZ> z = constant_z_of_line(shape_, line_, orientation_))
+            return z->level;
         if (deferred()) return std::nullopt;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.dZ) != 0) return std::nullopt;

@@ -56,6 +56,19 @@ LINEQUAD_INLINE Kept<double> in_range(const Unit& unit, const Enclosure<double>&
     auto [t, e_t] = t_of(en);
     return Kept<double>().range(unit.line.range, t, e_t);
 }
+// The same for tighter()'s enclosures, which may be one of the range's ends exactly (a root
+// there, root_from_exact_form's point): in the range, which is closed, where no bound decides it.
+LINEQUAD_INLINE bool at_range_end(const Unit& unit, const Enclosure<double>& en) {
+    return en.e == 0 && en.x == 0 && (en.c == unit.line.range.t0 || en.c == unit.line.range.t1);
+}
+LINEQUAD_INLINE int kept_tighter(const LineForm& f, const Unit& unit, const Enclosure<double>& en) {
+    if (!at_range_end(unit, en)) return kept(f, unit, en);
+    Kept<double> k = newton::kept(f, Range::line, en);
+    return k.outside ? 0 : k.inside ? 1 : -1;
+}
+LINEQUAD_INLINE Kept<double> in_range_tighter(const Unit& unit, const Enclosure<double>& en) {
+    return at_range_end(unit, en) ? Kept<double>() : in_range(unit, en);
+}
 
 // Root `smaller` (or the larger one) next to c, where the rung's bounds, absolute, are wide
 // beside it or beside a coordinate of its point: the same proof at c (a double next to the root)
@@ -65,6 +78,12 @@ LINEQUAD_INLINE Kept<double> in_range(const Unit& unit, const Enclosure<double>&
 root_from_exact_form(const ExtentEnds& ends, double t_factor, double c, bool smaller) {
     std::optional<ExactLocal> q = ends.local_at(c, t_factor);
     if (!q || !(std::fabs(q->A.A) > q->A.e)) return std::nullopt;
+    if (q->at.G == 0 && q->at.e_G == 0) { // c is a root exactly (a line starting on the surface)
+        // The smaller root where g falls through 0 (G' A < 0), a simple one where G' != 0.
+        if (!(std::fabs(q->at.Gp) > q->at.e_Gp) || ((q->at.Gp < 0) == (q->A.A > 0)) != smaller)
+            return std::nullopt;
+        return Enclosure<double>{c, 0, 0, smaller, true};
+    }
     Enclosure<double> en = newton::root_near_tight(q->at, q->A, c);
     if (!en.proven || en.smaller != smaller) return std::nullopt;
     return en;
@@ -208,9 +227,18 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
 // root's from its local quadratic, a disc's crossing exactly; no value where it is not narrower.
 LINEQUAD_INLINE std::optional<Enclosure<double>> tighter(const Enclosure<double>& en, Part part,
                                                          const Unit& unit, const ExtentEnds& ends) {
-    std::optional<Enclosure<double>> t =
-        part == Part::lateral ? root_from_exact_form(ends, unit.t_factor, en.c + en.x, en.smaller)
-                              : exact_crossing(ends, part == Part::base, unit);
+    std::optional<Enclosure<double>> t;
+    if (part == Part::lateral) {
+        // About the range's end where the root lies beside it: there the local quadratic shows
+        // a root exactly at that end, which no enclosure about another point can.
+        auto [at, e_at] = t_of(en);
+        double c = at;
+        for (double end : {unit.line.range.t0, unit.line.range.t1})
+            if (std::isfinite(end) && std::fabs(at - end) <= 2 * e_at) c = end;
+        t = root_from_exact_form(ends, unit.t_factor, c, en.smaller);
+    } else {
+        t = exact_crossing(ends, part == Part::base, unit);
+    }
     if (!t || !(t->e < en.e)) return std::nullopt;
     return t;
 }
@@ -315,13 +343,16 @@ LINEQUAD_INLINE Side side_of(const LineForm& f, const Enclosure<double>& en) {
 // Root i, which its enclosure leaves next to one end (`near`: side_of's near_lo or near_hi; the
 // scalar ladder's question, the batch lanes hand such a line to it): against that end's crossing
 // in double-double, then from the exact signs of `ends`. Rare, so out of line.
+LINEQUAD_INLINE Side beside_end(const LineForm& f, const Enclosure<double>& root, bool top,
+                                const ExtentEnds& ends, const Unit& unit) {
+    const DiscPlanes* planes = f.planes ? &*f.planes : ends.end_planes(unit);
+    return planes ? beside_plane(*planes, root, top) : Side::unknown;
+}
 [[gnu::noinline]] Placement place_at_end(const LineForm& f,
                                          const std::optional<Enclosure<double>> (&root)[2], int i,
                                          Side near, const ExtentEnds& ends, const Unit& unit) {
     bool top = near == Side::near_hi;
-    const DiscPlanes* planes = f.planes ? &*f.planes : ends.end_planes(unit);
-    if (planes)
-        if (Side s = beside_plane(*planes, *root[i], top); s != Side::unknown) return {s};
+    if (Side s = beside_end(f, *root[i], top, ends, unit); s != Side::unknown) return {s};
     return placed_at_end(root, i, top, ends, unit);
 }
 LINEQUAD_INLINE bool near_end(Side s) {
@@ -441,7 +472,7 @@ piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double
         Kept<double> k = in_range(unit, at[i]);
         if (!k.outside && !k.inside && ends) // t a few ulps from the range's end, 0 most often
             if (std::optional<Enclosure<double>> narrower = tighter(at[i], part[i], unit, *ends))
-                k = in_range(unit, at[i] = *narrower);
+                k = in_range_tighter(unit, at[i] = *narrower);
         if (k.outside) continue;
         if (!k.inside || !add_hit<Target>(at[i], part[i], unit, caller, query, r, exact[i], ends))
             return false;
@@ -575,43 +606,6 @@ Local<double> local_near(const LineForm& f, double c) {
         return quick_local_at<SigmaZ>(f, c);
     else
         return local_at<SigmaZ>(f, c);
-}
-
-// An open shape's root i whose bounds leave kept() open, placed by `ends` once the other root is
-// proven too: outside the extent, not kept; within it or at an end (kept unless another part
-// owns that end; `at` becomes the end's crossing, which is the root, and `exact` says which),
-// kept where the range proves it. 1, 0, or -1: undecided. Rare, so out of line.
-template <int SigmaZ, Residual R>
-[[gnu::noinline]] int kept_at_end(const LineForm& f, const Leading<double>& A,
-                                  const double (&estimate)[2], int i, Enclosure<double>& at,
-                                  ExactCoordinate& exact, const ExtentEnds& ends,
-                                  const Unit& unit) {
-    std::optional<Enclosure<double>> root[2];
-    root[i] = at;
-    int j = 1 - i;
-    root[j] = root_near(local_near<SigmaZ, R>(f, estimate[j]), A, estimate[j]);
-    if (!root[j] || root[j]->smaller != (j == 0)) return -1;
-    Placement p{side_of(f, at)};
-    if (near_end(p.side)) p = place_at_end(f, root, i, p.side, ends, unit);
-    switch (p.side) {
-    case Side::unknown:
-    case Side::near_lo:
-    case Side::near_hi:
-        return -1;
-    case Side::below:
-    case Side::above:
-        return 0;
-    case Side::at_lo:
-    case Side::at_hi:
-        if (p.open) return 0;
-        at = p.t_end;
-        exact.end = p.side == Side::at_hi ? 1 : 0;
-        break;
-    case Side::within:
-        break;
-    }
-    Kept<double> k = in_range(unit, at);
-    return k.outside ? 0 : k.inside ? 1 : -1;
 }
 
 // The root next to the estimate c where the local quadratic there leaves it unproven, or its
@@ -782,6 +776,50 @@ struct Roots {
     }
 };
 
+// An open shape's root i whose bounds leave kept() open, placed against the end's plane, or by
+// `ends` once the other root is proven too: outside the extent, not kept; within it or at an end
+// (kept unless another part owns that end; `at` becomes the end's crossing, which is the root,
+// and `exact` says which), kept where the range proves it. 1, 0, or -1: undecided. Rare, so out
+// of line.
+template <int SigmaZ, Residual R>
+[[gnu::noinline]] int kept_at_end(const LineForm& f, Roots<SigmaZ, R>& roots, int i,
+                                  Enclosure<double>& at, ExactCoordinate& exact,
+                                  const ExtentEnds& ends, const Unit& unit) {
+    Placement p{side_of(f, at)};
+    if (near_end(p.side)) {
+        bool top = p.side == Side::near_hi;
+        p = {beside_end(f, at, top, ends, unit)};
+        if (p.side == Side::unknown) {
+            std::optional<Enclosure<double>> root[2];
+            root[i] = at;
+            int j = 1 - i;
+            root[j] = roots.prove(j);
+            if (!root[j]) root[j] = roots.settled(j, root[j]); // beside a double root (an apex)
+            if (!root[j] || root[j]->smaller != (j == 0)) return -1;
+            p = placed_at_end(root, i, top, ends, unit);
+        }
+    }
+    switch (p.side) {
+    case Side::unknown:
+    case Side::near_lo:
+    case Side::near_hi:
+        return -1;
+    case Side::below:
+    case Side::above:
+        return 0;
+    case Side::at_lo:
+    case Side::at_hi:
+        if (p.open) return 0;
+        at = p.t_end;
+        exact.end = p.side == Side::at_hi ? 1 : 0;
+        break;
+    case Side::within:
+        break;
+    }
+    Kept<double> k = in_range(unit, at);
+    return k.outside ? 0 : k.inside ? 1 : -1;
+}
+
 template <int SigmaZ, class Target, Residual R>
 bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query, Result& r,
            const ExtentEnds* ends) {
@@ -863,9 +901,8 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
             if (!by_range.inside && !by_range.outside)
                 if (std::optional<Enclosure<double>> narrower =
                         tighter(*en, Part::lateral, unit, *ends))
-                    inside = kept(f, unit, *(en = narrower));
-            if (inside < 0)
-                inside = kept_at_end<SigmaZ, R>(f, A, estimate, i, *en, exact, *ends, unit);
+                    inside = kept_tighter(f, unit, *(en = narrower));
+            if (inside < 0) inside = kept_at_end<SigmaZ, R>(f, roots, i, *en, exact, *ends, unit);
         }
         if (inside < 0) return false;
         if (inside == 0) continue;

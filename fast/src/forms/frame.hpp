@@ -20,6 +20,9 @@ namespace linequad {
 int det3_sign_exact(Vec3 a, Vec3 b, Vec3 c);
 // Exact sign of det[a b H-C], without rounding H - C.
 int cone_det_sign_exact(Vec3 a, Vec3 b, Vec3 C, Vec3 H);
+// Exact sign of det[a b P-Q-R], without rounding P - Q - R (a point's side of a plane through
+// Q + R spanned by a and b).
+int det3_sign_exact(Vec3 a, Vec3 b, Vec3 P, Vec3 Q, Vec3 R);
 
 namespace exact_form {
 

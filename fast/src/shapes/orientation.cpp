@@ -57,36 +57,45 @@ Vec3T<BigFloat> big(Vec3 u) {
     return {BigFloat(u.x), BigFloat(u.y), BigFloat(u.z)};
 }
 
+// Where the filter cannot decide: det is linear in its last column, det[a b P-Q-R] = det[a b P]
+// - det[a b Q] - det[a b R], the three scaled by one power of two, then summed exactly.
+int unfiltered_sign(Vec3 a, Vec3 b, Vec3 P, Vec3 Q, Vec3 R) {
+    if (a == Vec3{} || b == Vec3{}) return 0;
+    if (!narrow({a}) || !narrow({b}) || !narrow({P, Q, R}))
+        return sign(dot(big(a), cross(big(b), big(P) - big(Q) - big(R))));
+    double m = std::fmax(max_abs(P), std::fmax(max_abs(Q), max_abs(R)));
+    P = unit_scaled(P, m), Q = unit_scaled(Q, m), R = unit_scaled(R, m);
+    a = unit_scaled(a, max_abs(a)), b = unit_scaled(b, max_abs(b));
+    Expansion<128> e;
+    add_det_terms(e, 1, a, b, P);
+    add_det_terms(e, -1, a, b, Q);
+    add_det_terms(e, -1, a, b, R);
+    return e.sign();
+}
+
 } // namespace
 
-// The cone's frame uses c = H - C, which is not a double. det is linear in c, so
-// det[a b H-C] = det[a b H] - det[a b C]: both scaled by one power of two, then summed exactly.
+// The cone's frame uses c = H - C, which is not a double. The filter takes c rounded (at most
+// u (|H| + |C|) per component: passing that sum for |c| covers it within its 16u).
 int cone_det_sign_exact(Vec3 a, Vec3 b, Vec3 C, Vec3 H) {
     Vec3 habs{std::fabs(H.x) + std::fabs(C.x), std::fabs(H.y) + std::fabs(C.y),
               std::fabs(H.z) + std::fabs(C.z)};
-    Vec3 c = H - C;
-    if (int s = filtered_sign(dot(a, cross(b, c)), triple_product_magnitude(a, b, habs), a))
+    if (int s = filtered_sign(dot(a, cross(b, H - C)), triple_product_magnitude(a, b, habs), a))
         return s;
-    if (a == Vec3{} || b == Vec3{}) return 0;
-    if (!narrow({a}) || !narrow({b}) || !narrow({C, H}))
-        return sign(dot(big(a), cross(big(b), big(H) - big(C))));
-    double m = std::fmax(max_abs(C), max_abs(H));
-    C = unit_scaled(C, m), H = unit_scaled(H, m);
-    a = unit_scaled(a, max_abs(a)), b = unit_scaled(b, max_abs(b));
-    Expansion<128> e;
-    add_det_terms(e, 1, a, b, H);
-    add_det_terms(e, -1, a, b, C);
-    return e.sign();
+    return unfiltered_sign(a, b, H, C, Vec3{});
+}
+
+// The same with two roundings of P - Q - R, each at most u (|P| + |Q| + |R|) per component.
+int det3_sign_exact(Vec3 a, Vec3 b, Vec3 P, Vec3 Q, Vec3 R) {
+    Vec3 cabs = magnitudes(P) + magnitudes(Q) + magnitudes(R);
+    if (int s = filtered_sign(dot(a, cross(b, P - Q - R)), triple_product_magnitude(a, b, cabs), a))
+        return s;
+    return unfiltered_sign(a, b, P, Q, R);
 }
 
 int det3_sign_exact(Vec3 a, Vec3 b, Vec3 c) {
     if (int s = filtered_sign(dot(a, cross(b, c)), triple_product_magnitude(a, b, c), a)) return s;
-    if (!narrow({a}) || !narrow({b}) || !narrow({c}))
-        return sign(dot(big(a), cross(big(b), big(c))));
-    a = unit_scaled(a, max_abs(a)), b = unit_scaled(b, max_abs(b)), c = unit_scaled(c, max_abs(c));
-    Expansion<128> e;
-    add_det_terms(e, 1, a, b, c);
-    return e.sign();
+    return unfiltered_sign(a, b, c, Vec3{}, Vec3{});
 }
 
 } // namespace linequad
