@@ -825,7 +825,7 @@ TEST_CASE("correct places roots at and beside open ends and seams on the Newton 
     // from it. The rung's Z, in double, leaves such a root's side of the end open; the end's
     // plane in double-double (ExtentEnds::end_planes) places it, and a coordinate at or beside
     // zero (the rim point of an axis-aligned frame) comes from the exact form. 1,166 and 1,130
-    // of 1,200 lines on the Newton rung (EDGE_BASE and SEAM_BASE without them). Every answer as
+    // of 1,200 lines on the Newton rung (936 and 744 before them). Every answer as
     // the oracle's.
     CHECK(on_newton_rung(Family::extent_edge, 0, 3, 23, 1200) >= 1120);
     CHECK(on_newton_rung(Family::seam, 6, 6, 23, 1200) >= 1080);
