@@ -163,8 +163,9 @@ inline int level_of(int against_lo, int against_hi) {
                              : 2;
 }
 
-// ExtentEnds::constant_z's answer for a closed shape, from a few exact products rather than the
-// exact form: no level where dZ != 0 or the line lies in the plane of an end without a disc.
+// ExtentEnds::constant_z's answer for a closed shape, from the exact signs of a few products or
+// determinants rather than the exact form: no level where dZ != 0 or the line lies in the plane
+// of an end without a disc.
 struct ConstantZ {
     std::optional<int> level;
 };
@@ -191,7 +192,7 @@ inline std::optional<ConstantZ> constant_z_of_line(const Cylinder& s, const Line
     return constant_z_on_axis(s.C, s.H, l, both_ends(true));
 }
 inline std::optional<ConstantZ> constant_z_of_line(const Frustum& s, const Line& l, int) {
-    if (!s.caps) return std::nullopt;
+    if (!s.caps) return std::nullopt; // closed, so finite: Z is u, not the nappe's R
     return constant_z_on_axis(s.C0, s.C1, l, frustum_closure(s));
 }
 // The elliptic shapes: Z = sigma det[a b P - O] (O the frame's origin, sigma the orientation),
@@ -206,19 +207,17 @@ inline std::optional<ConstantZ> constant_z_of_line(const EllipticCylinder& s, co
 }
 inline std::optional<ConstantZ> constant_z_of_line(const EllipticCone& s, const Line& l,
                                                    int orientation) {
-    if (!s.caps) return std::nullopt;
+    if (!s.caps) return std::nullopt; // closed, so finite (validation)
     // Z = sigma det[a b P - H], c = H - C: lo = -|det| (Z0 - lo = sigma det[a b L0 - C]), hi = 0
-    // (one nappe) or |det| (two: Z0 - hi = sigma det[a b L0 - H - c]), unbounded where not finite.
+    // (one nappe) or |det| (two: Z0 - hi = sigma det[a b L0 - H - c]).
     int sigma = orientation < 0 ? -1 : 1;
-    bool two = s.nappes == 2;
-    int lo = s.finite ? sigma * det3_sign_exact(s.a, s.b, l.L0, s.C, Vec3{}) : 1;
-    int hi = -1;
-    if (!two) {
-        hi = sigma * det3_sign_exact(s.a, s.b, l.L0, s.H, Vec3{});
-    } else if (s.finite) {
+    int lo = sigma * det3_sign_exact(s.a, s.b, l.L0, s.C, Vec3{}), hi;
+    if (s.nappes == 2) {
         Vec3 twice_H = 2 * s.H, minus_C = -1 * s.C; // exact, unless 2 H overflows
         if (!std::isfinite(max_abs(twice_H))) return std::nullopt;
         hi = sigma * det3_sign_exact(s.a, s.b, l.L0, twice_H, minus_C);
+    } else {
+        hi = sigma * det3_sign_exact(s.a, s.b, l.L0, s.H, Vec3{});
     }
     return constant_z_from(det3_sign_exact(s.a, s.b, l.v), lo, hi, cone_extent(s).caps);
 }

@@ -340,14 +340,16 @@ LINEQUAD_INLINE Side side_of(const LineForm& f, const Enclosure<double>& en) {
     return lo_clear ? Side::near_hi : Side::near_lo;
 }
 
-// Root i, which its enclosure leaves next to one end (`near`: side_of's near_lo or near_hi; the
-// scalar ladder's question, the batch lanes hand such a line to it): against that end's crossing
-// in double-double, then from the exact signs of `ends`. Rare, so out of line.
+// A root next to an end against that end's plane: a closed shape's disc plane, from its form;
+// an open shape's end, from `ends`.
 LINEQUAD_INLINE Side beside_end(const LineForm& f, const Enclosure<double>& root, bool top,
                                 const ExtentEnds& ends, const Unit& unit) {
     const DiscPlanes* planes = f.planes ? &*f.planes : ends.end_planes(unit);
     return planes ? beside_plane(*planes, root, top) : Side::unknown;
 }
+// Root i, which its enclosure leaves next to one end (`near`: side_of's near_lo or near_hi; the
+// scalar ladder's question, the batch lanes hand such a line to it): against that end's crossing
+// in double-double, then from the exact signs of `ends`. Rare, so out of line.
 [[gnu::noinline]] Placement place_at_end(const LineForm& f,
                                          const std::optional<Enclosure<double>> (&root)[2], int i,
                                          Side near, const ExtentEnds& ends, const Unit& unit) {

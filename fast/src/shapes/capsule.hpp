@@ -225,15 +225,15 @@ struct ShapeTraits<CapsuleEnd> {
     static LineFormT<T> form(const CapsuleEnd& s, Vec3T<T> L0, Vec3T<T> v,
                              bool end_planes = false) {
         LineFormT<T> f = sphere_line_form<precise, T>(s.centre, s.r, L0, v);
-        Vec3T<T> h = lanes_of<T>(difference_exact(s.centre, s.other).hi);
-        Vec3T<T> w = difference_exact(L0, lanes_of<T>(s.centre)).hi;
-        cylinder_axial(f, w, h, v); // Z = w.h + t v.h, w and h within u of their exact values
+        Vec3TwoTerm h = difference_exact(s.centre, s.other);
+        Vec3TwoTermT<T> w = difference_exact(L0, lanes_of<T>(s.centre));
+        // Z = w.h + t v.h, w and h within u of their exact values
+        cylinder_axial(f, w.hi, lanes_of<T>(h.hi), v);
         f.lo_bounded = true;
         if (precise && end_planes) { // the seam's plane Z = 0, from the exact differences
-            Vec3TwoTermT<T> h2 = difference_exact(lanes_of<T>(s.centre), lanes_of<T>(s.other));
-            Vec3TwoTermT<T> w2 = difference_exact(L0, lanes_of<T>(s.centre));
-            f.planes = DiscPlanesT<T>{dot_dd(w2, h2), dot_dd(v, h2), BoundedDD(0),
-                                      BoundedDD(0),   false,         false};
+            Vec3TwoTermT<T> hl{lanes_of<T>(h.hi), lanes_of<T>(h.lo)};
+            f.planes = DiscPlanesT<T>{dot_dd(w, hl), dot_dd(v, hl), BoundedDD(0),
+                                      BoundedDD(0),  false,         false};
         }
         return f;
     }

@@ -327,7 +327,7 @@ struct ShapeTraits<Cylinder> {
     // ---- correct: the Newton rung's line form ----
 
     // For the line L0 + t v in T: double, or a lane type (a line per lane). end_planes: the
-    // ends' planes of a finite open cylinder too (EndPlanes).
+    // ends' planes of a finite open cylinder too (ExtentEnds::end_planes asks for them).
     template <class T = double, class Source>
     static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/,
                                   bool end_planes = false) {

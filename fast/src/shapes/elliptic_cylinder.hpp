@@ -223,7 +223,7 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
 
     // For the line L0 + t v in T: double, or a lane type (a line per lane). precise: the Newton
     // rung's, in double-double; else the hit test's quick form, in doubles with bounds.
-    // end_planes: the ends' planes of a finite open cylinder too (EndPlanes).
+    // end_planes: the ends' planes of a finite open cylinder too (ExtentEnds::end_planes).
     template <bool precise, class T, class Source>
     static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
                              bool end_planes = false) {
