@@ -118,17 +118,27 @@ template <class Target>
     return round_proven<Target>(*p, 1.0);
 }
 
+// (c1 + x1) - (c2 + x2), two values' high and low parts (enclosures' centres): d within `bound`
+// of it. c1 - c2 exactly; the two roundings left are each within u of their results (two
+// denorm_min for underflow), so the bound is relative to the difference rather than to the
+// values: two values an ulp apart are told apart.
+struct Difference {
+    double d, bound;
+};
+LINEQUAD_INLINE Difference difference_of(double c1, double x1, double c2, double x2) {
+    TwoTerm a = two_sum(c1, -c2);
+    double b = x1 - x2, s = a.lo + b, d = a.hi + s;
+    return {d, 2 * u * (std::fabs(b) + std::fabs(s) + std::fabs(d)) + 2 * F::denorm_min};
+}
+
 // Coordinate k of a lateral root's point where its bound cannot round it: 0 exactly when the line
 // crosses that coordinate plane at this root, at t* = -L0_k / v_k: t* inside the root's enclosure
 // (which holds one root), and a root (`ends`, exactly). Rare, so out of line.
 [[gnu::noinline]] bool zero_coordinate(const Enclosure<double>& en, const Unit& unit, int k,
                                        const ExtentEnds& ends) {
     BoundedDD t = BoundedDD(-unit.line.L0[k]) / BoundedDD(unit.line.v[k]);
-    // t* - (c + x) as beside_plane forms a difference: within `bound` of d.
-    TwoTerm a = two_sum(t.hi, -en.c);
-    double b = t.lo - en.x, s = a.lo + b, d = a.hi + s;
-    double bound = t.e + 2 * u * (std::fabs(b) + std::fabs(s) + std::fabs(d)) + 2 * F::denorm_min;
-    return (std::fabs(d) + bound) * F::cover(2) < en.e && ends.zero_at_root(k);
+    Difference off = difference_of(t.hi, t.lo, en.c, en.x); // t* - (c + x)
+    return (std::fabs(off.d) + off.bound + t.e) * F::cover(2) < en.e && ends.zero_at_root(k);
 }
 
 // A coordinate its bound leaves unrounded, from the exact form: at an end's crossing, or a
@@ -311,14 +321,10 @@ LINEQUAD_INLINE Side beside_plane(const DiscPlanes& p, const Enclosure<double>& 
     if (!(std::fabs(p.dZ.hi) > p.dZ.e)) return Side::unknown;
     std::optional<Enclosure<double>> end = plane_crossing(p, top ? p.hi : p.lo);
     if (!end) return Side::unknown;
-    // root - end = (c_r - c_e) + (x_r - x_e), c_r - c_e exactly: the two roundings left are
-    // each within u of their results (two denorm_min for underflow), a bound relative to the
-    // difference rather than to t, so that a root an ulp of t from the end is placed.
-    TwoTerm a = two_sum(root.c, -end->c);
-    double b = root.x - end->x, s = a.lo + b, d = a.hi + s;
-    double bound =
-        root.e + end->e + 2 * u * (std::fabs(b) + std::fabs(s) + std::fabs(d)) + 2 * F::denorm_min;
-    if (!(std::fabs(d) > bound)) return Side::unknown;
+    // root - end, bounded relative to itself: a root an ulp of t from the end is placed.
+    Difference off = difference_of(root.c, root.x, end->c, end->x);
+    double d = off.d;
+    if (!(std::fabs(d) > off.bound + root.e + end->e)) return Side::unknown;
     bool later = d > 0, rising = p.dZ.hi > 0; // Z(root) > end iff later == rising
     if (!top) return later == rising ? Side::within : Side::below;
     return later == rising ? Side::above : Side::within;

@@ -338,7 +338,7 @@ struct ShapeTraits<Frustum> {
         f.hi = hh.hi, f.e_hi = bound_of_hi(hh), f.hi_bounded = s.finite;
         f.discs = discs_of(s);
         if (s.caps || (end_planes && s.finite)) {
-            Closure discs = s.caps ? frustum_closure(s) : Closure{};
+            Closure discs = frustum_closure(s); // none where open
             f.planes = DiscPlanes{wh, vh, BoundedDD(0), hh, discs.lo, discs.hi};
             f.planes->axis = axis_along(s.C1 - s.C0);
             if (f.planes->axis >= 0)
