@@ -3,6 +3,7 @@
 #include "rational.hpp"
 #include "support.hpp"
 
+#include "correct/correct.hpp"
 #include "correct/rungs.hpp"
 #include "forms/exact_form.hpp"
 #include "forms/frame.hpp"
@@ -829,6 +830,60 @@ TEST_CASE("correct places roots at and beside open ends and seams on the Newton 
     // the oracle's.
     CHECK(on_newton_rung(Family::extent_edge, 0, 3, 23, 1200) >= 1120);
     CHECK(on_newton_rung(Family::seam, 6, 6, 23, 1200) >= 1080);
+}
+
+namespace {
+// Shape S's Z alone (exact_axial, where it has one) against its exact quadratic's Z: equal values
+// (exact, so compared exactly) and the same bounded ends.
+template <class S>
+void check_axial(const S& s, const Line& l, int orientation, long& compared) {
+    if constexpr (detail::has_exact_axial<S>) {
+        using Traits = detail::ShapeTraits<S>;
+        exact_form::LineAxial<BigFloat> z =
+            Traits::template exact_axial<BigFloat>(s, l, orientation);
+        exact_form::LineQuadratic<BigFloat> q =
+            Traits::template exact_quadratic<BigFloat>(s, l, orientation);
+        CHECK(sign(z.Z0 - q.Z0) == 0);
+        CHECK(sign(z.dZ - q.dZ) == 0);
+        CHECK(sign(z.lo - q.lo) == 0);
+        CHECK(sign(z.hi - q.hi) == 0);
+        CHECK(z.lo_bounded == q.lo_bounded);
+        CHECK(z.hi_bounded == q.hi_bounded);
+        ++compared;
+    }
+}
+} // namespace
+
+TEST_CASE("each shape's Z alone (exact_axial) is its exact quadratic's Z exactly") {
+    // The Newton rung asks for Z alone at an end's crossing (exact_axial: a few dot products);
+    // the exact rung for the whole quadratic. Both must be one form: every family, shape (the
+    // capsule's three patches) and range, either orientation of an elliptic frame.
+    long compared = 0;
+    for (int f = 0; f < family_count; ++f)
+        for (int shape = 0; shape < shape_kinds; ++shape) {
+            if (!family_applies(Family(f), shape)) continue;
+            for (Range range : {Range::line, Range::ray, Range::segment})
+                for (std::uint64_t i = 0; i < 12; ++i) {
+                    Case c = make_case(Family(f), shape, range, 72, i);
+                    INFO(format_case(c));
+                    std::visit(
+                        [&](const auto& s) {
+                            using S = std::decay_t<decltype(s)>;
+                            detail::Validity valid = detail::check(detail::AsGiven<S>{s}, c.line);
+                            if (!valid.error.ok()) return;
+                            if constexpr (std::is_same_v<S, Capsule>) {
+                                auto [side, base, top] = detail::ShapeTraits<Capsule>::patches(s);
+                                check_axial(side, c.line, 0, compared);
+                                check_axial(base, c.line, 0, compared);
+                                check_axial(top, c.line, 0, compared);
+                            } else {
+                                check_axial(s, c.line, valid.orientation, compared);
+                            }
+                        },
+                        c.shape);
+                }
+        }
+    CHECK(compared > 2000);
 }
 
 TEST_CASE("correct proves the roots of thin shapes on the Newton rung") {

@@ -255,6 +255,14 @@ std::optional<bool> exactly_parallel(const S&, const Line&) {
     return std::nullopt;
 }
 
+// Whether a shape gives its Z alone (exact_axial), cheaper than its whole exact quadratic.
+template <class S, class = void>
+inline constexpr bool has_exact_axial = false;
+template <class S>
+inline constexpr bool
+    has_exact_axial<S, std::void_t<decltype(ShapeTraits<S>::template exact_axial<BigFloat>(
+                           std::declval<const S&>(), std::declval<const Line&>(), 0))>> = true;
+
 // The exact form in BigFloat, formed once for the line and only when asked: by the Newton rung,
 // for a root its bounds leave next to an extent's end (ExtentEnds), and by the exact rung. An
 // end's signs come first from the double-double rung's quadratic, when it has run: its bounds
@@ -272,6 +280,19 @@ class ExactForm final : public ExtentEnds {
             q_ = ShapeTraits<S>::template exact_quadratic<BigFloat>(shape_, line_, orientation_);
         return *q_;
     }
+    // Z along the line alone, where that is all the rung asks (an end's crossing, the point
+    // there, Z constant): the quadratic's own once it is formed.
+    const exact_form::LineAxial<BigFloat>& axial() const {
+        if (q_) return *q_;
+        if constexpr (has_exact_axial<S>) {
+            if (!axial_)
+                axial_ =
+                    ShapeTraits<S>::template exact_axial<BigFloat>(shape_, line_, orientation_);
+            return *axial_;
+        } else {
+            return quadratic();
+        }
+    }
     // D = B^2 - A C0, exactly: for a tangency and for the exact rung.
     const BigFloat& discriminant() const {
         if (!D_) {
@@ -284,7 +305,10 @@ class ExactForm final : public ExtentEnds {
     // Deferred, at() only notes that the rung asked: the double-double rung, cheaper than the
     // exact form, answers a root beside an end first; the Newton rung is asked again after it.
     void defer(bool d) { deferred_ = d; }
-    bool asked() const { return asked_; }
+    bool asked() const { return asked_ != 0; }
+    // Whether the rung asked nothing but what the double-double rung's quadratic answers as a
+    // filter (an end's crossing, the sign of a cylinder's g along a parallel line).
+    bool asked_only_filtered() const { return (asked_ & ~(at_end | parallel_line)) == 0; }
     // The double-double rung's quadratic of the scene scaled to unit size, whose parameter is
     // the caller's over t_factor.
     void filter_with(const exact_form::LineQuadratic<BoundedDD>& dd, double t_factor) {
@@ -292,7 +316,7 @@ class ExactForm final : public ExtentEnds {
     }
 
     std::optional<EndCrossing> at(bool top, double t_factor) const override {
-        if (deferred()) return std::nullopt;
+        if (deferred(at_end)) return std::nullopt;
         if (dd_)
             if (std::optional<EndCrossing> c = end_crossing(*dd_, top, dd_t_factor_ / t_factor))
                 return c;
@@ -312,7 +336,7 @@ class ExactForm final : public ExtentEnds {
         if (!parallel_) parallel_ = exactly_parallel(shape_, line_); // once: both Newton passes ask
         std::optional<bool> parallel = *parallel_;
         if (parallel && !*parallel) return std::nullopt;
-        if (deferred()) return std::nullopt;
+        if (deferred(parallel ? parallel_line : other)) return std::nullopt;
         if (parallel && dd_)
             if (int s = sign(dd_->C0); s != undecided_sign) return s;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
@@ -325,11 +349,13 @@ class ExactForm final : public ExtentEnds {
         if (std::optional<ConstantZ> z = constant_z_of_line(shape_, line_, orientation_))
             return z->level;
         if (deferred()) return std::nullopt;
-        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
-        if (sign(q.dZ) != 0) return std::nullopt;
+        const exact_form::LineAxial<BigFloat>& z = axial();
+        if (sign(z.dZ) != 0) return std::nullopt;
         exact_zero_ = true;
         int level =
-            level_of(q.lo_bounded ? sign(q.Z0 - q.lo) : 1, q.hi_bounded ? sign(q.Z0 - q.hi) : -1);
+            level_of(z.lo_bounded ? sign(z.Z0 - z.lo) : 1, z.hi_bounded ? sign(z.Z0 - z.hi) : -1);
+        if (level != -1 && level != 1) return level;
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic(); // in an end's plane: its disc?
         if ((level == -1 && !q.lo_capped) || (level == 1 && !q.hi_capped)) return std::nullopt;
         return level;
     }
@@ -357,13 +383,13 @@ class ExactForm final : public ExtentEnds {
                           {G0->hi, bound_of_hi(*G0), Gp->hi, bound_of_hi(*Gp)}};
     }
     std::optional<BoundedDD> crossing(bool top, double t_factor) const override {
-        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        const exact_form::LineAxial<BigFloat>& q = axial();
         if (!(top ? q.hi_bounded : q.lo_bounded) || sign(q.dZ) == 0) return std::nullopt;
         return in_rung_units(enclosure((top ? q.hi : q.lo) - q.Z0) / enclosure(q.dZ), 1 / t_factor);
     }
 
     std::optional<BoundedDD> coordinate_at_end(bool top, int k) const override {
-        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        const exact_form::LineAxial<BigFloat>& q = axial();
         if (!(top ? q.hi_bounded : q.lo_bounded) || sign(q.dZ) == 0) return std::nullopt;
         BigFloat N = (top ? q.hi : q.lo) - q.Z0;
         BigFloat p = BigFloat(line_.L0[k]) * q.dZ + BigFloat(line_.v[k]) * N;
@@ -394,8 +420,9 @@ class ExactForm final : public ExtentEnds {
 
   private:
     // Notes that the rung asked; while deferred, no answer.
-    bool deferred() const {
-        asked_ = true;
+    enum Asked { at_end = 1, parallel_line = 2, other = 4 };
+    bool deferred(Asked what = other) const {
+        asked_ |= what;
         return deferred_;
     }
 
@@ -404,8 +431,10 @@ class ExactForm final : public ExtentEnds {
     const Line& line_;
     int orientation_;
     bool deferred_ = false;
-    mutable bool asked_ = false, exact_zero_ = false;
+    mutable int asked_ = 0; // Asked, or'ed
+    mutable bool exact_zero_ = false;
     mutable std::optional<exact_form::LineQuadratic<BigFloat>> q_;
+    mutable std::optional<exact_form::LineAxial<BigFloat>> axial_;
     mutable std::optional<BigFloat> D_;
     mutable std::optional<std::optional<bool>> parallel_; // exactly_parallel's answer, once asked
     mutable std::optional<std::optional<DiscPlanes>> planes_; // end_planes', once asked
@@ -449,16 +478,19 @@ struct CorrectTo {
         using Traits = ShapeTraits<S>;
         Result r; // the one result, returned in place
         ExactForm<Source> exact(src, l, orientation);
-        // The Newton rung on the scene as `unit` has it; r is left empty when the rung declines.
-        auto newton = [&](const auto& scene, const Unit& unit) LINEQUAD_INLINE_LAMBDA {
-            if constexpr (Traits::has_line_form) {
-                LineForm form = Traits::line_form(scene, unit.line.L0, unit.line.v, orientation);
-                if (newton_rung<Target>(form, unit, l, q, r, &exact)) {
-                    mark_certain<Target>(r, Rung::newton);
-                    return true;
-                }
-                r = Result();
+        // The Newton rung on a line form, in `unit`'s scene; r is left empty when it declines.
+        auto newton = [&](const LineForm& form, const Unit& unit) LINEQUAD_INLINE_LAMBDA {
+            if (newton_rung<Target>(form, unit, l, q, r, &exact)) {
+                mark_certain<Target>(r, Rung::newton);
+                return true;
             }
+            r = Result();
+            return false;
+        };
+        auto newton_on = [&](const auto& scene, const Unit& unit) LINEQUAD_INLINE_LAMBDA {
+            if constexpr (Traits::has_line_form)
+                return newton(Traits::line_form(scene, unit.line.L0, unit.line.v, orientation),
+                              unit);
             return false;
         };
         // The Newton rung's bounds hold at any scale (underflow is in them, overflow makes them
@@ -475,29 +507,47 @@ struct CorrectTo {
                 r = Result();
             }
         }
-        // A root next to an extent's end: the double-double rung first, then the Newton rung
-        // with the exact form's signs at that end, then the exact rung (with that exact form).
+        // Where the Newton rung needs exact signs (a root next to an extent's end, a double
+        // root, g constant), it defers them: the double-double rung first, then the Newton rung
+        // again with the exact form's signs, then the exact rung (with that exact form). The
+        // scene as given keeps its form for that second pass (built in place: no copy).
         exact.defer(true);
-        if (as_given && newton(src, Unit{1, 1, l})) return r;
+        bool given_form = as_given && Traits::has_line_form;
+        auto form_as_given = [&]() -> LineForm {
+            if constexpr (Traits::has_line_form)
+                if (given_form) return Traits::line_form(src, l.L0, l.v, orientation);
+            return LineForm{};
+        };
+        const LineForm given = form_as_given();
+        const Unit as_is{1, 1, l};
+        if (given_form && newton(given, as_is)) return r;
         std::optional<Unit> u = unit_scale(src, extent, l);
         std::optional<S> unit;
         std::optional<exact_form::LineQuadratic<BoundedDD>> dd;
         if (u) {
             unit = scaled(src.shape, 1 / u->pos_factor);
-            if (!as_given && newton(AsGiven<S>{*unit}, *u)) return r;
+            if (!as_given && newton_on(AsGiven<S>{*unit}, *u)) return r;
             dd = Traits::template exact_quadratic<BoundedDD>(*unit, u->line, orientation);
-            if (double_double_rung<Target>(*dd, *u, q, r)) {
-                mark_certain<Target>(r, Rung::double_double);
-                return r;
-            }
             exact.filter_with(*dd, u->t_factor);
         }
+        auto double_double = [&] {
+            r = Result(); // what a rung before left
+            if (!double_double_rung<Target>(*dd, *u, q, r)) return false;
+            mark_certain<Target>(r, Rung::double_double);
+            return true;
+        };
+        // Where the Newton rung asked only what the double-double quadratic answers as a filter,
+        // its second pass with that filter goes first, the double-double rung after it: at a
+        // root exactly at a rim or on a line along a cylinder's axis, that rung, whose bounds
+        // are no finer than the filter's, would pay for its whole solve and decline.
+        bool filtered_first = exact.asked() && exact.asked_only_filtered();
+        if (dd && !filtered_first && double_double()) return r;
         if (exact.asked()) {
             exact.defer(false);
-            r = Result(); // what the double-double rung left
-            if (as_given ? newton(src, Unit{1, 1, l}) : u && newton(AsGiven<S>{*unit}, *u))
-                return r;
+            r = Result(); // what a rung before left
+            if (given_form ? newton(given, as_is) : u && newton_on(AsGiven<S>{*unit}, *u)) return r;
         }
+        if (dd && filtered_first && double_double()) return r;
         r = exact_rung<Target>(exact.quadratic(), exact.discriminant(), l, q, !exact.exact_zero());
         mark_certain<Target>(r, Rung::exact);
         return r;

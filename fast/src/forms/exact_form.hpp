@@ -44,12 +44,19 @@ namespace linequad::exact_form {
 // What sign() returns when a filtered number type cannot decide.
 inline constexpr int undecided = undecided_sign;
 
-// A t^2 + 2 B t + C0 = 0 along the line, and Z(t) = Z0 + t dZ with the extent lo <= Z <= hi.
+// Z(t) = Z0 + t dZ along the line, with the extent lo <= Z <= hi where bounded: all that an
+// end's crossing and the point there need, for a few products where the quadratic takes dozens
+// (each shape's exact_axial gives these same values, in the same units, alone).
 template <class NT>
-struct LineQuadratic {
-    NT A, B, C0;
+struct LineAxial {
     NT Z0, dZ, lo, hi;
     bool lo_bounded = true, hi_bounded = true;
+};
+
+// A t^2 + 2 B t + C0 = 0 along the line, and its extent.
+template <class NT>
+struct LineQuadratic : LineAxial<NT> {
+    NT A, B, C0;
     // Discs at the bounded ends (lo: base, hi: top), and two solids meeting at Z = 0.
     bool lo_capped = false, hi_capped = false, two_solids = false;
     // Bounded ends that another part owns (a capsule's side at its seams): a root exactly there

@@ -108,6 +108,11 @@ struct ShapeTraits<CapsuleSide> {
         q.lo_open = q.hi_open = true;
         return q;
     }
+    template <class NT>
+    static exact_form::LineAxial<NT> exact_axial(const CapsuleSide& s, const Line& l,
+                                                 int orientation) {
+        return Of::exact_axial<NT>(side_cylinder(s), l, orientation);
+    }
 
     // The rung proves an extent decision only strictly, so an open end needs nothing more: a
     // root exactly at a seam is never proven inside, and goes to the exact rungs.
@@ -219,6 +224,18 @@ struct ShapeTraits<CapsuleEnd> {
         q.lo = NT(0);
         q.lo_bounded = true; // the seam belongs to the end: Z >= 0, closed
         return q;
+    }
+    template <class NT>
+    static exact_form::LineAxial<NT> exact_axial(const CapsuleEnd& s, const Line& l,
+                                                 int /*orientation*/) {
+        using exact_form::lift;
+        Vec3T<NT> h = lift<NT>(s.centre) - lift<NT>(s.other);
+        return {dot(lift<NT>(l.L0) - lift<NT>(s.centre), h),
+                dot(lift<NT>(l.v), h),
+                NT(0),
+                NT(0),
+                true,
+                false};
     }
 
     template <bool precise, class T>

@@ -323,6 +323,19 @@ struct ShapeTraits<Cylinder> {
         q.lo_capped = q.hi_capped = s.caps;
         return q;
     }
+    // Its Z alone: three dot products.
+    template <class NT>
+    static exact_form::LineAxial<NT> exact_axial(const Cylinder& s, const Line& l,
+                                                 int /*orientation*/) {
+        using exact_form::lift;
+        Vec3T<NT> h = lift<NT>(s.H) - lift<NT>(s.C);
+        return {dot(lift<NT>(l.L0) - lift<NT>(s.C), h),
+                dot(lift<NT>(l.v), h),
+                NT(0),
+                dot(h, h),
+                s.finite,
+                s.finite};
+    }
 
     // ---- correct: the Newton rung's line form ----
 

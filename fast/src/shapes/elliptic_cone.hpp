@@ -303,6 +303,22 @@ struct ShapeTraits<EllipticCone> {
         q.lo_capped = e.caps.lo, q.hi_capped = e.caps.hi, q.two_solids = e.caps.two_solids;
         return q;
     }
+    // Its Z alone: W.z, V.z and det from adj(M)'s last row a x b, without the other two.
+    template <class NT>
+    static exact_form::LineAxial<NT> exact_axial(const EllipticCone& s, const Line& l,
+                                                 int orientation) {
+        using exact_form::lift;
+        auto sigma = [&](NT x) { return orientation < 0 ? -x : x; }; // det's sign folded in
+        Vec3T<NT> nz = cross(lift<NT>(s.a), lift<NT>(s.b));
+        NT det = sigma(dot(nz, lift<NT>(s.H) - lift<NT>(s.C))); // |det|
+        bool two = s.nappes == 2;
+        return {sigma(dot(nz, lift<NT>(l.L0) - lift<NT>(s.H))),
+                sigma(dot(nz, lift<NT>(l.v))),
+                -det,
+                two ? det : NT(0),
+                s.finite,
+                !two || s.finite};
+    }
 
     // ---- correct: the Newton rung's line form ----
 

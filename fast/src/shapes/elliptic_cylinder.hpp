@@ -218,6 +218,20 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
         q.lo_capped = q.hi_capped = s.caps;
         return q;
     }
+    // Its Z alone: W.z, V.z and det from adj(M)'s last row a x b, without the other two.
+    template <class NT>
+    static exact_form::LineAxial<NT> exact_axial(const EllipticCylinder& s, const Line& l,
+                                                 int orientation) {
+        using exact_form::lift;
+        auto sigma = [&](NT x) { return orientation < 0 ? -x : x; }; // det's sign folded in
+        Vec3T<NT> nz = cross(lift<NT>(s.a), lift<NT>(s.b));
+        return {sigma(dot(nz, lift<NT>(l.L0) - lift<NT>(s.C))),
+                sigma(dot(nz, lift<NT>(l.v))),
+                NT(0),
+                sigma(dot(nz, lift<NT>(s.c))),
+                s.finite,
+                s.finite};
+    }
 
     // ---- correct: the Newton rung's line form ----
 

@@ -307,6 +307,17 @@ struct ShapeTraits<Frustum> {
         }
         return q;
     }
+    // Its Z alone: dot products with h (and the radii where the frustum runs on as a cone).
+    template <class NT>
+    static exact_form::LineAxial<NT> exact_axial(const Frustum& s, const Line& l,
+                                                 int /*orientation*/) {
+        using exact_form::lift;
+        Vec3T<NT> h = lift<NT>(s.C1) - lift<NT>(s.C0);
+        NT hh = dot(h, h), vh = dot(lift<NT>(l.v), h), wh = dot(lift<NT>(l.L0) - lift<NT>(s.C0), h);
+        if (s.finite) return {wh, vh, NT(0), hh, true, true};
+        NT r0(s.r0), dr = NT(s.r1) - r0;
+        return {r0 * hh + dr * wh, dr * vh, NT(0), NT(0), true, false};
+    }
 
     // ---- correct: the Newton rung's line form (four terms) ----
 
