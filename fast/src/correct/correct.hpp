@@ -398,10 +398,19 @@ class ExactForm final : public ExtentEnds {
     }
 
     bool zero_at_root(int k) const override {
-        if (line_.v[k] == 0) return false;
+        return line_.v[k] != 0 && sign(at_coordinate_zero(k)) == 0;
+    }
+
+    std::optional<std::array<BoundedDD, 2>> coordinate_roots(int k) const override {
+        if (line_.v[k] == 0) return std::nullopt;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
-        BigFloat L(line_.L0[k]), v(line_.v[k]);
-        return sign(q.A * L * L - (q.B * L * v).scaled(1) + q.C0 * v * v) == 0;
+        if (sign(q.A) == 0 || sign(discriminant()) < 0) return std::nullopt;
+        BigFloat half_slope = q.B * BigFloat(line_.v[k]) - q.A * BigFloat(line_.L0[k]);
+        BoundedDD b = enclosure(half_slope);
+        BoundedDD root_D = BoundedDD(std::fabs(line_.v[k])) * sqrt(enclosure(discriminant()));
+        // The stable pair: m = -(b + sgn(b) sqrt(D')), the roots m / A and c / m.
+        BoundedDD m = sign(half_slope) < 0 ? root_D - b : -(b + root_D);
+        return std::array<BoundedDD, 2>{enclosure(at_coordinate_zero(k)) / m, m / enclosure(q.A)};
     }
 
     // The line form's planes of every bounded end (for an open shape's, otherwise not formed),
@@ -419,6 +428,13 @@ class ExactForm final : public ExtentEnds {
     }
 
   private:
+    // g(-L0_k / v_k) v_k^2 = A L0_k^2 - 2 B L0_k v_k + C0 v_k^2, exactly.
+    BigFloat at_coordinate_zero(int k) const {
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        BigFloat L(line_.L0[k]), v(line_.v[k]);
+        return q.A * L * L - (q.B * L * v).scaled(1) + q.C0 * v * v;
+    }
+
     // Notes that the rung asked; while deferred, no answer.
     enum Asked { at_end = 1, parallel_line = 2, other = 4 };
     bool deferred(Asked what = other) const {

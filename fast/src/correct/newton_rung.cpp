@@ -141,14 +141,40 @@ LINEQUAD_INLINE Difference difference_of(double c1, double x1, double c2, double
     return (std::fabs(off.d) + off.bound + t.e) * F::cover(2) < en.e && ends.zero_at_root(k);
 }
 
+// Coordinate k of a lateral root's point where its bound cannot round it and it is not zero (a
+// rim point moved a few ulps off a coordinate plane): one of the two roots of its own quadratic
+// (ExtentEnds::coordinate_roots), each enclosed relative to itself. This root's coordinate is
+// one of them; the other is the one its enclosure, L0_k + t v_k within e, excludes. Rare, so out
+// of line.
+template <class Target>
+[[gnu::noinline]] std::optional<double>
+coordinate_at_root(const Enclosure<double>& en, const Unit& unit, int k, const ExtentEnds& ends) {
+    std::optional<std::array<BoundedDD, 2>> P = ends.coordinate_roots(k);
+    if (!P) return std::nullopt;
+    double t = en.c + en.x, v = unit.line.v[k], p = std::fma(t, v, unit.line.L0[k]);
+    double e = (std::fabs(v) * (en.e + u * std::fabs(t)) + u * std::fabs(p)) * F::cover(8) +
+               F::underflow_floor;
+    p *= unit.pos_factor; // the caller's units: a power of two, so within a denormal
+    e = e * unit.pos_factor * F::cover(2) + 2 * F::denorm_min;
+    // |P - p| >= |P.hi - p| - |P.lo| - P.e - e, and the difference is rounded once.
+    auto excluded = [&](const BoundedDD& root) {
+        return std::fabs(root.hi - p) * (1 - 2 * u) >
+               (std::fabs(root.lo) + root.e + e) * F::cover(2);
+    };
+    bool out0 = excluded((*P)[0]), out1 = excluded((*P)[1]);
+    if (out0 == out1) return std::nullopt;
+    return round_proven<Target>(out0 ? (*P)[1] : (*P)[0], 1.0);
+}
+
 // A coordinate its bound leaves unrounded, from the exact form: at an end's crossing, or a
-// lateral root's zero.
+// lateral root's, zero or beside it.
 template <class Target>
 std::optional<double> exact_coordinate(const Enclosure<double>& en, Part part, const Unit& unit,
                                        int k, ExactCoordinate exact, const ExtentEnds& ends) {
     if (exact.end >= 0) return coordinate_at_end<Target>(ends, exact.end == 1, k);
-    if (part == Part::lateral && zero_coordinate(en, unit, k, ends)) return 0.0;
-    return std::nullopt;
+    if (part != Part::lateral) return std::nullopt;
+    if (zero_coordinate(en, unit, k, ends)) return 0.0;
+    return coordinate_at_root<Target>(en, unit, k, ends);
 }
 
 // The hit, t and its point correctly rounded to Target in the caller's units; false when a bound

@@ -24,6 +24,7 @@
 
 #include "linequad/result.hpp"
 
+#include <array>
 #include <optional>
 
 namespace linequad::detail {
@@ -87,6 +88,13 @@ class ExtentEnds {
     // Whether t* = -L0_k / v_k is a root of g, exactly (g(t*) v_k^2 = A L0_k^2 - 2 B L0_k v_k +
     // C0 v_k^2 = 0): the line meets the surface on the plane of coordinate k = 0 there.
     virtual bool zero_at_root(int k) const = 0;
+    // Coordinate k at either root: P = L0_k + t v_k is a root of A P^2 + 2 (B v_k - A L0_k) P +
+    // (A L0_k^2 - 2 B L0_k v_k + C0 v_k^2) = 0 (t = (P - L0_k) / v_k put in g, times v_k^2), whose
+    // discriminant is v_k^2 D. Its two roots from its exact coefficients, each enclosed relative
+    // to itself, in the caller's units: for a lateral hit a few ulps from a coordinate plane,
+    // where L0_k + t v_k cancels and t's bound cannot round it. None where A = 0, D < 0 or
+    // v_k = 0.
+    virtual std::optional<std::array<BoundedDD, 2>> coordinate_roots(int k) const = 0;
 
   protected:
     ~ExtentEnds() = default;
