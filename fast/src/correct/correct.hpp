@@ -368,6 +368,17 @@ class ExactForm final : public ExtentEnds {
         return in_rung_units(enclosure(-q.B) / enclosure(q.A), 1 / t_factor);
     }
 
+    std::optional<LinearRoot> linear_root(double t_factor) const override {
+        if (deferred()) return std::nullopt;
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        if (sign(q.A) != 0 || sign(q.B) == 0) return std::nullopt;
+        exact_zero_ = true;
+        std::optional<BoundedDD> t =
+            in_rung_units(enclosure(-q.C0) / enclosure(q.B.scaled(1)), 1 / t_factor);
+        if (!t) return std::nullopt;
+        return LinearRoot{*t, sign(q.B)};
+    }
+
     // At t = c t_factor (the caller's units): G = C0 + t (2B + A t) and G' / 2 = B + A t exactly;
     // in the rung's units G' and A carry t_factor and its square.
     std::optional<ExactLocal> local_at(double c, double t_factor) const override {

@@ -610,16 +610,46 @@ bool closed_hits(const LineForm& f, const Leading<double>& A,
     return piece_hits<Target>(f, A.A > 0, root, side, rim, unit, caller, query, r, ends);
 }
 
+// g linear along the line (A = 0 exactly, B != 0: a line parallel to a cone's generator, off
+// the cone): it crosses the quadric once, at t* = -C0 / 2B, rational. An open shape meets the
+// line there alone, where that point lies inside the extent and the range. A closed one meets
+// the piece inside the quadric, the ray from t* on which g < 0: within one nappe (g < 0 never
+// reaches the apex), it runs away from it, so the piece from t* to beyond the extent's end it
+// runs toward, cut to the extent as two roots' piece is. t* next to an end: the next rungs.
+template <class Target>
+bool linear_root_hit(const LineForm& f, const Unit& unit, const Line& caller, Query query,
+                     Result& r, const ExtentEnds& ends) {
+    std::optional<LinearRoot> root = ends.linear_root(unit.t_factor);
+    if (!root) return false;
+    Enclosure<double> en{root->t.hi, root->t.lo, root->t.e, true, true};
+    r = Result();
+    if (f.discs == Discs::none) {
+        int inside = kept(f, unit, en);
+        if (inside < 0) return false;
+        return inside == 0 || add_hit<Target>(en, Part::lateral, unit, caller, query, r, {}, &ends);
+    }
+    Side at = side_of(f, en);
+    if (!(std::fabs(f.dZ) > f.e_dZ) || near_end(at) || at == Side::unknown) return false;
+    bool later = root->B_sign < 0; // the piece: t > t* (else t < t*)
+    Side beyond = (f.dZ > 0) == later ? Side::above : Side::below;
+    int i = later ? 0 : 1; // t* is the piece's start (root 0) or its end (root 1)
+    std::optional<Enclosure<double>> roots[2];
+    Side side[2];
+    roots[i] = en, side[i] = at, side[1 - i] = beyond;
+    return piece_hits<Target>(f, true, roots, side, side, unit, caller, query, r, &ends);
+}
+
 // g constant along the line (A = B = 0 exactly, which only `ends` proves: a line parallel to a
-// cylinder's axis, or to a cone's generator away from the cone). Outside the quadric (C0 > 0)
-// it meets nothing, and inside (C0 < 0, a cylinder's) it meets no lateral point: an open shape
-// nothing, a closed one the two discs, in the order dZ's sign gives (the piece from below the
-// extent to above it). On the quadric, or unproven: the next rungs. Rare, so out of line.
+// cylinder's axis, or to a cone's generator in the plane touching the cone along it). Outside the
+// quadric (C0 > 0) it meets nothing, and inside (C0 < 0, a cylinder's) it meets no lateral point:
+// an open shape nothing, a closed one the two discs, in the order dZ's sign gives (the piece from
+// below the extent to above it). On the quadric, or unproven: the next rungs. Rare, so out of line.
 template <class Target>
 [[gnu::noinline]] bool constant_g_hits(const LineForm& f, const Unit& unit, const Line& caller,
                                        Query query, Result& r, const ExtentEnds& ends) {
     std::optional<int> c0 = ends.constant_sign();
-    if (!c0 || *c0 == 0) return false;
+    if (!c0) return linear_root_hit<Target>(f, unit, caller, query, r, ends);
+    if (*c0 == 0) return false;
     if (*c0 > 0 || f.discs == Discs::none) return true;
     if (f.discs != Discs::convex || !(std::fabs(f.dZ) > f.e_dZ)) return false;
     Side first = f.dZ > 0 ? Side::below : Side::above, last = f.dZ > 0 ? Side::above : Side::below;

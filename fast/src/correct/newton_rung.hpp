@@ -53,6 +53,13 @@ struct ExactLocal {
 
 // The ladder's answers to what the rung's bounds leave open, exactly, from the exact form (the
 // exact rung's, formed once and only when asked).
+// g = 2 B (t - t*) along the line: its root t* and B's sign (g < 0, inside the quadric, before the
+// root where B > 0, after it where B < 0).
+struct LinearRoot {
+    BoundedDD t;
+    int B_sign;
+};
+
 class ExtentEnds {
   public:
     // An end's crossing; no value where the end is not bounded.
@@ -68,6 +75,10 @@ class ExtentEnds {
     // Where the bounds prove no simple root: when g has a double root (B^2 - A C0 = 0, A != 0:
     // a tangency), that root -B/A enclosed, in the rung's units.
     virtual std::optional<BoundedDD> double_root(double t_factor) const = 0;
+    // Where the bounds cannot tell A from 0 and g is not constant: when g is linear along the
+    // line (A = 0, B != 0: a line parallel to a cone's generator, off the cone), its one root
+    // -C0 / 2B enclosed, in the rung's units, and the sign of B.
+    virtual std::optional<LinearRoot> linear_root(double t_factor) const = 0;
     // Where a root or a point's coordinate lies a few ulps from zero (a line starting on or
     // beside the surface, or a disc's plane; a hit beside a coordinate plane), the rung's bounds,
     // absolute, are wide beside it; the exact form's values are not. g's local quadratic at c,
