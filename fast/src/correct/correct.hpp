@@ -368,6 +368,13 @@ class ExactForm final : public ExtentEnds {
         return in_rung_units(enclosure(-q.B) / enclosure(q.A), 1 / t_factor);
     }
 
+    std::optional<int> vertex_against(bool top) const override {
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        if (!(top ? q.hi_bounded : q.lo_bounded) || sign(q.A) == 0) return std::nullopt;
+        // Z(-B/A) - end = ((Z0 - end) A - dZ B) / A
+        return sign((q.Z0 - (top ? q.hi : q.lo)) * q.A - q.dZ * q.B) * sign(q.A);
+    }
+
     std::optional<LinearRoot> linear_root(double t_factor) const override {
         if (deferred()) return std::nullopt;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();

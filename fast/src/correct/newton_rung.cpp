@@ -698,11 +698,37 @@ stepped_again(const LineForm& f, const Leading<double>& A, const Local<double>& 
     }
     return en;
 }
+// A tangency its enclosure leaves next to an end (at or beside a rim, a cone's apex): its side of
+// that end from the exact form. Beyond it: no hit. Short of it: inside the extent (the other end
+// is far), as the range decides. At it: the end's point, kept where the extent is closed there,
+// as its disc's where it has one (a rim belongs to its disc); not where another part owns it.
+int tangent_at_end(const LineForm& f, const Unit& unit, const Enclosure<double>& en,
+                   const ExtentEnds& ends, Part& part, ExactCoordinate& exact) {
+    Side near = side_of(f, en);
+    if (!near_end(near)) return -1;
+    bool top = near == Side::near_hi;
+    std::optional<int> against = ends.vertex_against(top);
+    if (!against) return -1;
+    Kept<double> by_range = in_range(unit, en);
+    int in_range = by_range.outside ? 0 : by_range.inside ? 1 : -1;
+    if (*against != 0) return (top ? *against > 0 : *against < 0) ? 0 : in_range;
+    if (f.discs != Discs::none && !f.planes) return -1; // which ends have discs: not in this form
+    std::optional<EndCrossing> end = ends.at(top, unit.t_factor);
+    if (!end || end->open) return end ? 0 : -1;
+    if (f.planes && (top ? f.planes->at_hi : f.planes->at_lo)) {
+        part = top ? Part::top : Part::base;
+        if (f.planes->axis >= 0 && unit.pos_factor == 1)
+            exact = {f.planes->axis, top ? f.planes->hi_at : f.planes->lo_at};
+    }
+    exact.end = top ? 1 : 0;
+    return in_range;
+}
+
 // A tangency (a double root, which only `ends` proves: D = 0 exactly), A > 0: the line touches
 // the quadric at t = -B/A, rational, and meets the shape there alone, where that point lies
-// strictly inside the extent (a closed solid too, and either of two solids, the apex between
-// them included: the quadric's inside is that point) and the range. At an end or unproven: the
-// next rungs. Rare, so out of line.
+// inside the extent (a closed solid too, and either of two solids, the apex between them
+// included: the quadric's inside is that point) and the range. Unproven: the next rungs. Rare,
+// so out of line.
 template <class Target>
 [[gnu::noinline]] bool tangent_hit(const LineForm& f, const Leading<double>& A, const Unit& unit,
                                    const Line& caller, Query query, Result& r,
@@ -711,11 +737,14 @@ template <class Target>
     std::optional<BoundedDD> t = ends.double_root(unit.t_factor);
     if (!t) return false;
     Enclosure<double> en{t->hi, t->lo, t->e, true, true};
+    Part part = Part::lateral;
+    ExactCoordinate exact;
     int inside = kept(f, unit, en);
+    if (inside < 0) inside = tangent_at_end(f, unit, en, ends, part, exact);
     if (inside < 0) return false;
     r = Result();
     if (inside == 0) return true;
-    if (!add_hit<Target>(en, Part::lateral, unit, caller, query, r)) return false;
+    if (!add_hit<Target>(en, part, unit, caller, query, r, exact, &ends)) return false;
     r.hits[0].kind = HitKind::tangent;
     return true;
 }

@@ -75,6 +75,9 @@ class ExtentEnds {
     // Where the bounds prove no simple root: when g has a double root (B^2 - A C0 = 0, A != 0:
     // a tangency), that root -B/A enclosed, in the rung's units.
     virtual std::optional<BoundedDD> double_root(double t_factor) const = 0;
+    // sgn(Z(-B/A) - end), Z at the vertex against the top's or the base's level, exactly (at a
+    // double root, the tangency's side of that end); none where that end is not bounded or A = 0.
+    virtual std::optional<int> vertex_against(bool top) const = 0;
     // Where the bounds cannot tell A from 0 and g is not constant: when g is linear along the
     // line (A = 0, B != 0: a line parallel to a cone's generator, off the cone), its one root
     // -C0 / 2B enclosed, in the rung's units, and the sign of B.
