@@ -407,12 +407,29 @@ class ExactForm final : public ExtentEnds {
     }
 
     std::optional<BoundedDD> coordinate_at_end(bool top, int k) const override {
-        const exact_form::LineAxial<BigFloat>& q = axial();
-        if (!(top ? q.hi_bounded : q.lo_bounded) || sign(q.dZ) == 0) return std::nullopt;
-        BigFloat N = (top ? q.hi : q.lo) - q.Z0;
-        BigFloat p = BigFloat(line_.L0[k]) * q.dZ + BigFloat(line_.v[k]) * N;
-        if (sign(p) == 0) return BoundedDD(0);
-        return enclosure(p) / enclosure(q.dZ);
+        std::optional<BigFloat> p = end_numerator(top, k);
+        if (!p) return std::nullopt;
+        if (sign(*p) == 0) return BoundedDD(0);
+        return enclosure(*p) / enclosure(axial().dZ);
+    }
+    std::optional<int> coordinate_at_end_against(bool top, int k, double near,
+                                                 double half) const override {
+        std::optional<BigFloat> p = end_numerator(top, k);
+        if (!p) return std::nullopt;
+        const BigFloat& dZ = axial().dZ; // P - m = (p - m dZ) / dZ
+        return sign(*p - (BigFloat(near) + BigFloat(half)) * dZ) * sign(dZ);
+    }
+
+    std::optional<int> coordinate_root_against(int k, int other_side, double near,
+                                               double half) const override {
+        if (line_.v[k] == 0) return std::nullopt;
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        if (sign(q.A) == 0) return std::nullopt;
+        // Q(m) = A (m - P) (m - P'): sgn(P - m) = -sgn Q(m) sgn A sgn(m - P').
+        BigFloat m = BigFloat(near) + BigFloat(half);
+        int Q =
+            sign(q.A * m * m + (coordinate_half_slope(k) * m).scaled(1) + at_coordinate_zero(k));
+        return -Q * sign(q.A) * other_side;
     }
 
     bool zero_at_root(int k) const override {
@@ -423,7 +440,7 @@ class ExactForm final : public ExtentEnds {
         if (line_.v[k] == 0) return std::nullopt;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) == 0 || sign(discriminant()) < 0) return std::nullopt;
-        BigFloat half_slope = q.B * BigFloat(line_.v[k]) - q.A * BigFloat(line_.L0[k]);
+        BigFloat half_slope = coordinate_half_slope(k);
         BoundedDD b = enclosure(half_slope);
         BoundedDD root_D = BoundedDD(std::fabs(line_.v[k])) * sqrt(enclosure(discriminant()));
         // The stable pair: m = -(b + sgn(b) sqrt(D')), the roots m / A and c / m.
@@ -446,6 +463,20 @@ class ExactForm final : public ExtentEnds {
     }
 
   private:
+    // L0_k dZ + v_k (end - Z0), exactly: coordinate k at the end's crossing times dZ; none where
+    // that end is not bounded or dZ = 0.
+    std::optional<BigFloat> end_numerator(bool top, int k) const {
+        const exact_form::LineAxial<BigFloat>& q = axial();
+        if (!(top ? q.hi_bounded : q.lo_bounded) || sign(q.dZ) == 0) return std::nullopt;
+        BigFloat N = (top ? q.hi : q.lo) - q.Z0;
+        return BigFloat(line_.L0[k]) * q.dZ + BigFloat(line_.v[k]) * N;
+    }
+
+    // Half the slope of coordinate k's quadratic: B v_k - A L0_k, exactly.
+    BigFloat coordinate_half_slope(int k) const {
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        return q.B * BigFloat(line_.v[k]) - q.A * BigFloat(line_.L0[k]);
+    }
     // g(-L0_k / v_k) v_k^2 = A L0_k^2 - 2 B L0_k v_k + C0 v_k^2, exactly.
     BigFloat at_coordinate_zero(int k) const {
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();

@@ -6,6 +6,8 @@
 #include "correct/newton_steps.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -109,13 +111,72 @@ struct ExactCoordinate {
     int end = -1;
 };
 
+// Where x's bound leaves its rounding to Target open because a rounding boundary lies inside it
+// (a value at, or a few ulps beside, the midpoint of two Target values): that boundary, near +
+// half, between the Target values near and near + 2 half. None where the bound is wide enough
+// to hold another boundary too (a quarter of the cell), or near is not a normal Target value.
+struct RoundingBoundary {
+    double near, half;
+};
+template <class Target>
+std::optional<RoundingBoundary> boundary_within(const BoundedDD& x) {
+    double near, beside;
+    if constexpr (std::is_same_v<Target, Binary32>) {
+        float f = float(x.hi + x.lo);
+        near = f;
+        if (!(std::fabs(near) >= 0x1p-126 && std::fabs(near) <= 0x1p+127)) return std::nullopt;
+        double r = (x.hi - near) + x.lo; // x.hi - near exact: near is within a float's ulp
+        if (r == 0) return std::nullopt;
+        beside = std::nextafter(f, r > 0 ? INFINITY : -INFINITY);
+    } else {
+        near = x.hi + x.lo;
+        if (!(std::fabs(near) >= 0x1p-960 && std::fabs(near) <= 0x1p+1000)) return std::nullopt;
+        double r = (x.hi - near) + x.lo;
+        if (r == 0) return std::nullopt;
+        beside = std::nextafter(near, r > 0 ? INFINITY : -INFINITY);
+    }
+    double half = (beside - near) / 2; // exact: adjacent values, far from the subnormals
+    double r = (x.hi - near) + x.lo;
+    // The value lies within x.e (and r's rounding) of near + r: on this side of the boundary
+    // behind near (at least half / 2 away, at a power of two) and short of the one past beside.
+    if (!((x.e + F::u * std::fabs(r)) * F::cover(8) < std::fabs(half) / 2)) return std::nullopt;
+    return RoundingBoundary{near, half};
+}
+LINEQUAD_INLINE bool even(double value, Binary64) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return (bits & 1) == 0;
+}
+LINEQUAD_INLINE bool even(double value, Binary32) {
+    float f = float(value);
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    return (bits & 1) == 0;
+}
+// x rounded to Target, where its bound proves it, else by the exact sign of the value against
+// the one rounding boundary inside that bound (`against(near, half)`: sgn(value - near - half)):
+// beyond it, the Target value past it; short of it, near; on it, the even one.
+template <class Target, class Against>
+std::optional<double> round_exactly(const BoundedDD& x, Against against) {
+    if (std::optional<double> r = round_proven<Target>(x, 1.0)) return r;
+    std::optional<RoundingBoundary> b = boundary_within<Target>(x);
+    if (!b) return std::nullopt;
+    std::optional<int> s = against(b->near, b->half);
+    if (!s) return std::nullopt;
+    double beside = b->near + 2 * b->half; // exact
+    if (*s != 0) return (*s > 0) == (b->half > 0) ? beside : b->near;
+    return even(b->near, Target{}) ? b->near : beside;
+}
+
 // Coordinate k of the point where the line crosses an end's plane, from the exact form, rounded
 // to Target. Rare, so out of line.
 template <class Target>
 [[gnu::noinline]] std::optional<double> coordinate_at_end(const ExtentEnds& ends, bool top, int k) {
     std::optional<BoundedDD> p = ends.coordinate_at_end(top, k);
     if (!p) return std::nullopt;
-    return round_proven<Target>(*p, 1.0);
+    return round_exactly<Target>(*p, [&](double near, double half) {
+        return ends.coordinate_at_end_against(top, k, near, half);
+    });
 }
 
 // (c1 + x1) - (c2 + x2), two values' high and low parts (enclosures' centres): d within `bound`
@@ -163,7 +224,15 @@ coordinate_at_root(const Enclosure<double>& en, const Unit& unit, int k, const E
     };
     bool out0 = excluded((*P)[0]), out1 = excluded((*P)[1]);
     if (out0 == out1) return std::nullopt;
-    return round_proven<Target>(out0 ? (*P)[1] : (*P)[0], 1.0);
+    const BoundedDD &ours = (*P)[out0 ? 1 : 0], &other = (*P)[out0 ? 0 : 1];
+    return round_exactly<Target>(ours, [&](double near, double half) -> std::optional<int> {
+        // The other root's side of the boundary: P' - m = (P'.hi - near - half) + P'.lo, three
+        // roundings, and P'.e.
+        double a = other.hi - near, b = a - half, d = b + other.lo;
+        double bound = other.e + u * (std::fabs(a) + std::fabs(b) + std::fabs(d));
+        if (!(std::fabs(d) > bound * F::cover(4))) return std::nullopt;
+        return ends.coordinate_root_against(k, d > 0 ? -1 : 1, near, half);
+    });
 }
 
 // A coordinate its bound leaves unrounded, from the exact form: at an end's crossing, or a

@@ -109,6 +109,15 @@ class ExtentEnds {
     // where L0_k + t v_k cancels and t's bound cannot round it. None where A = 0, D < 0 or
     // v_k = 0.
     virtual std::optional<std::array<BoundedDD, 2>> coordinate_roots(int k) const = 0;
+    // sgn(P - m), m = near + half exactly, for coordinate k at one root of its quadratic
+    // (coordinate_roots), the other root P' on side sgn(m - P') = other_side of m (proven by the
+    // caller); or at an end's crossing (coordinate_at_end). Where its enclosure holds a rounding
+    // boundary m, the midpoint of two Target values (a tie, or a few ulps beside one), which no
+    // enclosure decides.
+    virtual std::optional<int> coordinate_root_against(int k, int other_side, double near,
+                                                       double half) const = 0;
+    virtual std::optional<int> coordinate_at_end_against(bool top, int k, double near,
+                                                         double half) const = 0;
 
   protected:
     ~ExtentEnds() = default;
