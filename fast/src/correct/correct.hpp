@@ -375,6 +375,11 @@ class ExactForm final : public ExtentEnds {
         return sign((q.Z0 - (top ? q.hi : q.lo)) * q.A - q.dZ * q.B) * sign(q.A);
     }
 
+    bool end_open(bool top) const override {
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        return top ? q.hi_open : q.lo_open;
+    }
+
     std::optional<LinearRoot> linear_root(double t_factor) const override {
         if (deferred()) return std::nullopt;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();

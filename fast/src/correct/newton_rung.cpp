@@ -782,8 +782,7 @@ int tangent_at_end(const LineForm& f, const Unit& unit, const Enclosure<double>&
     int in_range = by_range.outside ? 0 : by_range.inside ? 1 : -1;
     if (*against != 0) return (top ? *against > 0 : *against < 0) ? 0 : in_range;
     if (f.discs != Discs::none && !f.planes) return -1; // which ends have discs: not in this form
-    std::optional<EndCrossing> end = ends.at(top, unit.t_factor);
-    if (!end || end->open) return end ? 0 : -1;
+    if (ends.end_open(top)) return 0;
     if (f.planes && (top ? f.planes->at_hi : f.planes->at_lo)) {
         part = top ? Part::top : Part::base;
         if (f.planes->axis >= 0 && unit.pos_factor == 1)

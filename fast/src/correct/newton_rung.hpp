@@ -78,6 +78,8 @@ class ExtentEnds {
     // sgn(Z(-B/A) - end), Z at the vertex against the top's or the base's level, exactly (at a
     // double root, the tangency's side of that end); none where that end is not bounded or A = 0.
     virtual std::optional<int> vertex_against(bool top) const = 0;
+    // Whether that end belongs to another part (a capsule side's seam): a root there is not kept.
+    virtual bool end_open(bool top) const = 0;
     // Where the bounds cannot tell A from 0 and g is not constant: when g is linear along the
     // line (A = 0, B != 0: a line parallel to a cone's generator, off the cone), its one root
     // -C0 / 2B enclosed, in the rung's units, and the sign of B.
