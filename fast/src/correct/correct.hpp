@@ -375,6 +375,12 @@ class ExactForm final : public ExtentEnds {
         return sign((q.Z0 - (top ? q.hi : q.lo)) * q.A - q.dZ * q.B) * sign(q.A);
     }
 
+    SignsAt signs_at(double near, double half) const override {
+        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
+        BigFloat m = BigFloat(near) + BigFloat(half), half_slope = q.B + q.A * m;
+        return {sign(q.C0 + m * (half_slope + q.B)), sign(half_slope), sign(q.A)};
+    }
+
     bool end_open(bool top) const override {
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         return top ? q.hi_open : q.lo_open;

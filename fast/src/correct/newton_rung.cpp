@@ -235,6 +235,25 @@ coordinate_at_root(const Enclosure<double>& en, const Unit& unit, int k, const E
     });
 }
 
+// t of a lateral root where its bound leaves the rounding open because a rounding boundary m lies
+// inside it (a tie, or a few ulps beside one): t - m has the sign of -g(m) g'(m), exactly, where
+// no vertex lies between m and the root: g' at m of its sign at a simple root (-A's at the
+// smaller, A's at the larger; B's where A = 0). At a double root it holds as well. Rare, so out of
+// line.
+template <class Target>
+[[gnu::noinline]] std::optional<double> t_at_boundary(const Enclosure<double>& en, const Unit& unit,
+                                                      const ExtentEnds& ends) {
+    double f = unit.t_factor; // a power of two: exact, but for a part that underflows
+    BoundedDD t{en.c * f, en.x * f, en.e * f + 2 * F::denorm_min};
+    if (!std::isfinite(t.hi) || !std::isfinite(t.e)) return std::nullopt;
+    return round_exactly<Target>(t, [&](double near, double half) -> std::optional<int> {
+        SignsAt at = ends.signs_at(near, half);
+        if (at.g == 0) return 0;
+        if (at.A != 0 && at.slope != (en.smaller ? -at.A : at.A)) return std::nullopt;
+        return -at.g * at.slope;
+    });
+}
+
 // A coordinate its bound leaves unrounded, from the exact form: at an end's crossing, or a
 // lateral root's, zero or beside it.
 template <class Target>
@@ -261,6 +280,8 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
         double t = en.c + en.x, e_t = en.e + u * std::fabs(t);
         std::optional<double> rounded =
             round_proven<Target>({t, 0, e_t * F::cover(4) + F::denorm_min}, unit.t_factor);
+        if (!rounded && ends && part == Part::lateral)
+            rounded = t_at_boundary<Target>(en, unit, *ends);
         if (!rounded) return false;
         Hit& h = r.hits[r.count];
         h.t = *rounded, h.kind = HitKind::cross, h.part = part, h.p = {};
@@ -290,7 +311,13 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
         return true;
     } else {
         Rounded<double> t = rounded_t(en, unit.t_factor);
-        if (!t.proven) return false;
+        if (!t.proven) {
+            std::optional<double> at = ends && part == Part::lateral
+                                           ? t_at_boundary<Target>(en, unit, *ends)
+                                           : std::nullopt;
+            if (!at) return false;
+            t.value = *at;
+        }
         Hit& h = r.hits[r.count];
         h.t = t.value;
         h.kind = HitKind::cross;
@@ -334,11 +361,12 @@ LINEQUAD_INLINE std::optional<Enclosure<double>> tighter(const Enclosure<double>
                                                          const Unit& unit, const ExtentEnds& ends) {
     std::optional<Enclosure<double>> t;
     if (part == Part::lateral) {
-        // About the range's end where the root lies beside it: there the local quadratic shows
-        // a root exactly at that end, which no enclosure about another point can.
+        // About the range's end where the root lies beside it, or the line's origin (a line
+        // starting on the surface, whatever its range): there the local quadratic shows a root
+        // exactly at that point, which no enclosure about another point can.
         auto [at, e_at] = t_of(en);
         double c = at;
-        for (double end : {unit.line.range.t0, unit.line.range.t1})
+        for (double end : {unit.line.range.t0, unit.line.range.t1, 0.0})
             if (std::isfinite(end) && std::fabs(at - end) <= 2 * e_at) c = end;
         t = root_from_exact_form(ends, unit.t_factor, c, en.smaller);
     } else {

@@ -55,6 +55,11 @@ struct ExactLocal {
 // exact rung's, formed once and only when asked).
 // g = 2 B (t - t*) along the line: its root t* and B's sign (g < 0, inside the quadric, before the
 // root where B > 0, after it where B < 0).
+// The signs of g and g' (twice B + A t) at a point, exactly, and of A.
+struct SignsAt {
+    int g, slope, A;
+};
+
 struct LinearRoot {
     BoundedDD t;
     int B_sign;
@@ -78,6 +83,9 @@ class ExtentEnds {
     // sgn(Z(-B/A) - end), Z at the vertex against the top's or the base's level, exactly (at a
     // double root, the tangency's side of that end); none where that end is not bounded or A = 0.
     virtual std::optional<int> vertex_against(bool top) const = 0;
+    // g, g' and A's signs at t = m, m = near + half exactly, in the caller's units: for a root
+    // whose enclosure holds the rounding boundary m (a tie, or a few ulps beside one).
+    virtual SignsAt signs_at(double near, double half) const = 0;
     // Whether that end belongs to another part (a capsule side's seam): a root there is not kept.
     virtual bool end_open(bool top) const = 0;
     // Where the bounds cannot tell A from 0 and g is not constant: when g is linear along the
