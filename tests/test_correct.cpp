@@ -891,6 +891,16 @@ TEST_CASE("correct proves a root at the line's origin on the Newton rung whateve
     CHECK(on_newton_rung(Family::inside_start, 5, 5, 29, 1200) >= 1190);
 }
 
+TEST_CASE("correct finds a steep line's nappe beside the apex on the Newton rung") {
+    // cap_axis on the closed cone and frustum: lines along the axis, some moved 2^-k beside it,
+    // so through or beside the apex. A line steeper than the generators (A < 0) has a root on
+    // each nappe; beside the apex neither root's Z (the frustum's R) has a proven sign, but the
+    // roots are apart and Z is linear in t, so the one with the smaller Z (larger R) is on the
+    // solid's nappe. 1,144 of 1,200 lines on the rung (1,096 without it). Every answer as the
+    // oracle's.
+    CHECK(on_newton_rung(Family::cap_axis, 2, 3, 30, 1200) >= 1135);
+}
+
 namespace {
 // Shape S's Z alone (exact_axial, where it has one) against its exact quadratic's Z: equal values
 // (exact, so compared exactly) and the same bounded ends.

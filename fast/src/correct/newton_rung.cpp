@@ -492,7 +492,10 @@ LINEQUAD_INLINE bool near_end(Side s) {
 
 // For A < 0 (a line steeper than a cone's generators, one root on each nappe): the root on the
 // solid's nappe, 0 or 1, or -1 where the bounds cannot tell. The cone's nappe is Z <= 0 (the other
-// root above the apex, Z > 0); the frustum's is R >= 0, the sign of its fourth term.
+// root above the apex, Z > 0); the frustum's is R >= 0, the sign of its fourth term. Where both
+// roots lie too near the apex for their signs (a line along the axis, beside the apex), the order
+// tells: the roots are apart, on opposite nappes, and Z (R) is linear in t, so the root with the
+// smaller Z (the larger R) is the solid's, as the rate's proven sign shows.
 LINEQUAD_INLINE int root_on_nappe(const LineForm& f,
                                   const std::optional<Enclosure<double>> (&root)[2]) {
     auto side_of_nappe = [&](const Enclosure<double>& en) { // 1: on the solid's, -1: the other
@@ -505,7 +508,15 @@ LINEQUAD_INLINE int root_on_nappe(const LineForm& f,
     };
     if (f.sigma_z != -1 && f.sigma_z != four_terms) return -1;
     int s0 = side_of_nappe(*root[0]), s1 = side_of_nappe(*root[1]);
-    return s0 == 1 && s1 == -1 ? 0 : s0 == -1 && s1 == 1 ? 1 : -1;
+    if (s0 == 1 && s1 == -1) return 0;
+    if (s0 == -1 && s1 == 1) return 1;
+    if (f.sigma_z == four_terms) {
+        const BoundedDD& rate = f.fourth->U1;
+        if (!(std::fabs(rate.hi) > bound_of_hi(rate))) return -1;
+        return rate.hi > 0 ? 1 : 0;
+    }
+    if (!(std::fabs(f.dZ) > f.e_dZ)) return -1;
+    return f.dZ > 0 ? 0 : 1;
 }
 
 // A convex solid closed by discs (a cylinder, a frustum, one nappe), the lateral roots t0 < t1
