@@ -823,6 +823,25 @@ stepped_again(const LineForm& f, const Leading<double>& A, const Local<double>& 
     return 1;
 }
 
+// Root i (0 the smaller) of two against the extent and the range where its enclosures leave either
+// open (a root within ulps of a range's end and of the other root, a tiny extent): its side of
+// each bounded end the enclosure does not clear from the exact form (ExtentEnds::root_against_end),
+// then of the range's ends (kept_by_range). 1 kept, 0 not, -1 at an end or unproven.
+int kept_exactly(const LineForm& f, int i, const Enclosure<double>& en, const Unit& unit,
+                 const Line& caller, const ExtentEnds& ends) {
+    Side side = side_of(f, en);
+    if (side == Side::below || side == Side::above) return 0;
+    if (side != Side::within)
+        for (bool top : {false, true}) {
+            if (!(top ? f.hi_bounded : f.lo_bounded)) continue;
+            std::optional<int> against = ends.root_against_end(top, i);
+            if (!against || *against == 0) return -1;
+            if (top ? *against > 0 : *against < 0) return 0;
+        }
+    Kept<double> k = in_range(unit, en);
+    return k.outside ? 0 : k.inside ? 1 : kept_by_range(i, caller, ends);
+}
+
 // A tangency its enclosure leaves next to an end (at or beside a rim, a cone's apex): its side of
 // that end from the exact form. Beyond it: no hit. Short of it: inside the extent (the other end
 // is far), as the range decides. At it: the end's point, kept where the extent is closed there,
@@ -1120,8 +1139,7 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
                         tighter(*en, Part::lateral, unit, *ends))
                     inside = kept_tighter(f, unit, *(en = narrower));
             if (inside < 0) inside = kept_at_end<SigmaZ, R>(f, roots, i, *en, exact, *ends, unit);
-            if (inside < 0 && side_of(f, *en) == Side::within)
-                inside = kept_by_range(i, caller, *ends);
+            if (inside < 0) inside = kept_exactly(f, i, *en, unit, caller, *ends);
         }
         if (inside < 0) return false;
         if (inside == 0) continue;
