@@ -901,34 +901,6 @@ TEST_CASE("correct finds a steep line's nappe beside the apex on the Newton rung
     CHECK(on_newton_rung(Family::cap_axis, 2, 3, 30, 1200) >= 1135);
 }
 
-TEST_CASE("correct places two close roots against a segment's end on the Newton rung") {
-    // thin: an ellipsoid or a capsule 2^-k thin, crossed by segments, whose two roots lie within
-    // ulps of each other, here straddling the segment's end. Neither enclosure is apart from
-    // that end; the signs of g and g' there, exact, say whether it lies between the roots or beyond
-    // both (ExactForm::signs_at). 1,185 of 1,200 segments on the rung (1,018 without it). Every
-    // answer as the oracle's.
-    int lines = 0, on_newton = 0;
-    for (int shape : {5, 6})
-        for (std::uint64_t i = 0; i < 600; ++i) {
-            Case c = make_case(Family::thin, shape, Range::segment, 31, i);
-            Result got = correct_solve(c.shape, c.line, {Need::all, true});
-            INFO(c.id << " k " << c.k);
-            check_same_answer(got, exact::intersect(c.shape, c.line, {Need::all, true}));
-            ++lines, on_newton += got.rung == Rung::newton;
-        }
-    CHECK(lines == 1200);
-    CHECK(on_newton >= 1175);
-}
-
-TEST_CASE("correct places a root against a tiny extent's ends on the Newton rung") {
-    // degenerate_frame: frames with an axis 2^-k long (a cone or a cylinder squashed to a few
-    // ulps), so a root lies within its enclosure of both ends, and often of the other root.
-    // Where the end's plane cannot place it, where the end's crossing lies against the two roots
-    // does, exactly (ExtentEnds::root_against_end). 1,133 of 1,200 lines on the rung (1,101
-    // without it). Every answer as the oracle's.
-    CHECK(on_newton_rung(Family::degenerate_frame, 0, 3, 32, 1200) >= 1125);
-}
-
 namespace {
 // Shape S's Z alone (exact_axial, where it has one) against its exact quadratic's Z: equal values
 // (exact, so compared exactly) and the same bounded ends.

@@ -381,26 +381,6 @@ class ExactForm final : public ExtentEnds {
         return {sign(q.C0 + m * (half_slope + q.B)), sign(half_slope), sign(q.A)};
     }
 
-    std::optional<int> root_against_end(bool top, int i) const override {
-        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
-        int A = sign(q.A), dZ = sign(q.dZ);
-        if (!(top ? q.hi_bounded : q.lo_bounded) || A == 0 || dZ == 0 || sign(discriminant()) <= 0)
-            return std::nullopt;
-        // dZ^2 g(t_E) = (A N + 2 B dZ) N + C0 dZ^2 and dZ g'(t_E) / 2 = B dZ + A N, N = end - Z0.
-        BigFloat N = (top ? q.hi : q.lo) - q.Z0;
-        int g = sign((q.A * N + (q.B * q.dZ).scaled(1)) * N + q.C0 * q.dZ * q.dZ);
-        int slope = sign(q.B * q.dZ + q.A * N) * dZ;
-        int before = i == 0 ? -1 : 1; // sgn(t_i - t_E) where t_E is the other root or between
-        int t_against;                // sgn(t_i - t_E)
-        if (g == 0)                   // t_E a root: the smaller where g' has -A's sign
-            t_against = (slope == -A) == (i == 0) ? 0 : before;
-        else if (g != A) // between the roots
-            t_against = before;
-        else // beyond both: above them where g' has A's sign
-            t_against = slope == A ? -1 : 1;
-        return dZ * t_against;
-    }
-
     bool end_open(bool top) const override {
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         return top ? q.hi_open : q.lo_open;

@@ -806,42 +806,6 @@ stepped_again(const LineForm& f, const Leading<double>& A, const Local<double>& 
     }
     return en;
 }
-// Root i (0 the smaller) of two against the range's ends, where its enclosure leaves one open
-// and that end is no root (two roots of a thin shape straddling a segment's end): its side of
-// each finite end T from the exact signs of g(T), g'(T) and A. T lies between the roots where
-// g(T) has -A's sign; else beyond both, above them where g'(T) has A's (past the vertex). 1 in
-// the range, 0 outside, -1 where T is a root. Rare, so out of line.
-[[gnu::noinline]] int kept_by_range(int i, const Line& caller, const ExtentEnds& ends) {
-    for (bool upper : {false, true}) {
-        double T = upper ? caller.range.t1 : caller.range.t0;
-        if (!std::isfinite(T)) continue;
-        SignsAt at = ends.signs_at(T, 0);
-        if (at.A == 0 || at.g == 0) return -1;
-        int after = at.g != at.A ? (i == 0 ? -1 : 1) : (at.slope == at.A ? -1 : 1); // sgn(t - T)
-        if (upper ? after > 0 : after < 0) return 0;
-    }
-    return 1;
-}
-
-// Root i (0 the smaller) of two against the extent and the range where its enclosures leave either
-// open (a root within ulps of a range's end and of the other root, a tiny extent): its side of
-// each bounded end the enclosure does not clear from the exact form (ExtentEnds::root_against_end),
-// then of the range's ends (kept_by_range). 1 kept, 0 not, -1 at an end or unproven.
-int kept_exactly(const LineForm& f, int i, const Enclosure<double>& en, const Unit& unit,
-                 const Line& caller, const ExtentEnds& ends) {
-    Side side = side_of(f, en);
-    if (side == Side::below || side == Side::above) return 0;
-    if (side != Side::within)
-        for (bool top : {false, true}) {
-            if (!(top ? f.hi_bounded : f.lo_bounded)) continue;
-            std::optional<int> against = ends.root_against_end(top, i);
-            if (!against || *against == 0) return -1;
-            if (top ? *against > 0 : *against < 0) return 0;
-        }
-    Kept<double> k = in_range(unit, en);
-    return k.outside ? 0 : k.inside ? 1 : kept_by_range(i, caller, ends);
-}
-
 // A tangency its enclosure leaves next to an end (at or beside a rim, a cone's apex): its side of
 // that end from the exact form. Beyond it: no hit. Short of it: inside the extent (the other end
 // is far), as the range decides. At it: the end's point, kept where the extent is closed there,
@@ -1139,7 +1103,6 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
                         tighter(*en, Part::lateral, unit, *ends))
                     inside = kept_tighter(f, unit, *(en = narrower));
             if (inside < 0) inside = kept_at_end<SigmaZ, R>(f, roots, i, *en, exact, *ends, unit);
-            if (inside < 0) inside = kept_exactly(f, i, *en, unit, caller, *ends);
         }
         if (inside < 0) return false;
         if (inside == 0) continue;

@@ -88,11 +88,6 @@ class ExtentEnds {
     virtual SignsAt signs_at(double near, double half) const = 0;
     // Whether that end belongs to another part (a capsule side's seam): a root there is not kept.
     virtual bool end_open(bool top) const = 0;
-    // sgn(Z(t_i) - end) for root i (0 the smaller) of two (A != 0, D > 0), exactly: from where the
-    // end's crossing t_E lies against the roots (g(t_E), g'(t_E) and A's signs). For a root its
-    // enclosures leave next to an end and to the other root (a tiny extent). None where the end
-    // is not bounded or dZ = 0.
-    virtual std::optional<int> root_against_end(bool top, int i) const = 0;
     // Where the bounds cannot tell A from 0 and g is not constant: when g is linear along the
     // line (A = 0, B != 0: a line parallel to a cone's generator, off the cone), its one root
     // -C0 / 2B enclosed, in the rung's units, and the sign of B.
