@@ -255,24 +255,27 @@ template <class Target>
 }
 
 // A coordinate its bound leaves unrounded, from the exact form: at an end's crossing, or a
-// lateral root's, zero or beside it.
+// lateral root's zero; with `dear`, a lateral root's beside zero or at a tie too.
 template <class Target>
 std::optional<double> exact_coordinate(const Enclosure<double>& en, Part part, const Unit& unit,
-                                       int k, ExactCoordinate exact, const ExtentEnds& ends) {
+                                       int k, ExactCoordinate exact, const ExtentEnds& ends,
+                                       bool dear) {
     if (exact.end >= 0) return coordinate_at_end<Target>(ends, exact.end == 1, k);
     if (part != Part::lateral) return std::nullopt;
     if (zero_coordinate(en, unit, k, ends)) return 0.0;
+    if (!dear) return std::nullopt;
     return coordinate_at_root<Target>(en, unit, k, ends);
 }
 
 // The hit, t and its point correctly rounded to Target in the caller's units; false when a bound
 // does not prove a rounding.
 // `ends`: where a coordinate is not proven, that coordinate from the exact form where it can
-// give it (add_tighter_hit's).
+// give it (add_tighter_hit's); `dear`: and t or a coordinate from the exact form's roots, at or
+// beside a tie or a coordinate plane, which cost more than a tighter enclosure.
 template <class Target>
 LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, const Unit& unit,
                                      const Line& caller, Query q, Result& r, ExactCoordinate exact,
-                                     const ExtentEnds* ends = nullptr) {
+                                     const ExtentEnds* ends = nullptr, bool dear = false) {
     if constexpr (std::is_same_v<Target, Binary32>) {
         // A float's rounding cell is 2^29 times a double's: t = c + x and each coordinate
         // fma(t, v_k, L0_k) in double, each with one rounding added to its bound, nearly always
@@ -280,7 +283,7 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
         double t = en.c + en.x, e_t = en.e + u * std::fabs(t);
         std::optional<double> rounded =
             round_proven<Target>({t, 0, e_t * F::cover(4) + F::denorm_min}, unit.t_factor);
-        if (!rounded && ends && part == Part::lateral)
+        if (!rounded && dear && part == Part::lateral)
             rounded = t_at_boundary<Target>(en, unit, *ends);
         if (!rounded) return false;
         Hit& h = r.hits[r.count];
@@ -301,7 +304,8 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
                 double e =
                     (std::fabs(v) * e_t + u * std::fabs(pk)) * F::cover(8) + F::underflow_floor;
                 std::optional<double> rk = round_proven<Target>({pk, 0, e}, unit.pos_factor);
-                if (!rk && ends) rk = exact_coordinate<Target>(en, part, unit, k, exact, *ends);
+                if (!rk && ends)
+                    rk = exact_coordinate<Target>(en, part, unit, k, exact, *ends, dear);
                 if (!rk) return false;
                 p[k] = *rk;
             }
@@ -312,7 +316,7 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
     } else {
         Rounded<double> t = rounded_t(en, unit.t_factor);
         if (!t.proven) {
-            std::optional<double> at = ends && part == Part::lateral
+            std::optional<double> at = dear && part == Part::lateral
                                            ? t_at_boundary<Target>(en, unit, *ends)
                                            : std::nullopt;
             if (!at) return false;
@@ -340,7 +344,7 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
                     rounded_point(en, unit.line.L0[k], unit.line.v[k], unit.pos_factor);
                 if (!pk.proven) {
                     std::optional<double> pe;
-                    if (ends) pe = exact_coordinate<Target>(en, part, unit, k, exact, *ends);
+                    if (ends) pe = exact_coordinate<Target>(en, part, unit, k, exact, *ends, dear);
                     if (!pe) return false;
                     pk.value = *pe;
                 }
@@ -378,14 +382,18 @@ LINEQUAD_INLINE std::optional<Enclosure<double>> tighter(const Enclosure<double>
 
 // The same, and where a bound does not prove a rounding: with the coordinates the exact form gives
 // (exact_coordinate: a coordinate at or beside zero is what fails most often), then once more
-// from a tighter enclosure. Only that case out of line.
+// from a tighter enclosure, and last with what the exact form's roots give (a t or a coordinate
+// at or beside a tie, a coordinate beside a plane): dearer than the tighter enclosure, which
+// settles most (a line from far away). Only that case out of line.
 template <class Target>
 [[gnu::noinline]] bool add_tighter_hit(const Enclosure<double>& en, Part part, const Unit& unit,
                                        const Line& caller, Query q, Result& r,
                                        ExactCoordinate exact, const ExtentEnds& ends) {
     if (add_rounded_hit<Target>(en, part, unit, caller, q, r, exact, &ends)) return true;
     std::optional<Enclosure<double>> t = tighter(en, part, unit, ends);
-    return t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact, &ends);
+    if (t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact, &ends)) return true;
+    return (t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact, &ends, true)) ||
+           add_rounded_hit<Target>(en, part, unit, caller, q, r, exact, &ends, true);
 }
 template <class Target>
 LINEQUAD_INLINE bool add_hit(const Enclosure<double>& en, Part part, const Unit& unit,
