@@ -264,9 +264,10 @@ inline constexpr bool
                            std::declval<const S&>(), std::declval<const Line&>(), 0))>> = true;
 
 // The exact form in BigFloat, formed once for the line and only when asked: by the Newton rung,
-// for a root its bounds leave next to an extent's end (ExtentEnds), and by the exact rung. An
-// end's signs come first from the double-double rung's quadratic, when it has run: its bounds
-// decide all but the lines through a rim, at a small part of the exact form's cost.
+// for what its bounds leave open (ExtentEnds), and by the exact rung. An end's signs come first
+// from the double-double rung's quadratic, when it has been formed: its bounds decide all but the
+// lines through a rim, at a small part of the exact form's cost; Z alone (an end's crossing, the
+// point there) from the shape's exact_axial, a few products.
 template <class Source>
 class ExactForm final : public ExtentEnds {
     using S = typename Source::Shape;
@@ -302,8 +303,10 @@ class ExactForm final : public ExtentEnds {
         return *D_;
     }
 
-    // Deferred, at() only notes that the rung asked: the double-double rung, cheaper than the
-    // exact form, answers a root beside an end first; the Newton rung is asked again after it.
+    // Deferred (the Newton rung's first pass), an exact sign the rung asks for is only noted:
+    // the ladder forms the double-double quadratic, the filter for an end's signs, and asks the
+    // Newton rung again, after the double-double rung or, where the filter is all it asked for,
+    // before it (asked_only_filtered).
     void defer(bool d) { deferred_ = d; }
     bool asked() const { return asked_ != 0; }
     // Whether the rung asked nothing but what the double-double rung's quadratic answers as a

@@ -244,7 +244,8 @@ template <class Target>
 [[gnu::noinline]] std::optional<double> t_at_boundary(const Enclosure<double>& en, const Unit& unit,
                                                       const ExtentEnds& ends) {
     double f = unit.t_factor; // a power of two: exact, but for a part that underflows
-    BoundedDD t{en.c * f, en.x * f, en.e * f + 2 * F::denorm_min};
+    TwoTerm c = two_sum(en.c * f, en.x * f);
+    BoundedDD t{c.hi, c.lo, en.e * f + 2 * F::denorm_min};
     if (!std::isfinite(t.hi) || !std::isfinite(t.e)) return std::nullopt;
     return round_exactly<Target>(t, [&](double near, double half) -> std::optional<int> {
         SignsAt at = ends.signs_at(near, half);

@@ -51,20 +51,19 @@ struct ExactLocal {
     newton::Local<double> at;
 };
 
-// The ladder's answers to what the rung's bounds leave open, exactly, from the exact form (the
-// exact rung's, formed once and only when asked).
-// g = 2 B (t - t*) along the line: its root t* and B's sign (g < 0, inside the quadric, before the
-// root where B > 0, after it where B < 0).
 // The signs of g and g' (twice B + A t) at a point, exactly, and of A.
 struct SignsAt {
     int g, slope, A;
 };
-
+// g = 2 B (t - t*) along the line: its root t* and B's sign (g < 0, inside the quadric, before the
+// root where B > 0, after it where B < 0).
 struct LinearRoot {
     BoundedDD t;
     int B_sign;
 };
 
+// The ladder's answers to what the rung's bounds leave open, exactly, from the exact form (the
+// exact rung's, formed once and only when asked).
 class ExtentEnds {
   public:
     // An end's crossing; no value where the end is not bounded.
