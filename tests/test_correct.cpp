@@ -815,9 +815,10 @@ TEST_CASE("correct proves roots a few ulps from the line's origin on the Newton 
     // outside it. A root a few ulps from t = 0, or a disc's crossing there, is tiny beside the
     // rung's bounds (absolute, about 2^-100 of the scene): its t cannot be rounded from them.
     // The exact form's local quadratic at the root, whose value is enclosed relatively, and the
-    // disc's crossing from the exact form, prove it on the rung: 1,340 of 1,400 lines over the
-    // seven shapes (1,124 without them). Every answer as the oracle's.
-    CHECK(on_newton_rung(Family::inside_start, 0, 6, 21, 1400) >= 1300);
+    // disc's crossing from the exact form, prove it on the rung: 1,390 of 1,400 lines over the
+    // seven shapes (1,124 without them, 1,340 before a root at the line's origin was tried
+    // whatever the range). Every answer as the oracle's.
+    CHECK(on_newton_rung(Family::inside_start, 0, 6, 21, 1400) >= 1380);
 }
 
 TEST_CASE("correct places roots at and beside open ends and seams on the Newton rung") {
@@ -825,10 +826,10 @@ TEST_CASE("correct places roots at and beside open ends and seams on the Newton 
     // 2^-53 along the axis beside it; seam: a capsule's lines through a seam point or a few ulps
     // from it. The rung's Z, in double, leaves such a root's side of the end open; the end's
     // plane in double-double (ExtentEnds::end_planes) places it, and a coordinate at or beside
-    // zero (the rim point of an axis-aligned frame) comes from the exact form. 1,166 and 1,130
-    // of 1,200 lines on the Newton rung (936 and 744 before them). Every answer as
-    // the oracle's.
-    CHECK(on_newton_rung(Family::extent_edge, 0, 3, 23, 1200) >= 1120);
+    // zero (the rim point of an axis-aligned frame) comes from the exact form. 1,200 and 1,130
+    // of 1,200 lines on the Newton rung (936 and 744 before them; the ties placed since then
+    // took extent_edge from 1,166 to all). Every answer as the oracle's.
+    CHECK(on_newton_rung(Family::extent_edge, 0, 3, 23, 1200) >= 1195);
     CHECK(on_newton_rung(Family::seam, 6, 6, 23, 1200) >= 1080);
 }
 
@@ -837,8 +838,9 @@ TEST_CASE("correct rounds a lateral hit beside a coordinate plane on the Newton 
     // axis-aligned, a moved hit's coordinate lies a few ulps from 0, where L0_k + t v_k cancels
     // and t's bound (about 2^-100 of the scene) cannot round it. That coordinate is a root of its
     // own quadratic, from the exact form's coefficients (ExtentEnds::coordinate_roots), enclosed
-    // relative to itself: 1,496 of 1,600 lines on the Newton rung (1,464 without it). Every
-    // answer as the oracle's.
+    // relative to itself: 1,565 of 1,600 lines on the Newton rung (1,464 without it, and
+    // without the tangency at an end and the tie that came after it). Every answer as the
+    // oracle's.
     int lines = 0, on_newton = 0;
     for (int shape = 0; shape < 4; ++shape)
         for (std::uint64_t i = 0; i < 400; ++i) {
@@ -849,7 +851,7 @@ TEST_CASE("correct rounds a lateral hit beside a coordinate plane on the Newton 
             ++lines, on_newton += got.rung == Rung::newton;
         }
     CHECK(lines == 1600);
-    CHECK(on_newton >= 1485);
+    CHECK(on_newton >= 1555);
 }
 
 TEST_CASE("correct answers lines parallel to a cone's generator on the Newton rung") {
@@ -866,9 +868,10 @@ TEST_CASE("correct answers a tangency at a rim or a cone's apex on the Newton ru
     // or beside a cone's apex, some touching it. The tangency (D = 0 exactly) lies at an end or
     // within ulps of it, which its enclosure cannot tell; its side of that end is the sign of a
     // few exact products (ExtentEnds::vertex_against). At it, the end's point: kept where the
-    // extent is closed, as the disc's where there is one. 1,152 and 1,047 of 1,200 lines on the
-    // rung (1,126 and 1,008 without it). Every answer as the oracle's.
-    CHECK(on_newton_rung(Family::rim, 0, 3, 27, 1200) >= 1145);
+    // extent is closed, as the disc's where there is one. 1,179 and 1,047 of 1,200 lines on the
+    // rung (1,126 and 1,008 without it and the tie that came after it). Every answer as the
+    // oracle's.
+    CHECK(on_newton_rung(Family::rim, 0, 3, 27, 1200) >= 1170);
     CHECK(on_newton_rung(Family::apex, 2, 3, 27, 1200) >= 1040);
 }
 
