@@ -841,17 +841,7 @@ TEST_CASE("correct rounds a lateral hit beside a coordinate plane on the Newton 
     // relative to itself: 1,565 of 1,600 lines on the Newton rung (1,464 without it, and
     // without the tangency at an end and the tie that came after it). Every answer as the
     // oracle's.
-    int lines = 0, on_newton = 0;
-    for (int shape = 0; shape < 4; ++shape)
-        for (std::uint64_t i = 0; i < 400; ++i) {
-            Case c = make_case(Family::rim, shape, i % 2 ? Range::ray : Range::line, 25, i);
-            Result got = correct_solve(c.shape, c.line, {Need::all, true});
-            INFO(c.id << " k " << c.k);
-            check_same_answer(got, exact::intersect(c.shape, c.line, {Need::all, true}));
-            ++lines, on_newton += got.rung == Rung::newton;
-        }
-    CHECK(lines == 1600);
-    CHECK(on_newton >= 1555);
+    CHECK(on_newton_rung(Family::rim, 0, 3, 25, 1600) >= 1555);
 }
 
 TEST_CASE("correct answers lines parallel to a cone's generator on the Newton rung") {

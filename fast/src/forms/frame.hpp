@@ -40,6 +40,21 @@ struct AdjugateFrame {
     }
 };
 
+// adj(M)'s last row alone, a x b: Z = sigma det[a b u] for a vector u, sigma det's sign (the
+// orientation the caller decided), so that Z increases along c. What an end's crossing needs,
+// without the other two rows.
+template <class NT>
+struct FrameZ {
+    Vec3T<NT> nz;
+    bool negative;
+    FrameZ(const Vec3T<NT>& a, const Vec3T<NT>& b, int orientation)
+        : nz(cross(a, b)), negative(orientation < 0) {}
+    NT operator()(const Vec3T<NT>& u) const {
+        NT z = dot(nz, u);
+        return negative ? -z : z;
+    }
+};
+
 } // namespace exact_form
 
 namespace detail {

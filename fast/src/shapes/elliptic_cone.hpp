@@ -308,12 +308,11 @@ struct ShapeTraits<EllipticCone> {
     static exact_form::LineAxial<NT> exact_axial(const EllipticCone& s, const Line& l,
                                                  int orientation) {
         using exact_form::lift;
-        auto sigma = [&](NT x) { return orientation < 0 ? -x : x; }; // det's sign folded in
-        Vec3T<NT> nz = cross(lift<NT>(s.a), lift<NT>(s.b));
-        NT det = sigma(dot(nz, lift<NT>(s.H) - lift<NT>(s.C))); // |det|
+        exact_form::FrameZ<NT> Z(lift<NT>(s.a), lift<NT>(s.b), orientation);
+        NT det = Z(lift<NT>(s.H) - lift<NT>(s.C)); // |det|
         bool two = s.nappes == 2;
-        return {sigma(dot(nz, lift<NT>(l.L0) - lift<NT>(s.H))),
-                sigma(dot(nz, lift<NT>(l.v))),
+        return {Z(lift<NT>(l.L0) - lift<NT>(s.H)),
+                Z(lift<NT>(l.v)),
                 -det,
                 two ? det : NT(0),
                 s.finite,

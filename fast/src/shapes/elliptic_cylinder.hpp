@@ -223,12 +223,11 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
     static exact_form::LineAxial<NT> exact_axial(const EllipticCylinder& s, const Line& l,
                                                  int orientation) {
         using exact_form::lift;
-        auto sigma = [&](NT x) { return orientation < 0 ? -x : x; }; // det's sign folded in
-        Vec3T<NT> nz = cross(lift<NT>(s.a), lift<NT>(s.b));
-        return {sigma(dot(nz, lift<NT>(l.L0) - lift<NT>(s.C))),
-                sigma(dot(nz, lift<NT>(l.v))),
+        exact_form::FrameZ<NT> Z(lift<NT>(s.a), lift<NT>(s.b), orientation);
+        return {Z(lift<NT>(l.L0) - lift<NT>(s.C)),
+                Z(lift<NT>(l.v)),
                 NT(0),
-                sigma(dot(nz, lift<NT>(s.c))),
+                Z(lift<NT>(s.c)),
                 s.finite,
                 s.finite};
     }
