@@ -263,18 +263,28 @@ inline constexpr bool
     has_exact_axial<S, std::void_t<decltype(ShapeTraits<S>::template exact_axial<BigFloat>(
                            std::declval<const S&>(), std::declval<const Line&>(), 0))>> = true;
 
-// The exact form in BigFloat, formed once for the line and only when asked: by the Newton rung,
-// for what its bounds leave open (ExtentEnds), and by the exact rung. An end's signs come first
-// from the double-double rung's quadratic, when it has been formed: its bounds decide all but the
-// lines through a rim, at a small part of the exact form's cost; Z alone (an end's crossing, the
-// point there) from the shape's exact_axial, a few products.
+// The scene scaled to unit size (unit_scale): the double-double rung's, and the Newton rung's
+// where the scene as given is not of moderate size.
+template <class S>
+struct UnitScene {
+    Unit unit;
+    S shape;
+};
+
+// What the Newton rung's bounds leave open, answered exactly, each part formed once for the line
+// and only when asked. A sign is asked first of the double-double quadratic of the scene scaled
+// to unit size (the filter, which the double-double rung takes as it is): its bounds decide all
+// but the exact zeros (a root at a rim, a double root, g or Z constant along the line) at a small
+// part of the exact form's cost; where they do not, the double-double rung could not answer
+// either, and the exact form in BigFloat does, at once. Z alone (an end's crossing, the point
+// there) comes from the shape's exact_axial, a few products.
 template <class Source>
 class ExactForm final : public ExtentEnds {
     using S = typename Source::Shape;
 
   public:
-    ExactForm(const Source& src, const Line& l, int orientation)
-        : src_(src), shape_(src.shape), line_(l), orientation_(orientation) {}
+    ExactForm(const Source& src, const Line& l, int orientation, double extent)
+        : src_(src), shape_(src.shape), line_(l), orientation_(orientation), extent_(extent) {}
 
     const exact_form::LineQuadratic<BigFloat>& quadratic() const {
         if (!q_)
@@ -303,25 +313,29 @@ class ExactForm final : public ExtentEnds {
         return *D_;
     }
 
-    // Deferred (the Newton rung's first pass), an exact sign the rung asks for is only noted:
-    // the ladder forms the double-double quadratic, the filter for an end's signs, and asks the
-    // Newton rung again, after the double-double rung or, where the filter is all it asked for,
-    // before it (asked_only_filtered).
-    void defer(bool d) { deferred_ = d; }
-    bool asked() const { return asked_ != 0; }
-    // Whether the rung asked nothing but what the double-double rung's quadratic answers as a
-    // filter (an end's crossing, the sign of a cylinder's g along a parallel line).
-    bool asked_only_filtered() const { return (asked_ & ~(at_end | parallel_line)) == 0; }
-    // The double-double rung's quadratic of the scene scaled to unit size, whose parameter is
-    // the caller's over t_factor.
-    void filter_with(const exact_form::LineQuadratic<BoundedDD>& dd, double t_factor) {
-        dd_ = &dd, dd_t_factor_ = t_factor;
+    // The scene scaled to unit size, once; none where it cannot be scaled exactly.
+    const UnitScene<S>* unit_scene() const {
+        if (!unit_tried_) {
+            unit_tried_ = true;
+            if (std::optional<Unit> u = unit_scale(src_, extent_, line_))
+                unit_.emplace(UnitScene<S>{*u, scaled(shape_, 1 / u->pos_factor)});
+        }
+        return unit_ ? &*unit_ : nullptr;
+    }
+    // Its quadratic in bounded double-double, once: the filter, and the double-double rung's.
+    const exact_form::LineQuadratic<BoundedDD>* filter() const {
+        if (!dd_) {
+            const UnitScene<S>* scene = unit_scene();
+            if (!scene) return nullptr;
+            dd_ = ShapeTraits<S>::template exact_quadratic<BoundedDD>(
+                scene->shape, scene->unit.line, orientation_);
+        }
+        return &*dd_;
     }
 
     std::optional<EndCrossing> at(bool top, double t_factor) const override {
-        if (deferred(at_end)) return std::nullopt;
-        if (dd_)
-            if (std::optional<EndCrossing> c = end_crossing(*dd_, top, dd_t_factor_ / t_factor))
+        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter())
+            if (std::optional<EndCrossing> c = end_crossing(*dd, top, filter_t() / t_factor))
                 return c;
         std::optional<EndCrossing> c = end_crossing(quadratic(), top, 1 / t_factor);
         exact_zero_ = exact_zero_ || (c && c->q_sign == 0); // a root at the end: a rim
@@ -332,16 +346,19 @@ class ExactForm final : public ExtentEnds {
     // constant along the line), where a filter's bounds would most likely not decide.
     bool exact_zero() const { return exact_zero_; }
 
-    // A cylinder's parallel line is shown by a few exact products (cheaper than the double-double
-    // rung: before any deferral) and C0's sign by the double-double rung's bound (but on the
-    // surface); the exact form answers the rest.
+    // A cylinder's parallel line is shown by a few exact products (cheaper than the filter),
+    // and C0's sign by the filter (but on the surface); the exact form answers the rest.
     std::optional<int> constant_sign() const override {
-        if (!parallel_) parallel_ = exactly_parallel(shape_, line_); // once: both Newton passes ask
-        std::optional<bool> parallel = *parallel_;
+        std::optional<bool> parallel = exactly_parallel(shape_, line_);
         if (parallel && !*parallel) return std::nullopt;
-        if (deferred(parallel ? parallel_line : other)) return std::nullopt;
-        if (parallel && dd_)
-            if (int s = sign(dd_->C0); s != undecided_sign) return s;
+        const exact_form::LineQuadratic<BoundedDD>* dd = filter();
+        if (dd) {
+            int A = sign(dd->A), B = sign(dd->B);
+            if ((A != undecided_sign && A != 0) || (B != undecided_sign && B != 0))
+                return std::nullopt; // g is not constant
+            if (parallel)
+                if (int c = sign(dd->C0); c != undecided_sign) return c;
+        }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) != 0) return std::nullopt;
         exact_zero_ = true;
@@ -351,7 +368,8 @@ class ExactForm final : public ExtentEnds {
     std::optional<int> constant_z() const override {
         if (std::optional<ConstantZ> z = constant_z_of_line(shape_, line_, orientation_))
             return z->level;
-        if (deferred()) return std::nullopt;
+        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter())
+            if (int dZ = sign(dd->dZ); dZ != undecided_sign && dZ != 0) return std::nullopt;
         const exact_form::LineAxial<BigFloat>& z = axial();
         if (sign(z.dZ) != 0) return std::nullopt;
         exact_zero_ = true;
@@ -364,7 +382,10 @@ class ExactForm final : public ExtentEnds {
     }
 
     std::optional<BoundedDD> double_root(double t_factor) const override {
-        if (deferred()) return std::nullopt;
+        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter()) {
+            int A = sign(dd->A), D = sign(dd->B * dd->B - dd->A * dd->C0);
+            if (A == 0 || (D != undecided_sign && D != 0)) return std::nullopt;
+        }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) == 0 || sign(discriminant()) != 0) return std::nullopt;
         exact_zero_ = true;
@@ -390,7 +411,10 @@ class ExactForm final : public ExtentEnds {
     }
 
     std::optional<LinearRoot> linear_root(double t_factor) const override {
-        if (deferred()) return std::nullopt;
+        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter()) {
+            int A = sign(dd->A), B = sign(dd->B);
+            if ((A != undecided_sign && A != 0) || B == 0) return std::nullopt;
+        }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) == 0) return std::nullopt;
         exact_zero_ = true;
@@ -498,27 +522,22 @@ class ExactForm final : public ExtentEnds {
         return q.A * L * L - (q.B * L * v).scaled(1) + q.C0 * v * v;
     }
 
-    // Notes that the rung asked; while deferred, no answer.
-    enum Asked { at_end = 1, parallel_line = 2, other = 4 };
-    bool deferred(Asked what = other) const {
-        asked_ |= what;
-        return deferred_;
-    }
+    // The filter's parameter is the caller's over this.
+    double filter_t() const { return unit_->unit.t_factor; }
 
     const Source& src_;
     const S& shape_;
     const Line& line_;
     int orientation_;
-    bool deferred_ = false;
-    mutable int asked_ = 0; // Asked, or'ed
+    double extent_;
     mutable bool exact_zero_ = false;
     mutable std::optional<exact_form::LineQuadratic<BigFloat>> q_;
     mutable std::optional<exact_form::LineAxial<BigFloat>> axial_;
     mutable std::optional<BigFloat> D_;
-    mutable std::optional<std::optional<bool>> parallel_; // exactly_parallel's answer, once asked
     mutable std::optional<std::optional<DiscPlanes>> planes_; // end_planes', once asked
-    const exact_form::LineQuadratic<BoundedDD>* dd_ = nullptr;
-    double dd_t_factor_ = 1;
+    mutable bool unit_tried_ = false;
+    mutable std::optional<UnitScene<S>> unit_;
+    mutable std::optional<exact_form::LineQuadratic<BoundedDD>> dd_;
 };
 
 template <class Target>
@@ -556,77 +575,45 @@ struct CorrectTo {
         using S = typename Source::Shape;
         using Traits = ShapeTraits<S>;
         Result r; // the one result, returned in place
-        ExactForm<Source> exact(src, l, orientation);
-        // The Newton rung on a line form, in `unit`'s scene; r is left empty when it declines.
-        auto newton = [&](const LineForm& form, const Unit& unit) LINEQUAD_INLINE_LAMBDA {
-            if (newton_rung<Target>(form, unit, l, q, r, &exact)) {
-                mark_certain<Target>(r, Rung::newton);
-                return true;
-            }
-            r = Result();
-            return false;
-        };
-        auto newton_on = [&](const auto& scene, const Unit& unit) LINEQUAD_INLINE_LAMBDA {
-            if constexpr (Traits::has_line_form)
-                return newton(Traits::line_form(scene, unit.line.L0, unit.line.v, orientation),
-                              unit);
-            return false;
-        };
+        ExactForm<Source> exact(src, l, orientation, extent);
         // The Newton rung's bounds hold at any scale (underflow is in them, overflow makes them
         // infinite), so a scene of moderate size is solved as given; others are scaled first,
         // so that tiny or huge scenes are not left to the slower rungs.
-        bool as_given = moderate(extent, l);
-        if constexpr (std::is_same_v<Target, Binary32> && Traits::has_line_form) {
-            if (as_given) {
-                LineForm form = Traits::quick_line_form(src, l.L0, l.v, orientation);
-                if (newton_rung<Target, Residual::quick>(form, Unit{1, 1, l}, l, q, r, &exact)) {
+        if constexpr (Traits::has_line_form) {
+            bool as_given = moderate(extent, l);
+            if constexpr (std::is_same_v<Target, Binary32>) {
+                if (as_given) {
+                    LineForm form = Traits::quick_line_form(src, l.L0, l.v, orientation);
+                    if (newton_rung<Target, Residual::quick>(form, Unit{1, 1, l}, l, q, r,
+                                                             &exact)) {
+                        mark_certain<Target>(r, Rung::newton);
+                        return r;
+                    }
+                    r = Result();
+                }
+            }
+            auto newton = [&](const auto& scene, const Unit& unit) LINEQUAD_INLINE_LAMBDA {
+                LineForm form = Traits::line_form(scene, unit.line.L0, unit.line.v, orientation);
+                if (newton_rung<Target>(form, unit, l, q, r, &exact)) {
                     mark_certain<Target>(r, Rung::newton);
-                    return r;
+                    return true;
                 }
                 r = Result();
+                return false;
+            };
+            if (as_given) {
+                if (newton(src, Unit{1, 1, l})) return r;
+            } else if (const UnitScene<S>* scene = exact.unit_scene()) {
+                if (newton(AsGiven<S>{scene->shape}, scene->unit)) return r;
             }
         }
-        // Where the Newton rung needs exact signs (a root next to an extent's end, a double
-        // root, g constant), it defers them: the double-double rung first, then the Newton rung
-        // again with the exact form's signs, then the exact rung (with that exact form). The
-        // scene as given keeps its form for that second pass (built in place: no copy).
-        exact.defer(true);
-        bool given_form = as_given && Traits::has_line_form;
-        auto form_as_given = [&]() -> LineForm {
-            if constexpr (Traits::has_line_form)
-                if (given_form) return Traits::line_form(src, l.L0, l.v, orientation);
-            return LineForm{};
-        };
-        const LineForm given = form_as_given();
-        const Unit as_is{1, 1, l};
-        if (given_form && newton(given, as_is)) return r;
-        std::optional<Unit> u = unit_scale(src, extent, l);
-        std::optional<S> unit;
-        std::optional<exact_form::LineQuadratic<BoundedDD>> dd;
-        if (u) {
-            unit = scaled(src.shape, 1 / u->pos_factor);
-            if (!as_given && newton_on(AsGiven<S>{*unit}, *u)) return r;
-            dd = Traits::template exact_quadratic<BoundedDD>(*unit, u->line, orientation);
-            exact.filter_with(*dd, u->t_factor);
+        if (const exact_form::LineQuadratic<BoundedDD>* dd = exact.filter()) {
+            if (double_double_rung<Target>(*dd, exact.unit_scene()->unit, q, r)) {
+                mark_certain<Target>(r, Rung::double_double);
+                return r;
+            }
+            r = Result(); // what the rung left
         }
-        auto double_double = [&] {
-            r = Result(); // what a rung before left
-            if (!double_double_rung<Target>(*dd, *u, q, r)) return false;
-            mark_certain<Target>(r, Rung::double_double);
-            return true;
-        };
-        // Where the Newton rung asked only what the double-double quadratic answers as a filter,
-        // its second pass with that filter goes first, the double-double rung after it: at a
-        // root exactly at a rim or on a line along a cylinder's axis, that rung, whose bounds
-        // are no finer than the filter's, would pay for its whole solve and decline.
-        bool filtered_first = exact.asked() && exact.asked_only_filtered();
-        if (dd && !filtered_first && double_double()) return r;
-        if (exact.asked()) {
-            exact.defer(false);
-            r = Result(); // what a rung before left
-            if (given_form ? newton(given, as_is) : u && newton_on(AsGiven<S>{*unit}, *u)) return r;
-        }
-        if (dd && filtered_first && double_double()) return r;
         r = exact_rung<Target>(exact.quadratic(), exact.discriminant(), l, q, !exact.exact_zero());
         mark_certain<Target>(r, Rung::exact);
         return r;

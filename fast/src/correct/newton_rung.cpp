@@ -690,19 +690,17 @@ bool chord_in_disc(const Leading<double>& A, const std::optional<Enclosure<doubl
     return true;
 }
 
-// Z constant along the line (dZ = 0 exactly, which only `ends` proves) and the roots' sides
-// left open by the bounds: Z0 a few ulps from an end. In that disc's plane, its chord; elsewhere
-// both roots lie on Z0's side of the extent. Rare, so out of line.
+// Z constant along the line (dZ = 0 exactly, which only `ends` proves) at Z0's level (`level`,
+// ExtentEnds::constant_z's): in a disc's plane, its chord; elsewhere both roots lie on Z0's side
+// of the extent. Rare, so out of line.
 template <class Target>
 [[gnu::noinline]] bool constant_z_hits(const LineForm& f, const Leading<double>& A,
                                        const std::optional<Enclosure<double>> (&root)[2],
                                        const Unit& unit, const Line& caller, Query query, Result& r,
-                                       const ExtentEnds& ends) {
-    std::optional<int> level = ends.constant_z();
-    if (!level) return false;
-    if (*level == -1 || *level == 1)
-        return chord_in_disc<Target>(A, root, *level < 0 ? Part::base : Part::top, unit, caller, r);
-    Side s = *level < 0 ? Side::below : *level == 0 ? Side::within : Side::above;
+                                       const ExtentEnds& ends, int level) {
+    if (level == -1 || level == 1)
+        return chord_in_disc<Target>(A, root, level < 0 ? Part::base : Part::top, unit, caller, r);
+    Side s = level < 0 ? Side::below : level == 0 ? Side::within : Side::above;
     const Side side[2] = {s, s};
     return piece_hits<Target>(f, A.A > 0, root, side, side, unit, caller, query, r, &ends);
 }
@@ -711,18 +709,29 @@ template <class Target>
 bool closed_hits(const LineForm& f, const Leading<double>& A,
                  const std::optional<Enclosure<double>> (&root)[2], const Unit& unit,
                  const Line& caller, Query query, Result& r, const ExtentEnds* ends) {
+    // Where dZ is not proven nonzero, Z may be constant along the line (dZ = 0 exactly): then no
+    // crossing of an end places a root next to it, and Z0's level, which a few exact products
+    // show, places both (in a disc's plane, the line lies on the disc). Asked once, before any
+    // end's crossing.
+    bool flat = !(std::fabs(f.dZ) > f.e_dZ), level_asked = false;
+    auto at_constant_z = [&]() -> std::optional<bool> {
+        if (!ends || !flat || level_asked) return std::nullopt;
+        level_asked = true;
+        std::optional<int> level = ends->constant_z();
+        if (!level) return std::nullopt;
+        return constant_z_hits<Target>(f, A, root, unit, caller, query, r, *ends, *level);
+    };
     Side side[2], rim[2];
     for (int i = 0; i < 2; ++i) {
         rim[i] = side_of(f, *root[i]);
+        if (near_end(rim[i]) || rim[i] == Side::unknown)
+            if (std::optional<bool> answered = at_constant_z()) return *answered;
         if (near_end(rim[i]))
             rim[i] = ends ? place_at_end(f, root, i, rim[i], *ends, unit).side : Side::unknown;
         side[i] = rim[i] == Side::at_lo   ? Side::below
                   : rim[i] == Side::at_hi ? Side::above
                                           : rim[i];
-        // Z constant along the line, perhaps at an end: a line in a disc's plane.
-        if (side[i] == Side::unknown)
-            return ends && !(std::fabs(f.dZ) > f.e_dZ) &&
-                   constant_z_hits<Target>(f, A, root, unit, caller, query, r, *ends);
+        if (side[i] == Side::unknown) return false;
     }
     return piece_hits<Target>(f, A.A > 0, root, side, rim, unit, caller, query, r, ends);
 }
