@@ -227,9 +227,28 @@ std::optional<ConstantZ> constant_z_of_line(const S&, const Line&, int) {
 }
 
 // Whether v x (H - C) = 0 exactly: each component k is det[e_k, v, H - C] = (e_k x v).(H - C),
-// e_k x v exact (v's components moved). Its sign by dot_sign's expansion, or where a product
-// could be inexact from the frames' orientation test (which scales its inputs first).
+// e_k x v exact (v's components moved). Where h = H - C is a double exactly and every product is
+// exact, v_i h_j - v_j h_i = 0 is two_prod(v_i, h_j) == two_prod(v_j, h_i), a few operations (a
+// line along the axis of a frame of small integers, most often); a component that a rounded
+// cross product and its error bound show nonzero ends the test. Otherwise its sign by dot_sign's
+// expansion, or where a product could be inexact from the frames' orientation test (which scales
+// its inputs first).
 inline bool cross_is_zero(Vec3 v, Vec3 C, Vec3 H) {
+    Vec3TwoTerm h = difference_exact(H, C);
+    Vec3 rounded = cross(v, h.hi), size = cross_magnitudes(v, h.hi);
+    // Each rounded component is within 3u of its size (two products, h's rounding) and u of
+    // itself (the difference) of the exact one, or 2^-1070 where a product underflows.
+    for (int k = 0; k < 3; ++k)
+        if (std::fabs(rounded[k]) > 8 * Binary64::u * size[k] + Binary64::subnormal_slack)
+            return false;
+    if (h.lo == Vec3{} && exact_products({v, h.hi})) {
+        for (int k = 0; k < 3; ++k) {
+            int i = (k + 1) % 3, j = (k + 2) % 3;
+            TwoTerm a = two_prod(v[i], h.hi[j]), b = two_prod(v[j], h.hi[i]);
+            if (a.hi != b.hi || a.lo != b.lo) return false;
+        }
+        return true;
+    }
     const Vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     const Vec3 moved[3] = {{0, -v.z, v.y}, {v.z, 0, -v.x}, {-v.y, v.x, 0}}; // e_k x v
     for (int k = 0; k < 3; ++k) {
@@ -254,6 +273,15 @@ template <class S>
 std::optional<bool> exactly_parallel(const S&, const Line&) {
     return std::nullopt;
 }
+
+// Whether a shape gives its ends' planes apart from its line form (end_planes), which then does
+// not carry them for an open shape.
+template <class S, class = void>
+inline constexpr bool has_end_planes = false;
+template <class S>
+inline constexpr bool has_end_planes<S, std::void_t<decltype(ShapeTraits<S>::end_planes(
+                                            std::declval<const AsGiven<S>&>(), Vec3{}, Vec3{}))>> =
+    true;
 
 // Whether a shape gives its Z alone (exact_axial), cheaper than its whole exact quadratic.
 template <class S, class = void>
@@ -346,18 +374,27 @@ class ExactForm final : public ExtentEnds {
     // constant along the line), where a filter's bounds would most likely not decide.
     bool exact_zero() const { return exact_zero_; }
 
-    // A cylinder's parallel line is shown by a few exact products (cheaper than the filter),
-    // and C0's sign by the filter (but on the surface); the exact form answers the rest.
-    std::optional<int> constant_sign() const override {
+    // A cylinder's parallel line is shown by a few exact products (cheaper than the filter), and
+    // C0's sign by the rung's g(0) or the filter (but on the surface); the exact form answers the
+    // rest.
+    std::optional<int> constant_sign(double at_0, double e_at_0) const override {
         std::optional<bool> parallel = exactly_parallel(shape_, line_);
         if (parallel && !*parallel) return std::nullopt;
+        int rung_sign = std::fabs(at_0) > e_at_0 ? (at_0 > 0 ? 1 : -1) : undecided_sign;
+        if (parallel && rung_sign != undecided_sign) return rung_sign;
         const exact_form::LineQuadratic<BoundedDD>* dd = filter();
         if (dd) {
             int A = sign(dd->A), B = sign(dd->B);
             if ((A != undecided_sign && A != 0) || (B != undecided_sign && B != 0))
                 return std::nullopt; // g is not constant
-            if (parallel)
-                if (int c = sign(dd->C0); c != undecided_sign) return c;
+            int c = rung_sign != undecided_sign ? rung_sign : sign(dd->C0);
+            if (c != undecided_sign) {
+                if (parallel) return c;
+                if (A == 0 && B == 0) { // the filter's A and B are exact: g is constant
+                    exact_zero_ = true;
+                    return c;
+                }
+            }
         }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) != 0) return std::nullopt;
@@ -368,23 +405,25 @@ class ExactForm final : public ExtentEnds {
     std::optional<int> constant_z() const override {
         if (std::optional<ConstantZ> z = constant_z_of_line(shape_, line_, orientation_))
             return z->level;
-        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter())
-            if (int dZ = sign(dd->dZ); dZ != undecided_sign && dZ != 0) return std::nullopt;
+        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter()) {
+            int dZ = sign(dd->dZ);
+            if (dZ != undecided_sign && dZ != 0) return std::nullopt;
+            if (dZ == 0) // Z is constant: its level, where the filter's signs decide it
+                if (std::optional<int> level = level_in(*dd)) return *level;
+        }
         const exact_form::LineAxial<BigFloat>& z = axial();
         if (sign(z.dZ) != 0) return std::nullopt;
-        exact_zero_ = true;
-        int level =
-            level_of(z.lo_bounded ? sign(z.Z0 - z.lo) : 1, z.hi_bounded ? sign(z.Z0 - z.hi) : -1);
-        if (level != -1 && level != 1) return level;
-        const exact_form::LineQuadratic<BigFloat>& q = quadratic(); // in an end's plane: its disc?
-        if ((level == -1 && !q.lo_capped) || (level == 1 && !q.hi_capped)) return std::nullopt;
-        return level;
+        return level_in(z, [&] { return &quadratic(); }); // in an end's plane: its disc?
     }
 
     std::optional<BoundedDD> double_root(double t_factor) const override {
         if (const exact_form::LineQuadratic<BoundedDD>* dd = filter()) {
             int A = sign(dd->A), D = sign(dd->B * dd->B - dd->A * dd->C0);
             if (A == 0 || (D != undecided_sign && D != 0)) return std::nullopt;
+            if (D == 0 && A != undecided_sign) { // the filter's D is exact: a double root
+                exact_zero_ = true;
+                return in_rung_units(-dd->B / dd->A, filter_t() / t_factor);
+            }
         }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) == 0 || sign(discriminant()) != 0) return std::nullopt;
@@ -414,6 +453,12 @@ class ExactForm final : public ExtentEnds {
         if (const exact_form::LineQuadratic<BoundedDD>* dd = filter()) {
             int A = sign(dd->A), B = sign(dd->B);
             if ((A != undecided_sign && A != 0) || B == 0) return std::nullopt;
+            if (A == 0 && B != undecided_sign) { // the filter's A is exact: g is linear
+                exact_zero_ = true;
+                if (std::optional<BoundedDD> t =
+                        in_rung_units(-dd->C0 / twice(dd->B), filter_t() / t_factor))
+                    return LinearRoot{*t, B};
+            }
         }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) == 0) return std::nullopt;
@@ -486,14 +531,12 @@ class ExactForm final : public ExtentEnds {
         return std::array<BoundedDD, 2>{enclosure(at_coordinate_zero(k)) / m, m / enclosure(q.A)};
     }
 
-    // The line form's planes of every bounded end (for an open shape's, otherwise not formed),
-    // once: never deferred, as they cost a fraction of the double-double rung.
+    // The planes of the bounded ends of a shape whose form does not carry them (an open
+    // cylinder's, a capsule patch's seam), for the line as given, once.
     const DiscPlanes* end_planes(const Unit& unit) const override {
-        if constexpr (ShapeTraits<S>::has_line_form) {
+        if constexpr (has_end_planes<S>) {
             if (unit.pos_factor != 1 || unit.t_factor != 1) return nullptr;
-            if (!planes_)
-                planes_ =
-                    ShapeTraits<S>::line_form(src_, line_.L0, line_.v, orientation_, true).planes;
+            if (!planes_) planes_ = ShapeTraits<S>::end_planes(src_, line_.L0, line_.v);
             return *planes_ ? &**planes_ : nullptr;
         } else {
             return nullptr;
@@ -524,6 +567,24 @@ class ExactForm final : public ExtentEnds {
 
     // The filter's parameter is the caller's over this.
     double filter_t() const { return unit_->unit.t_factor; }
+
+    // Z0's level against the extent (ExtentEnds::constant_z) for Z constant along the line, from
+    // z's signs; none where one is undecided (a filter's), or where the line lies in the plane of
+    // an end without a disc (`capped()`: the quadratic that says which ends have one).
+    template <class NT, class Capped>
+    std::optional<int> level_in(const exact_form::LineAxial<NT>& z, Capped capped) const {
+        int lo = z.lo_bounded ? sign(z.Z0 - z.lo) : 1, hi = z.hi_bounded ? sign(z.Z0 - z.hi) : -1;
+        if (lo == undecided_sign || hi == undecided_sign) return std::nullopt;
+        exact_zero_ = true;
+        int level = level_of(lo, hi);
+        if (level != -1 && level != 1) return level;
+        const auto* q = capped();
+        if ((level == -1 && !q->lo_capped) || (level == 1 && !q->hi_capped)) return std::nullopt;
+        return level;
+    }
+    std::optional<int> level_in(const exact_form::LineQuadratic<BoundedDD>& dd) const {
+        return level_in(dd, [&] { return &dd; });
+    }
 
     const Source& src_;
     const S& shape_;

@@ -771,9 +771,10 @@ bool linear_root_hit(const LineForm& f, const Unit& unit, const Line& caller, Qu
 // an open shape nothing, a closed one the two discs, in the order dZ's sign gives (the piece from
 // below the extent to above it). On the quadric, or unproven: the next rungs. Rare, so out of line.
 template <class Target>
-[[gnu::noinline]] bool constant_g_hits(const LineForm& f, const Unit& unit, const Line& caller,
-                                       Query query, Result& r, const ExtentEnds& ends) {
-    std::optional<int> c0 = ends.constant_sign();
+[[gnu::noinline]] bool constant_g_hits(const LineForm& f, const Local<double>& at_0,
+                                       const Unit& unit, const Line& caller, Query query, Result& r,
+                                       const ExtentEnds& ends) {
+    std::optional<int> c0 = ends.constant_sign(at_0.G, at_0.e_G);
     if (!c0) return linear_root_hit<Target>(f, unit, caller, query, r, ends);
     if (*c0 == 0) return false;
     if (*c0 > 0 || f.discs == Discs::none) return true;
@@ -1043,7 +1044,8 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
            const ExtentEnds* ends) {
     Leading<double> A = leading<SigmaZ>(f);
     if (!(std::fabs(A.A) > A.e)) // nearly parallel to the axis or to a generator
-        return ends && constant_g_hits<Target>(f, unit, caller, query, r, *ends);
+        return ends && constant_g_hits<Target>(f, local_near<SigmaZ, R>(f, 0.0), unit, caller,
+                                               query, r, *ends);
     Estimates<double> est = estimates<SigmaZ>(f, A);
     Roots<SigmaZ, R> roots{f, A, est.vertex, {est.root[0], est.root[1]}, false};
     double(&estimate)[2] = roots.estimate;

@@ -69,8 +69,10 @@ class ExtentEnds {
     // An end's crossing; no value where the end is not bounded.
     virtual std::optional<EndCrossing> at(bool top, double t_factor) const = 0;
     // Where the bounds cannot tell A from 0: when g is constant along the line (A = B = 0), the
-    // sign of C0 (-1 inside the quadric, 0 on it, 1 outside); no value where it is not.
-    virtual std::optional<int> constant_sign() const = 0;
+    // sign of C0 (-1 inside the quadric, 0 on it, 1 outside); no value where it is not. `at_0`:
+    // the rung's own g(0), within e_at_0 (g's scale is the rung's, its sign the same), which
+    // decides that sign but on the surface.
+    virtual std::optional<int> constant_sign(double at_0, double e_at_0) const = 0;
     // Where the bounds cannot tell dZ from 0 on a closed shape: when Z is constant along the line
     // (dZ = 0), Z0's level: -2 below the extent, -1 in the base's plane (the line in that disc's
     // plane), 0 strictly within, 1 in the top's plane, 2 above; no value where dZ != 0, or where

@@ -117,10 +117,15 @@ struct ShapeTraits<CapsuleSide> {
     // The rung proves an extent decision only strictly, so an open end needs nothing more: a
     // root exactly at a seam is never proven inside, and goes to the exact rungs.
     template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
-                                  bool end_planes = false) {
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         Cylinder c = side_cylinder(src.shape);
-        return Of::line_form<T>(AsGiven<Cylinder>{c}, L0, v, orientation, end_planes);
+        return Of::line_form<T>(AsGiven<Cylinder>{c}, L0, v, orientation);
+    }
+    // Its ends' planes, the seams' (ExtentEnds::end_planes): the cylinder's.
+    template <class Source>
+    static std::optional<DiscPlanes> end_planes(const Source& src, Vec3 L0, Vec3 v) {
+        Cylinder c = side_cylinder(src.shape);
+        return Of::end_planes(AsGiven<Cylinder>{c}, L0, v);
     }
     template <class T = double, class Source>
     static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,
@@ -239,25 +244,25 @@ struct ShapeTraits<CapsuleEnd> {
     }
 
     template <bool precise, class T>
-    static LineFormT<T> form(const CapsuleEnd& s, Vec3T<T> L0, Vec3T<T> v,
-                             bool end_planes = false) {
+    static LineFormT<T> form(const CapsuleEnd& s, Vec3T<T> L0, Vec3T<T> v) {
         LineFormT<T> f = sphere_line_form<precise, T>(s.centre, s.r, L0, v);
         Vec3TwoTerm h = difference_exact(s.centre, s.other);
         Vec3TwoTermT<T> w = difference_exact(L0, lanes_of<T>(s.centre));
         // Z = w.h + t v.h, w and h within u of their exact values
         cylinder_axial(f, w.hi, lanes_of<T>(h.hi), v);
         f.lo_bounded = true;
-        if (precise && end_planes) { // the seam's plane Z = 0, from the exact differences
-            Vec3TwoTermT<T> hl{lanes_of<T>(h.hi), lanes_of<T>(h.lo)};
-            f.planes = DiscPlanesT<T>{dot_dd(w, hl), dot_dd(v, hl), BoundedDD(0),
-                                      BoundedDD(0),  false,         false};
-        }
         return f;
     }
     template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/,
-                                  bool end_planes = false) {
-        return form<true, T>(src.shape, L0, v, end_planes);
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
+        return form<true, T>(src.shape, L0, v);
+    }
+    // The seam's plane Z = 0, from the exact differences (ExtentEnds::end_planes).
+    template <class Source>
+    static std::optional<DiscPlanes> end_planes(const Source& src, Vec3 L0, Vec3 v) {
+        const CapsuleEnd& s = src.shape;
+        Vec3TwoTerm h = difference_exact(s.centre, s.other), w = difference_exact(L0, s.centre);
+        return DiscPlanes{dot_dd(w, h), dot_dd(v, h), BoundedDD(0), BoundedDD(0), false, false};
     }
     template <class T = double, class Source>
     static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,

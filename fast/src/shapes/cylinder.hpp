@@ -339,11 +339,9 @@ struct ShapeTraits<Cylinder> {
 
     // ---- correct: the Newton rung's line form ----
 
-    // For the line L0 + t v in T: double, or a lane type (a line per lane). end_planes: the
-    // ends' planes of a finite open cylinder too (ExtentEnds::end_planes asks for them).
+    // For the line L0 + t v in T: double, or a lane type (a line per lane).
     template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/,
-                                  bool end_planes = false) {
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
         const Cylinder& s = src.shape;
         NewtonAxis axis = newton_axis(src);
         Vec3TwoTermT<T> h{lanes_of<T>(axis.h.hi), lanes_of<T>(axis.h.lo)};
@@ -361,16 +359,31 @@ struct ShapeTraits<Cylinder> {
         f.hi = axis.hh.hi, f.e_hi = bound_of_hi(axis.hh);
         f.lo_bounded = f.hi_bounded = s.finite;
         f.discs = discs_of(s);
-        if (s.caps || (end_planes && s.finite)) { // the ends at Z = 0 and Z = h.h
-            f.planes =
-                DiscPlanesT<T>{dot_dd(w, h), dot_dd(v, h), BoundedDD(0), axis.hh, s.caps, s.caps};
-            f.planes->axis = axis_along(s.H - s.C);
-            if (f.planes->axis >= 0)
-                f.planes->lo_at = s.C[f.planes->axis], f.planes->hi_at = s.H[f.planes->axis];
-        }
+        if (s.caps) f.planes = planes<T>(s, axis, w, v);
         return f;
     }
+    // The ends' planes of a finite open cylinder, which its form does not carry, for the line as
+    // given (ExtentEnds::end_planes asks for them): two dot products, not the whole form.
+    template <class Source>
+    static std::optional<DiscPlanes> end_planes(const Source& src, Vec3 L0, Vec3 v) {
+        const Cylinder& s = src.shape;
+        if (!s.finite) return std::nullopt;
+        return planes<double>(s, newton_axis(src), difference_exact(L0, s.C), v);
+    }
 
+  private:
+    // The ends at Z = 0 and Z = h.h, with discs where the cylinder is closed.
+    template <class T>
+    static DiscPlanesT<T> planes(const Cylinder& s, const NewtonAxis& axis,
+                                 const Vec3TwoTermT<T>& w, Vec3T<T> v) {
+        Vec3TwoTermT<T> h{lanes_of<T>(axis.h.hi), lanes_of<T>(axis.h.lo)};
+        DiscPlanesT<T> p{dot_dd(w, h), dot_dd(v, h), BoundedDD(0), axis.hh, s.caps, s.caps};
+        p.axis = axis_along(s.H - s.C);
+        if (p.axis >= 0) p.lo_at = s.C[p.axis], p.hi_at = s.H[p.axis];
+        return p;
+    }
+
+  public:
     // ---- correct: the hit test's quick line form (the same, in doubles with bounds) ----
 
     // Every value is a sum of products of the rounded w = L0 - C, h = H - C (each coordinate

@@ -197,8 +197,7 @@ struct ShapeTraits<Ellipsoid> : OnFrame<Ellipsoid, ShapeTraits<Ellipsoid>> {
     // ---- correct: the Newton rung's line form, and the hit test's quick one ----
 
     template <bool precise, class T, class Source>
-    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
-                             bool /*end_planes: no ends*/ = false) {
+    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         return elliptic_line_form<precise>(adjugate_rows(src), L0, src.shape.C, v, orientation,
                                            [&](LineFormT<T>& f, const BoundedDD&, auto square) {
                                                f.sigma_z = 1;

@@ -333,10 +333,10 @@ struct ShapeTraits<EllipticCone> {
     }
 
     // For the line L0 + t v in T: double, or a lane type (a line per lane). precise: the Newton
-    // rung's, in double-double; else the hit test's quick form, in doubles with bounds.
+    // rung's, in double-double; else the hit test's quick form, in doubles with bounds. The
+    // precise form carries its ends' planes (U0_z and U1_z: no more work), discs where closed.
     template <bool precise, class T, class Source>
-    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
-                             bool end_planes = false) {
+    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         const EllipticCone& s = src.shape;
         return elliptic_line_form<precise>(
             adjugate_rows(src), L0, s.H, v, orientation,
@@ -353,20 +353,19 @@ struct ShapeTraits<EllipticCone> {
                 f.hi_bounded = !two || s.finite;
                 f.discs = discs_of(s);
                 // The base disc at z = -1 (and the top at z = 1).
-                if (precise && (s.caps || end_planes)) {
+                if (precise) {
                     f.planes = DiscPlanesT<T>{{},     {},           -det, two ? det : BoundedDD(0),
                                               s.caps, s.caps && two};
                     // The base's plane through C, spanned by a and b: an exact coordinate for
-                    // the base's points (one nappe's only).
-                    int k = axis_across(s.a, s.b);
+                    // the base disc's points (one nappe's only).
+                    int k = s.caps ? axis_across(s.a, s.b) : -1;
                     if (k >= 0 && !two) f.planes->axis = k, f.planes->lo_at = s.C[k];
                 }
             });
     }
     template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
-                                  bool end_planes = false) {
-        return form<true, T>(src, L0, v, orientation, end_planes);
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
+        return form<true, T>(src, L0, v, orientation);
     }
 
     // ---- correct: the hit test's quick line form (the same, in doubles with bounds) ----

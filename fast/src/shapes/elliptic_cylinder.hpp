@@ -236,10 +236,10 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
 
     // For the line L0 + t v in T: double, or a lane type (a line per lane). precise: the Newton
     // rung's, in double-double; else the hit test's quick form, in doubles with bounds.
-    // end_planes: the ends' planes of a finite open cylinder too (ExtentEnds::end_planes).
+    // The precise form of a finite one carries its ends' planes (U0_z and U1_z: no more work),
+    // with discs where it is closed.
     template <bool precise, class T, class Source>
-    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
-                             bool end_planes = false) {
+    static LineFormT<T> form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
         const EllipticCylinder& s = src.shape;
         auto own = [&](LineFormT<T>& f, const BoundedDD& det, auto square) {
             f.sigma_z = 0;
@@ -248,10 +248,11 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
             f.hi = det.hi, f.e_hi = bound_of_hi(det); // 0 <= Z <= |det|
             f.lo_bounded = f.hi_bounded = s.finite;
             f.discs = discs_of(s);
-            if (precise && (s.caps || (end_planes && s.finite))) {
+            if (precise && s.finite) {
                 f.planes = DiscPlanesT<T>{{}, {}, BoundedDD(0), det, s.caps, s.caps};
-                // The discs' planes through C and C + c, spanned by a and b.
-                int k = axis_across(s.a, s.b);
+                // The discs' planes through C and C + c, spanned by a and b (only discs have
+                // points there).
+                int k = s.caps ? axis_across(s.a, s.b) : -1;
                 TwoTerm top = k >= 0 ? two_sum(s.C[k], s.c[k]) : TwoTerm{0, 0};
                 if (k >= 0 && top.lo == 0)
                     f.planes->axis = k, f.planes->lo_at = s.C[k], f.planes->hi_at = top.hi;

@@ -322,8 +322,7 @@ struct ShapeTraits<Frustum> {
     // ---- correct: the Newton rung's line form (four terms) ----
 
     template <class T = double, class Source>
-    static LineForm line_form(const Source& src, Vec3 L0, Vec3 v, int /*orientation*/,
-                              bool end_planes = false) {
+    static LineForm line_form(const Source& src, Vec3 L0, Vec3 v, int /*orientation*/) {
         static_assert(std::is_same_v<T, double>, "the frustum's line form is scalar");
         const Frustum& s = src.shape;
         Vec3TwoTerm h = difference_exact(s.C1, s.C0), w = difference_exact(L0, s.C0);
@@ -348,10 +347,10 @@ struct ShapeTraits<Frustum> {
         f.lo = 0, f.e_lo = 0, f.lo_bounded = true;
         f.hi = hh.hi, f.e_hi = bound_of_hi(hh), f.hi_bounded = s.finite;
         f.discs = discs_of(s);
-        if (s.caps || (end_planes && s.finite)) {
+        if (s.finite) { // the ends' planes, from what the form has: discs where closed
             Closure discs = frustum_closure(s); // none where open
             f.planes = DiscPlanes{wh, vh, BoundedDD(0), hh, discs.lo, discs.hi};
-            f.planes->axis = axis_along(s.C1 - s.C0);
+            f.planes->axis = s.caps ? axis_along(s.C1 - s.C0) : -1; // only discs have points there
             if (f.planes->axis >= 0)
                 f.planes->lo_at = s.C0[f.planes->axis], f.planes->hi_at = s.C1[f.planes->axis];
         }

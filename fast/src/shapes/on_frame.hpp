@@ -56,9 +56,8 @@ struct OnFrame {
 
     // For the line L0 + t v in T: double, or a lane type (a line per lane).
     template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation,
-                                  bool end_planes = false) {
-        return Traits::template form<true, T>(src, L0, v, orientation, end_planes);
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int orientation) {
+        return Traits::template form<true, T>(src, L0, v, orientation);
     }
     // The hit test's: the same values in doubles with bounds.
     template <class T = double, class Source>

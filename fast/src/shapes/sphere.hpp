@@ -212,8 +212,7 @@ struct ShapeTraits<Sphere> {
     // ---- correct: the Newton rung's line form, and the hit test's quick one ----
 
     template <class T = double, class Source>
-    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/,
-                                  bool /*end_planes: no ends*/ = false) {
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
         return sphere_line_form<true, T>(src.shape.C, src.shape.r, L0, v);
     }
     template <class T = double, class Source>
