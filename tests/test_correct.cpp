@@ -170,6 +170,43 @@ TEST_CASE("BigFloat sums and products of several limbs equal GMP's exactly") {
     }
 }
 
+TEST_CASE("BigFloat values of one or two limbs less than 64 bits apart add and multiply exactly") {
+    // The fast paths: operands of one or two limbs (doubles, products of two) whose exponents lie
+    // 0 to 63 bits apart, so that a sum carries into a third limb, cancels to zero or to a value
+    // with 64 or more trailing zero bits (equal exponents), and a product fills four limbs.
+    std::mt19937_64 rng(31);
+    auto mantissa = [&] { return std::uniform_real_distribution<double>(1, 2)(rng); };
+    int cancelled = 0, carried = 0;
+    for (int i = 0; i < 20000; ++i) {
+        int e = int(rng() % 64), f = int(rng() % 64);
+        double a = mantissa(), b = std::ldexp(mantissa(), e), c = mantissa(),
+               d = std::ldexp(mantissa(), f);
+        if (rng() % 2) a = -a;
+        if (rng() % 2) c = -c;
+        BigFloat x = BigFloat(a) * BigFloat(b), y = BigFloat(c) * BigFloat(d);
+        Q qx = Q(a) * Q(b), qy = Q(c) * Q(d);
+        if (rng() % 8 == 0) y = -x, qy = Q() - qx; // x + y = 0 exactly
+        if (rng() % 8 == 0) { // y = -x + a power of two well below: 64 or more zeros cancel
+            BigFloat low = BigFloat::pow2(-int(rng() % 40) - 110);
+            y = low - x;
+            qy = exact_value(low) - qx;
+        }
+        INFO(hex(a) << " " << hex(b) << " " << hex(c) << " " << hex(d));
+        Q sum = qx + qy;
+        REQUIRE(mpq_equal(exact_value(x + y).q, sum.q));
+        REQUIRE(mpq_equal(exact_value(x - y).q, (qx - qy).q));
+        REQUIRE(mpq_equal(exact_value(y - x).q, (qy - qx).q));
+        REQUIRE(mpq_equal(exact_value(x * y).q, (qx * qy).q));
+        REQUIRE(mpq_equal(exact_value(BigFloat(a) + BigFloat(c)).q, (Q(a) + Q(c)).q));
+        cancelled += mpq_sgn(sum.q) == 0;
+        // The sum's significant bits, numerator's highest to lowest set bit: beyond two limbs.
+        mpz_srcptr n = mpq_numref(sum.q);
+        carried += mpq_sgn(sum.q) != 0 && mpz_sizeinbase(n, 2) - mpz_scan1(n, 0) > 128;
+    }
+    CHECK(cancelled > 1000);
+    CHECK(carried > 1000);
+}
+
 namespace {
 
 // A vector whose components are far apart: one exponent near `base`, the others up to 1100

@@ -63,53 +63,12 @@ LINEQUAD_LIMB_LOOP void BigFloat::normalize() {
     exp_ += long(words) * 64 + s;
 }
 
-// x + y 2^d, one limb each, y's exponent d < 63 above x's: the exact forms' most common sum (of
-// two products of doubles, or two doubles), done in 128 bits (below 2^64 + 2^126).
-void BigFloat::sum_of_limbs(const BigFloat& x, int x_sign, const BigFloat& y, int y_sign, long d,
-                            BigFloat& r) {
-    using U = unsigned __int128;
-    U xm = x.mag[0], ym = U(y.mag[0]) << d, m;
-    if (x_sign == y_sign) {
-        m = xm + ym, r.sign_ = x_sign;
-    } else if (ym >= xm) {
-        m = ym - xm, r.sign_ = y_sign;
-    } else {
-        m = xm - ym, r.sign_ = x_sign;
-    }
-    if (m == 0) {
-        r.sign_ = 0;
-        return;
-    }
-    // x is odd (normal), so only d = 0 can leave trailing zeros.
-    std::uint64_t lo = std::uint64_t(m), hi = std::uint64_t(m >> 64);
-    int zeros = lo != 0 ? __builtin_ctzll(lo) : 64 + __builtin_ctzll(hi);
-    m >>= zeros;
-    r.exp_ = x.exp_ + zeros;
-    r.mag.set_two(std::uint64_t(m), std::uint64_t(m >> 64));
-}
-
 // In one pass: x, the operand of the smaller exponent, as it is; y shifted onto it as it is read;
 // their sum or difference limb by limb. A difference that borrows out of the top was y - x:
 // negated (two's complement) and given y's sign.
-LINEQUAD_LIMB_LOOP BigFloat BigFloat::sum(const BigFloat& a, const BigFloat& b, int b_sign) {
-    // Every return is of r, built in place (two named results would each be moved out, and a
-    // move of limbs held in place copies them).
-    BigFloat r;
-    if (b_sign == 0 || a.sign_ == 0) {
-        r = b_sign == 0 ? a : b;
-        if (b_sign != 0) r.sign_ = b_sign;
-        return r;
-    }
-    bool a_lower = a.exp_ <= b.exp_;
-    const BigFloat& x = a_lower ? a : b;
-    const BigFloat& y = a_lower ? b : a;
-    int x_sign = a_lower ? a.sign_ : b_sign, y_sign = a_lower ? b_sign : a.sign_;
-    unsigned long d = static_cast<unsigned long>(y.exp_ - x.exp_);
+LINEQUAD_LIMB_LOOP void BigFloat::sum_of_limbs(const BigFloat& x, int x_sign, const BigFloat& y,
+                                               int y_sign, unsigned long d, BigFloat& r) {
     std::size_t nx = x.mag.size(), ny = y.mag.size();
-    if (nx == 1 && ny == 1 && d < 63) {
-        sum_of_limbs(x, x_sign, y, y_sign, long(d), r);
-        return r;
-    }
     std::size_t words = d / 64;
     unsigned s = unsigned(d % 64);
     std::size_t n = std::max(nx, ny + words + (s != 0));
@@ -152,23 +111,15 @@ LINEQUAD_LIMB_LOOP BigFloat BigFloat::sum(const BigFloat& a, const BigFloat& b, 
     }
     while (!r.mag.empty() && r.mag.back() == 0)
         r.mag.pop_back();
-    r.normalize();
-    return r;
+    // x is odd and y 2^d even for d > 0: only equal exponents leave trailing zero bits.
+    if (d == 0 || r.mag.empty()) r.normalize();
 }
 
 // Schoolbook, the first row writing the limbs the others add to.
-LINEQUAD_LIMB_LOOP BigFloat operator*(const BigFloat& a, const BigFloat& b) {
+LINEQUAD_LIMB_LOOP void BigFloat::product_of_limbs(const BigFloat& a, const BigFloat& b,
+                                                   BigFloat& r) {
     using U = unsigned __int128;
-    BigFloat r; // the one result, built in place (as in sum)
-    if (a.sign_ == 0 || b.sign_ == 0) return r;
-    r.sign_ = a.sign_ * b.sign_;
-    r.exp_ = a.exp_ + b.exp_;
     std::size_t na = a.mag.size(), nb = b.mag.size();
-    if (na == 1 && nb == 1) { // a product of two doubles, the exact forms' most common value
-        U t = U(a.mag[0]) * b.mag[0];
-        r.mag.set_two(std::uint64_t(t), std::uint64_t(t >> 64));
-        return r;
-    }
     r.mag.resize_for_writing(na + nb);
     const std::uint64_t* __restrict ap = a.mag.data();
     const std::uint64_t* __restrict bp = b.mag.data();
@@ -191,7 +142,6 @@ LINEQUAD_LIMB_LOOP BigFloat operator*(const BigFloat& a, const BigFloat& b) {
     }
     while (r.mag.back() == 0)
         r.mag.pop_back();
-    return r; // odd times odd is odd: already normal
 }
 
 BigFloat::Approx BigFloat::approx() const {
