@@ -1,0 +1,53 @@
+// Solves one family's audit cases with one solver, for counting instructions under callgrind:
+// bench/family_instructions.sh runs it with the solves and without, and divides the difference by
+// the number of cases (printed on standard error).
+//   linequad_family_instructions SOLVER FAMILY CASES SEED SOLVE     (SOLVE: 1, or 0 for none)
+//   linequad_family_instructions --families                          (their names, one a line)
+#include "linequad/audit.hpp"
+#include "linequad/families.hpp"
+#include "linequad/linequad.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace {
+
+volatile double sink;
+
+int usage() {
+    std::fputs("usage: linequad_family_instructions SOLVER FAMILY CASES SEED 0|1\n", stderr);
+    return 2;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    using namespace linequad;
+    if (argc == 2 && std::string(argv[1]) == "--families") {
+        for (int f = 0; f < family_count; ++f)
+            std::puts(family_name(Family(f)));
+        return 0;
+    }
+    if (argc != 6) return usage();
+    const Solver* solver = nullptr;
+    for (const Solver& s : fast_solvers())
+        if (s.name == argv[1]) solver = &s;
+    audit::Options o;
+    Family family;
+    if (!solver || !parse_family(argv[2], &family)) return usage();
+    o.families = {family};
+    o.cases_per_group = std::strtoull(argv[3], nullptr, 10);
+    o.seed = std::strtoull(argv[4], nullptr, 10);
+    o.precision = solver->precision;
+    std::vector<Case> cases;
+    audit::for_each_case(o, [&](const Case& c) { cases.push_back(c); });
+    double hits = 0;
+    if (std::atoi(argv[5]) != 0)
+        for (const Case& c : cases)
+            hits += (*solver)(c.shape, c.line).count;
+    sink = hits;
+    std::fprintf(stderr, "%zu\n", cases.size());
+    return 0;
+}
