@@ -9,6 +9,7 @@
 #include "forms/frame.hpp"
 #include "numeric/big_float.hpp"
 #include "numeric/bounded_dd.hpp"
+#include "numeric/exact_in_double.hpp"
 #include "numeric/format.hpp"
 #include "solve/solve.hpp"
 
@@ -306,6 +307,47 @@ TEST_CASE("a point's side of a plane through a sum of points is exact (det[a b P
         REQUIRE(det3_sign_exact(a, b, P, Q, R) == exact);
     }
     CHECK(zeros > 1000); // points exactly on their plane (a and b not zero) were tested
+}
+
+TEST_CASE("signs computed in double where nothing rounds are exact, and declined otherwise") {
+    // det[a b P - Q - R] and (a - a') . (b - b') in double (numeric/exact_in_double.hpp): on small
+    // integers and halves (a frame of small integers: every product and sum a double) they must
+    // answer, and exactly, zeros included; on wide doubles, near the subnormals or near overflow
+    // they may decline, but never answer wrongly.
+    std::mt19937_64 rng(37);
+    auto small = [&] {
+        return Vec3{0.5 * double(int(rng() % 33) - 16), double(int(rng() % 17) - 8),
+                    double(int(rng() % 9) - 4)};
+    };
+    int answered = 0, zeros = 0, declined = 0;
+    for (int i = 0; i < 20000; ++i) {
+        int kind = int(rng() % 4);
+        auto draw = [&] {
+            if (kind == 0) return small();
+            int base = kind == 1 ? int(rng() % 100) - 50 : kind == 2 ? -1000 : 990;
+            return spread_vector(rng, base);
+        };
+        Vec3 a = draw(), b = draw(), q = draw(), r = draw(), p = draw();
+        if (rng() % 2) p = q + r + (rng() % 2 ? a : b); // on the plane (exactly, for small ones)
+        int exact = det_sign_gmp(a, b, q, p, r);
+        std::optional<int> d = det3_sign_in_double(a, b, p, q, r);
+        INFO("kind " << kind << " case " << i);
+        if (kind == 0) REQUIRE(d);
+        if (d) {
+            REQUIRE(*d == exact);
+            ++answered, zeros += exact == 0;
+        } else {
+            ++declined;
+        }
+        Q dot_exact;
+        for (int k = 0; k < 3; ++k)
+            dot_exact = dot_exact + (Q(a[k]) - Q(b[k])) * (Q(p[k]) - Q(r[k]));
+        std::optional<int> s = dot_sign_in_double(a, b, p, r);
+        if (kind == 0) REQUIRE(s);
+        if (s) REQUIRE(*s == mpq_sgn(dot_exact.q));
+    }
+    CHECK(zeros > 1000);
+    CHECK(declined > 1000);
 }
 
 TEST_CASE("BoundedDD bounds hold: |hi + lo - exact| <= e for every operation") {

@@ -31,6 +31,7 @@
 #include "correct/newton_rung.hpp"
 #include "correct/rungs.hpp"
 #include "forms/frame.hpp"
+#include "numeric/exact_in_double.hpp"
 #include "numeric/expansion.hpp"
 #include "shapes/all.hpp"
 #include "solve/solve.hpp"
@@ -139,9 +140,10 @@ inline bool exact_products(std::initializer_list<Vec3> inputs) {
     return true;
 }
 
-// The sign of (a - a') . (b - b'), the differences taken exactly; no value where a product could
-// be inexact.
+// The sign of (a - a') . (b - b'), the differences taken exactly: in double where nothing rounds
+// (small integers), else by an expansion; no value where a product could be inexact.
 inline std::optional<int> dot_sign(Vec3 a, Vec3 a_, Vec3 b, Vec3 b_) {
+    if (std::optional<int> s = dot_sign_in_double(a, a_, b, b_)) return s; // small integers
     if (!exact_products({a, a_, b, b_})) return std::nullopt;
     Expansion<24> e;
     for (int k = 0; k < 3; ++k) {

@@ -4,6 +4,7 @@
 #include "forms/frame.hpp"
 
 #include "numeric/big_float.hpp"
+#include "numeric/exact_in_double.hpp"
 #include "numeric/expansion.hpp"
 
 #include <cmath>
@@ -57,10 +58,13 @@ Vec3T<BigFloat> big(Vec3 u) {
     return {BigFloat(u.x), BigFloat(u.y), BigFloat(u.z)};
 }
 
-// Where the filter cannot decide: det is linear in its last column, det[a b P-Q-R] = det[a b P]
-// - det[a b Q] - det[a b R], the three scaled by one power of two, then summed exactly.
+// Where the filter cannot decide: in double where nothing rounds (a frame of small integers);
+// else, det being linear in its last column, det[a b P-Q-R] = det[a b P] - det[a b Q] -
+// det[a b R], the three scaled by one power of two, then summed exactly.
 int unfiltered_sign(Vec3 a, Vec3 b, Vec3 P, Vec3 Q, Vec3 R) {
     if (a == Vec3{} || b == Vec3{}) return 0;
+    if (std::optional<int> s = det3_sign_in_double(a, b, P, Q, R)) return *s; // small integers
+
     if (!narrow({a}) || !narrow({b}) || !narrow({P, Q, R}))
         return sign(dot(big(a), cross(big(b), big(P) - big(Q) - big(R))));
     double m = std::fmax(max_abs(P), std::fmax(max_abs(Q), max_abs(R)));
