@@ -1027,6 +1027,65 @@ TEST_CASE("each shape's Z alone (exact_axial) is its exact quadratic's Z exactly
     CHECK(compared > 2000);
 }
 
+namespace {
+// Shape S's exact form in double (ExactDouble) against its exact form in BigFloat: where every
+// coefficient is exact, each equal exactly; where one is not, it is declined (counted).
+template <class S>
+void check_in_double(const S& s, const Line& l, int orientation, long& exact, long& rounded) {
+    using Traits = detail::ShapeTraits<S>;
+    exact_form::LineQuadratic<ExactDouble> d =
+        Traits::template exact_quadratic<ExactDouble>(s, l, orientation);
+    exact_form::LineQuadratic<BigFloat> q =
+        Traits::template exact_quadratic<BigFloat>(s, l, orientation);
+    const std::pair<const ExactDouble*, const BigFloat*> pairs[] = {
+        {&d.A, &q.A},   {&d.B, &q.B},   {&d.C0, &q.C0}, {&d.Z0, &q.Z0},
+        {&d.dZ, &q.dZ}, {&d.lo, &q.lo}, {&d.hi, &q.hi}};
+    for (auto [x, y] : pairs) {
+        if (!x->exact) {
+            ++rounded;
+            continue;
+        }
+        CHECK(sign(BigFloat(x->v) - *y) == 0);
+        ++exact;
+    }
+}
+} // namespace
+
+TEST_CASE("each shape's exact form in double, where nothing rounds, is its exact form") {
+    // The exact form in double (ExactDouble: every sum's and product's error zero) stands for the
+    // BigFloat one where the inputs are small dyadic numbers (a frame of small integers: a line
+    // through a rim, along an axis, in a disc's plane). Every family, shape (the capsule's three
+    // patches) and range: each coefficient that says it is exact must equal BigFloat's, and
+    // most generic coefficients must say they are not.
+    long exact = 0, rounded = 0;
+    for (int f = 0; f < family_count; ++f)
+        for (int shape = 0; shape < shape_kinds; ++shape) {
+            if (!family_applies(Family(f), shape)) continue;
+            for (Range range : {Range::line, Range::ray, Range::segment})
+                for (std::uint64_t i = 0; i < 12; ++i) {
+                    Case c = make_case(Family(f), shape, range, 73, i);
+                    INFO(format_case(c));
+                    std::visit(
+                        [&](const auto& s) {
+                            using S = std::decay_t<decltype(s)>;
+                            detail::Validity valid = detail::check(detail::AsGiven<S>{s}, c.line);
+                            if (!valid.error.ok()) return;
+                            if constexpr (std::is_same_v<S, Capsule>) {
+                                auto [side, base, top] = detail::ShapeTraits<Capsule>::patches(s);
+                                check_in_double(side, c.line, 0, exact, rounded);
+                                check_in_double(base, c.line, 0, exact, rounded);
+                                check_in_double(top, c.line, 0, exact, rounded);
+                            } else {
+                                check_in_double(s, c.line, valid.orientation, exact, rounded);
+                            }
+                        },
+                        c.shape);
+                }
+        }
+    CHECK(exact > 3000);
+    CHECK(rounded > 3000);
+}
+
 TEST_CASE("correct proves the roots of thin shapes on the Newton rung") {
     // The thin family: an ellipsoid's axis 2^-k of the others. Two roots within a few ulps of
     // each other leave no double near enough to one of them for the proof at a double; the

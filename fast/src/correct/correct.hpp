@@ -36,6 +36,7 @@
 #include "shapes/all.hpp"
 #include "solve/solve.hpp"
 
+#include <cstring>
 #include <initializer_list>
 
 namespace linequad::detail {
@@ -90,8 +91,14 @@ inline BoundedDD enclosure(const BoundedDD& x) {
     return x;
 }
 using linequad::enclosure;
+inline BoundedDD enclosure(const ExactDouble& x) { // an exact one only
+    return BoundedDD(x.v);
+}
 inline BoundedDD twice(const BoundedDD& x) {
     return {2 * x.hi, 2 * x.lo, 2 * x.e};
+}
+inline ExactDouble twice(const ExactDouble& x) {
+    return {2 * x.v, x.exact && std::isfinite(2 * x.v)};
 }
 inline BigFloat twice(const BigFloat& x) {
     return x.scaled(1);
@@ -276,6 +283,26 @@ std::optional<bool> exactly_parallel(const S&, const Line&) {
     return std::nullopt;
 }
 
+// Whether every input (the shape's and the line's) has at most 20 significant bits: a frame and a
+// line of small dyadic numbers, where the exact form in double is worth trying (ExactDouble says
+// whether it was exact; most other inputs make it round, and the try would be wasted).
+struct ShortInputs {
+    std::uint64_t low = 0; // the low 33 bits of every significand, or'ed
+    LINEQUAD_INLINE void add(double x) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        low |= bits & ((std::uint64_t(1) << 33) - 1);
+    }
+    LINEQUAD_INLINE void add(const Vec3& a) { add(a.x), add(a.y), add(a.z); }
+};
+template <class S>
+bool short_inputs(const S& s, const Line& l) {
+    ShortInputs check;
+    check.add(l.L0), check.add(l.v);
+    for_each_field<S>([&](const auto& f) { check.add(s.*f.member); });
+    return check.low == 0;
+}
+
 // Whether a shape gives its ends' planes apart from its line form (end_planes), which then does
 // not carry them for an open shape.
 template <class S, class = void>
@@ -316,15 +343,36 @@ class ExactForm final : public ExtentEnds {
     ExactForm(const Source& src, const Line& l, int orientation, double extent)
         : src_(src), shape_(src.shape), line_(l), orientation_(orientation), extent_(extent) {}
 
+    // In BigFloat: from the exact form in double where that is exact, else formed in BigFloat.
     const exact_form::LineQuadratic<BigFloat>& quadratic() const {
-        if (!q_)
-            q_ = ShapeTraits<S>::template exact_quadratic<BigFloat>(shape_, line_, orientation_);
+        if (!q_) {
+            if (const exact_form::LineQuadratic<ExactDouble>* d = in_double())
+                q_ = lifted(*d);
+            else
+                q_ =
+                    ShapeTraits<S>::template exact_quadratic<BigFloat>(shape_, line_, orientation_);
+        }
         return *q_;
+    }
+    // The exact form in double, once; none where an operation rounded (only a frame and a line of
+    // small dyadic numbers have it: most of what meets exact zeros, at a tenth of the filter's
+    // cost).
+    const exact_form::LineQuadratic<ExactDouble>* in_double() const {
+        if (!double_tried_) {
+            double_tried_ = true;
+            if (!short_inputs(shape_, line_)) return nullptr;
+            exact_form::LineQuadratic<ExactDouble> d =
+                ShapeTraits<S>::template exact_quadratic<ExactDouble>(shape_, line_, orientation_);
+            if (d.A.exact && d.B.exact && d.C0.exact && d.Z0.exact && d.dZ.exact && d.lo.exact &&
+                d.hi.exact)
+                double_ = d;
+        }
+        return double_ ? &*double_ : nullptr;
     }
     // Z along the line alone, where that is all the rung asks (an end's crossing, the point
     // there, Z constant): the quadratic's own once it is formed.
     const exact_form::LineAxial<BigFloat>& axial() const {
-        if (q_) return *q_;
+        if (q_ || in_double()) return quadratic();
         if constexpr (has_exact_axial<S>) {
             if (!axial_)
                 axial_ =
@@ -364,9 +412,12 @@ class ExactForm final : public ExtentEnds {
     }
 
     std::optional<EndCrossing> at(bool top, double t_factor) const override {
-        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter())
-            if (std::optional<EndCrossing> c = end_crossing(*dd, top, filter_t() / t_factor))
-                return c;
+        using Found = std::optional<EndCrossing>;
+        if (std::optional<Found> c = ask_filters<Found>(t_factor, [&](const auto& q, double f) {
+                Found c = end_crossing(q, top, f);
+                return c ? std::optional<Found>(c) : std::nullopt;
+            }))
+            return *c;
         std::optional<EndCrossing> c = end_crossing(quadratic(), top, 1 / t_factor);
         exact_zero_ = exact_zero_ || (c && c->q_sign == 0); // a root at the end: a rim
         return c;
@@ -384,20 +435,20 @@ class ExactForm final : public ExtentEnds {
         if (parallel && !*parallel) return std::nullopt;
         int rung_sign = std::fabs(at_0) > e_at_0 ? (at_0 > 0 ? 1 : -1) : undecided_sign;
         if (parallel && rung_sign != undecided_sign) return rung_sign;
-        const exact_form::LineQuadratic<BoundedDD>* dd = filter();
-        if (dd) {
-            int A = sign(dd->A), B = sign(dd->B);
-            if ((A != undecided_sign && A != 0) || (B != undecided_sign && B != 0))
-                return std::nullopt; // g is not constant
-            int c = rung_sign != undecided_sign ? rung_sign : sign(dd->C0);
-            if (c != undecided_sign) {
-                if (parallel) return c;
-                if (A == 0 && B == 0) { // the filter's A and B are exact: g is constant
-                    exact_zero_ = true;
-                    return c;
-                }
-            }
-        }
+        using Found = std::optional<int>;
+        if (std::optional<Found> c = ask_filters<Found>(1, [&](const auto& q, double) {
+                std::optional<Found> none;
+                int A = sign(q.A), B = sign(q.B);
+                if ((A != undecided_sign && A != 0) || (B != undecided_sign && B != 0))
+                    return std::optional<Found>(Found()); // g is not constant
+                int c = rung_sign != undecided_sign ? rung_sign : sign(q.C0);
+                if (c == undecided_sign) return none;
+                if (parallel) return std::optional<Found>(c);
+                if (A != 0 || B != 0) return none;
+                exact_zero_ = true; // A and B exactly 0: g is constant
+                return std::optional<Found>(c);
+            }))
+            return *c;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) != 0) return std::nullopt;
         exact_zero_ = true;
@@ -407,26 +458,31 @@ class ExactForm final : public ExtentEnds {
     std::optional<int> constant_z() const override {
         if (std::optional<ConstantZ> z = constant_z_of_line(shape_, line_, orientation_))
             return z->level;
-        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter()) {
-            int dZ = sign(dd->dZ);
-            if (dZ != undecided_sign && dZ != 0) return std::nullopt;
-            if (dZ == 0) // Z is constant: its level, where the filter's signs decide it
-                if (std::optional<int> level = level_in(*dd)) return *level;
-        }
+        using Found = std::optional<int>;
+        if (std::optional<Found> level = ask_filters<Found>(1, [&](const auto& q, double) {
+                int dZ = sign(q.dZ);
+                if (dZ == undecided_sign) return std::optional<Found>();
+                if (dZ != 0) return std::optional<Found>(Found()); // Z is not constant
+                // Z is constant: its level, where the filter's signs decide it
+                Found level = level_in(q);
+                return level ? std::optional<Found>(level) : std::nullopt;
+            }))
+            return *level;
         const exact_form::LineAxial<BigFloat>& z = axial();
         if (sign(z.dZ) != 0) return std::nullopt;
         return level_in(z, [&] { return &quadratic(); }); // in an end's plane: its disc?
     }
 
     std::optional<BoundedDD> double_root(double t_factor) const override {
-        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter()) {
-            int A = sign(dd->A), D = sign(dd->B * dd->B - dd->A * dd->C0);
-            if (A == 0 || (D != undecided_sign && D != 0)) return std::nullopt;
-            if (D == 0 && A != undecided_sign) { // the filter's D is exact: a double root
-                exact_zero_ = true;
-                return in_rung_units(-dd->B / dd->A, filter_t() / t_factor);
-            }
-        }
+        using Found = std::optional<BoundedDD>;
+        if (std::optional<Found> t = ask_filters<Found>(t_factor, [&](const auto& q, double f) {
+                int A = sign(q.A), D = sign(q.B * q.B - q.A * q.C0);
+                if (A == 0 || (D != undecided_sign && D != 0)) return std::optional<Found>(Found());
+                if (D != 0 || A == undecided_sign) return std::optional<Found>();
+                exact_zero_ = true; // D exactly 0: a double root
+                return std::optional<Found>(in_rung_units(-enclosure(q.B) / enclosure(q.A), f));
+            }))
+            return *t;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) == 0 || sign(discriminant()) != 0) return std::nullopt;
         exact_zero_ = true;
@@ -452,16 +508,17 @@ class ExactForm final : public ExtentEnds {
     }
 
     std::optional<LinearRoot> linear_root(double t_factor) const override {
-        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter()) {
-            int A = sign(dd->A), B = sign(dd->B);
-            if ((A != undecided_sign && A != 0) || B == 0) return std::nullopt;
-            if (A == 0 && B != undecided_sign) { // the filter's A is exact: g is linear
-                exact_zero_ = true;
-                if (std::optional<BoundedDD> t =
-                        in_rung_units(-dd->C0 / twice(dd->B), filter_t() / t_factor))
-                    return LinearRoot{*t, B};
-            }
-        }
+        using Found = std::optional<LinearRoot>;
+        if (std::optional<Found> r = ask_filters<Found>(t_factor, [&](const auto& q, double f) {
+                int A = sign(q.A), B = sign(q.B);
+                if ((A != undecided_sign && A != 0) || B == 0) return std::optional<Found>(Found());
+                if (A != 0 || B == undecided_sign) return std::optional<Found>();
+                exact_zero_ = true; // A exactly 0: g is linear
+                std::optional<BoundedDD> t =
+                    in_rung_units(-enclosure(q.C0) / twice(enclosure(q.B)), f);
+                return t ? std::optional<Found>(LinearRoot{*t, B}) : std::nullopt;
+            }))
+            return *r;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) == 0) return std::nullopt;
         exact_zero_ = true;
@@ -570,6 +627,30 @@ class ExactForm final : public ExtentEnds {
     // The filter's parameter is the caller's over this.
     double filter_t() const { return unit_->unit.t_factor; }
 
+    // Each exact quadratic a question is asked of first, with the factor that takes its parameter
+    // into the rung's (`t_factor`, the caller's over the rung's): the exact form in double, then
+    // the filter, until `answer(q, factor)` decides (a value with a value); undecided otherwise.
+    template <class T, class Answer>
+    std::optional<T> ask_filters(double t_factor, Answer answer) const {
+        if (const exact_form::LineQuadratic<ExactDouble>* d = in_double())
+            if (std::optional<T> a = answer(*d, 1 / t_factor)) return a;
+        if (const exact_form::LineQuadratic<BoundedDD>* dd = filter())
+            if (std::optional<T> a = answer(*dd, filter_t() / t_factor)) return a;
+        return std::nullopt;
+    }
+
+    static exact_form::LineQuadratic<BigFloat>
+    lifted(const exact_form::LineQuadratic<ExactDouble>& d) {
+        exact_form::LineQuadratic<BigFloat> q;
+        q.A = BigFloat(d.A.v), q.B = BigFloat(d.B.v), q.C0 = BigFloat(d.C0.v);
+        q.Z0 = BigFloat(d.Z0.v), q.dZ = BigFloat(d.dZ.v), q.lo = BigFloat(d.lo.v);
+        q.hi = BigFloat(d.hi.v);
+        q.lo_bounded = d.lo_bounded, q.hi_bounded = d.hi_bounded;
+        q.lo_capped = d.lo_capped, q.hi_capped = d.hi_capped, q.two_solids = d.two_solids;
+        q.lo_open = d.lo_open, q.hi_open = d.hi_open;
+        return q;
+    }
+
     // Z0's level against the extent (ExtentEnds::constant_z) for Z constant along the line, from
     // z's signs; none where one is undecided (a filter's), or where the line lies in the plane of
     // an end without a disc (`capped()`: the quadratic that says which ends have one).
@@ -584,8 +665,9 @@ class ExactForm final : public ExtentEnds {
         if ((level == -1 && !q->lo_capped) || (level == 1 && !q->hi_capped)) return std::nullopt;
         return level;
     }
-    std::optional<int> level_in(const exact_form::LineQuadratic<BoundedDD>& dd) const {
-        return level_in(dd, [&] { return &dd; });
+    template <class NT>
+    std::optional<int> level_in(const exact_form::LineQuadratic<NT>& q) const {
+        return level_in(q, [&] { return &q; });
     }
 
     const Source& src_;
@@ -598,6 +680,8 @@ class ExactForm final : public ExtentEnds {
     mutable std::optional<exact_form::LineAxial<BigFloat>> axial_;
     mutable std::optional<BigFloat> D_;
     mutable std::optional<std::optional<DiscPlanes>> planes_; // end_planes', once asked
+    mutable bool double_tried_ = false;
+    mutable std::optional<exact_form::LineQuadratic<ExactDouble>> double_;
     mutable bool unit_tried_ = false;
     mutable std::optional<UnitScene<S>> unit_;
     mutable std::optional<exact_form::LineQuadratic<BoundedDD>> dd_;
