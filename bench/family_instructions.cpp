@@ -4,6 +4,7 @@
 //   linequad_family_instructions SOLVER FAMILY CASES SEED SOLVE     (SOLVE: 1, or 0 for none)
 //   linequad_family_instructions --families                          (their names, one a line)
 #include "linequad/audit.hpp"
+#include "linequad/exact.hpp"
 #include "linequad/families.hpp"
 #include "linequad/linequad.hpp"
 
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
     const Solver* solver = nullptr;
     for (const Solver& s : fast_solvers())
         if (s.name == argv[1]) solver = &s;
+    if (exact::solver().name == argv[1]) solver = &exact::solver(); // the oracle
     audit::Options o;
     Family family;
     if (!solver || !parse_family(argv[2], &family)) return usage();
