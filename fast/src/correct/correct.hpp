@@ -312,6 +312,21 @@ inline constexpr bool has_end_planes<S, std::void_t<decltype(ShapeTraits<S>::end
                                             std::declval<const AsGiven<S>&>(), Vec3{}, Vec3{}))>> =
     true;
 
+// Whether a shape gives the sign of D = B^2 - A C0 from a form of lower degree than the exact
+// quadratic's (discriminant_sign), and the side of an end of a tangency (tangency_against_end).
+template <class S, class = void>
+inline constexpr bool has_discriminant_sign = false;
+template <class S>
+inline constexpr bool has_discriminant_sign<
+    S, std::void_t<decltype(ShapeTraits<S>::template discriminant_sign<BigFloat>(
+           std::declval<const S&>(), std::declval<const Line&>(), 0))>> = true;
+template <class S, class = void>
+inline constexpr bool has_tangency_against_end = false;
+template <class S>
+inline constexpr bool has_tangency_against_end<
+    S, std::void_t<decltype(ShapeTraits<S>::template tangency_against_end<BigFloat>(
+           std::declval<const S&>(), std::declval<const Line&>(), true))>> = true;
+
 // Whether a shape gives its Z alone (exact_axial), cheaper than its whole exact quadratic.
 template <class S, class = void>
 inline constexpr bool has_exact_axial = false;
@@ -473,6 +488,31 @@ class ExactForm final : public ExtentEnds {
         return level_in(z, [&] { return &quadratic(); }); // in an end's plane: its disc?
     }
 
+    // D's sign: from the exact form in double where that is exact; else, where the shape has a form
+    // of lower degree (discriminant_sign), from it in bounded double-double (a near tangency),
+    // then exactly (a tangency); else from the filter, then the exact form.
+    std::optional<bool> tangency() const override {
+        auto found = [&](int D) {
+            exact_zero_ = exact_zero_ || D == 0;
+            return D == 0;
+        };
+        if (const exact_form::LineQuadratic<ExactDouble>* d = in_double())
+            if (int D = sign(d->B * d->B - d->A * d->C0); D != undecided_sign) return found(D);
+        if constexpr (has_discriminant_sign<S>) {
+            using Traits = ShapeTraits<S>;
+            int D = Traits::template discriminant_sign<BoundedDD>(shape_, line_, orientation_);
+            if (D == undecided_sign) {
+                D = Traits::template discriminant_sign<BigFloat>(shape_, line_, orientation_);
+            }
+            return found(D);
+        } else {
+            if (const exact_form::LineQuadratic<BoundedDD>* dd = filter())
+                if (int D = sign(dd->B * dd->B - dd->A * dd->C0); D != undecided_sign)
+                    return found(D);
+            return found(sign(discriminant()));
+        }
+    }
+
     std::optional<BoundedDD> double_root(double t_factor) const override {
         using Found = std::optional<BoundedDD>;
         if (std::optional<Found> t = ask_filters<Found>(t_factor, [&](const auto& q, double f) {
@@ -490,6 +530,18 @@ class ExactForm final : public ExtentEnds {
     }
 
     std::optional<int> vertex_against(bool top) const override {
+        if constexpr (has_tangency_against_end<S>) {
+            if (!q_) { // from its form of lower degree, A != 0 shown by a few exact products
+                std::optional<bool> parallel = exactly_parallel(shape_, line_);
+                if (parallel && *parallel) return std::nullopt; // A = 0
+                if (parallel) {
+                    const exact_form::LineAxial<BigFloat>& z = axial();
+                    if (!(top ? z.hi_bounded : z.lo_bounded)) return std::nullopt;
+                    return ShapeTraits<S>::template tangency_against_end<BigFloat>(shape_, line_,
+                                                                                   top);
+                }
+            }
+        }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (!(top ? q.hi_bounded : q.lo_bounded) || sign(q.A) == 0) return std::nullopt;
         // Z(-B/A) - end = ((Z0 - end) A - dZ B) / A

@@ -850,6 +850,26 @@ int tangent_at_end(const LineForm& f, const Unit& unit, const Enclosure<double>&
     return in_range;
 }
 
+// A double root's -B/A from the line form in bounded double-double: B = sum sigma_k U0_k U1_k and
+// A = sum sigma_k U1_k^2, each product and sum bounded as it goes; none where it is not within
+// 2^-95 of itself (B a few ulps from 0: a tangency at the line's origin), which the exact form
+// then gives.
+inline std::optional<BoundedDD> double_root_of(const LineForm& f) {
+    int terms = f.fourth ? 4 : f.sigma_z == 0 ? 2 : 3;
+    BoundedDD B(0), A(0);
+    for (int k = 0; k < terms; ++k) {
+        const BoundedDD &u0 = U0_of(f, k), &u1 = U1_of(f, k);
+        bool minus = k == 3 || (k == 2 && f.sigma_z == -1);
+        BoundedDD b = u0 * u1, a = u1 * u1;
+        B = minus ? B - b : B + b;
+        A = minus ? A - a : A + a;
+    }
+    BoundedDD t = -B / A;
+    if (!std::isfinite(t.hi) || !std::isfinite(t.e) || !(t.e <= 0x1p-95 * std::fabs(t.hi)))
+        return std::nullopt;
+    return t;
+}
+
 // A tangency (a double root, which only `ends` proves: D = 0 exactly), A > 0: the line touches
 // the quadric at t = -B/A, rational, and meets the shape there alone, where that point lies
 // inside the extent (a closed solid too, and either of two solids, the apex between them
@@ -860,7 +880,10 @@ template <class Target>
                                    const Line& caller, Query query, Result& r,
                                    const ExtentEnds& ends) {
     if (!(A.A > A.e)) return false;
-    std::optional<BoundedDD> t = ends.double_root(unit.t_factor);
+    std::optional<bool> tangent = ends.tangency();
+    if (!tangent || !*tangent) return false;
+    std::optional<BoundedDD> t = double_root_of(f);
+    if (!t) t = ends.double_root(unit.t_factor);
     if (!t) return false;
     Enclosure<double> en{t->hi, t->lo, t->e, true, true};
     Part part = Part::lateral;

@@ -78,8 +78,11 @@ class ExtentEnds {
     // plane), 0 strictly within, 1 in the top's plane, 2 above; no value where dZ != 0, or where
     // the line lies in the plane of an end with no disc.
     virtual std::optional<int> constant_z() const = 0;
-    // Where the bounds prove no simple root: when g has a double root (B^2 - A C0 = 0, A != 0:
-    // a tangency), that root -B/A enclosed, in the rung's units.
+    // Where the bounds prove no simple root and A > 0: whether g has a double root (B^2 - A C0
+    // = 0 exactly: a tangency); none where it cannot be decided.
+    virtual std::optional<bool> tangency() const = 0;
+    // That double root -B/A enclosed from the exact form, in the rung's units (where the rung's
+    // own enclosure of it is too wide).
     virtual std::optional<BoundedDD> double_root(double t_factor) const = 0;
     // sgn(Z(-B/A) - end), Z at the vertex against the top's or the base's level, exactly (at a
     // double root, the tangency's side of that end); none where that end is not bounded or A = 0.

@@ -113,6 +113,10 @@ struct ShapeTraits<CapsuleSide> {
                                                  int orientation) {
         return Of::exact_axial<NT>(side_cylinder(s), l, orientation);
     }
+    template <class NT>
+    static int discriminant_sign(const CapsuleSide& s, const Line& l, int orientation) {
+        return Of::discriminant_sign<NT>(side_cylinder(s), l, orientation);
+    }
 
     // The rung proves an extent decision only strictly, so an open end needs nothing more: a
     // root exactly at a seam is never proven inside, and goes to the exact rungs.
@@ -229,6 +233,10 @@ struct ShapeTraits<CapsuleEnd> {
         q.lo = NT(0);
         q.lo_bounded = true; // the seam belongs to the end: Z >= 0, closed
         return q;
+    }
+    template <class NT>
+    static int discriminant_sign(const CapsuleEnd& s, const Line& l, int /*orientation*/) {
+        return sphere_discriminant_sign<NT>(s.centre, s.r, l);
     }
     template <class NT>
     static exact_form::LineAxial<NT> exact_axial(const CapsuleEnd& s, const Line& l,

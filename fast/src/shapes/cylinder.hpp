@@ -323,6 +323,28 @@ struct ShapeTraits<Cylinder> {
         q.lo_capped = q.hi_capped = s.caps;
         return q;
     }
+    // The sign of D = B^2 - A C0 alone, from a form of lower degree: with U0 = w x h, U1 = v x h
+    // and K = r^2 h.h, Lagrange's identity gives D = K |U1|^2 - |U0 x U1|^2, and U0 x U1 =
+    // -det[w h v] h, so D = h.h (r^2 |v x h|^2 - det[w v h]^2): degree 6 in the inputs, not 8, and
+    // no A, B or C0 (where a tangency is to be shown, at a fraction of the whole form's cost).
+    template <class NT>
+    static int discriminant_sign(const Cylinder& s, const Line& l, int /*orientation*/) {
+        using exact_form::lift;
+        Vec3T<NT> h = lift<NT>(s.H) - lift<NT>(s.C), w = lift<NT>(l.L0) - lift<NT>(s.C);
+        Vec3T<NT> vh = cross(lift<NT>(l.v), h);
+        NT det = dot(w, vh), r(s.r);
+        return sign(r * r * dot(vh, vh) - det * det);
+    }
+    // At a double root t* = -B/A (A > 0), the sign of Z(t*) - end, the tangency's side of the
+    // base (top = false) or the top: A (Z0 - end) - dZ B = h.h (h x v) . (w_e x v), w_e = L0 less
+    // that end's centre (Lagrange's identity twice): degree 4, not 6.
+    template <class NT>
+    static int tangency_against_end(const Cylinder& s, const Line& l, bool top) {
+        using exact_form::lift;
+        Vec3T<NT> v = lift<NT>(l.v), h = lift<NT>(s.H) - lift<NT>(s.C);
+        Vec3T<NT> w = lift<NT>(l.L0) - lift<NT>(top ? s.H : s.C);
+        return sign(dot(cross(h, v), cross(w, v)));
+    }
     // Its Z alone: three dot products.
     template <class NT>
     static exact_form::LineAxial<NT> exact_axial(const Cylinder& s, const Line& l,

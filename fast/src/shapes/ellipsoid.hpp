@@ -194,6 +194,20 @@ struct ShapeTraits<Ellipsoid> : OnFrame<Ellipsoid, ShapeTraits<Ellipsoid>> {
         return q;
     }
 
+    // The sign of D = B^2 - A C0 alone: with sigma = (1, 1, 1) and K = det^2, Lagrange's identity
+    // and (adj(M) w) x (adj(M) v) = det M^T (w x v) give D = det^2 (A - |M^T (w x v)|^2), with
+    // A = |adj(M) v|^2 = det[v b c]^2 + det[v c a]^2 + det[v a b]^2: six triple products of
+    // doubles (w = L0 - C), degree 6 rather than 12.
+    template <class NT>
+    static int discriminant_sign(const Ellipsoid& s, const Line& l, int /*orientation*/) {
+        using exact_form::lift;
+        Vec3T<NT> a = lift<NT>(s.a), b = lift<NT>(s.b), c = lift<NT>(s.c), v = lift<NT>(l.v);
+        Vec3T<NT> wv = cross(lift<NT>(l.L0) - lift<NT>(s.C), v);
+        NT x = dot(v, cross(b, c)), y = dot(v, cross(c, a)), z = dot(v, cross(a, b));
+        NT p = dot(a, wv), q = dot(b, wv), r = dot(c, wv);
+        return sign(x * x + y * y + z * z - p * p - q * q - r * r);
+    }
+
     // ---- correct: the Newton rung's line form, and the hit test's quick one ----
 
     template <bool precise, class T, class Source>

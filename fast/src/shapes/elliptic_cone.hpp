@@ -304,6 +304,18 @@ struct ShapeTraits<EllipticCone> {
         return q;
     }
     // Its Z alone: W.z, V.z and det from adj(M)'s last row a x b, without the other two.
+    // The sign of D = B^2 - A C0 alone. With sigma = (1, 1, -1) and K = 0, Lagrange's identity
+    // gives D = X.x^2 + X.y^2 - X.z^2 for X = W x V, and (adj(M) w) x (adj(M) v) = det M^T (w x v)
+    // (the cofactor of adj(M) is det M^T): D = det^2 (det[a w v]^2 + det[b w v]^2 - det[c w v]^2),
+    // c = H - C, w = L0 - H: three triple products of doubles, degree 6 rather than 12.
+    template <class NT>
+    static int discriminant_sign(const EllipticCone& s, const Line& l, int /*orientation*/) {
+        using exact_form::lift;
+        Vec3T<NT> wv = cross(lift<NT>(l.L0) - lift<NT>(s.H), lift<NT>(l.v));
+        NT x = dot(lift<NT>(s.a), wv), y = dot(lift<NT>(s.b), wv);
+        NT z = dot(lift<NT>(s.H) - lift<NT>(s.C), wv);
+        return sign(x * x + y * y - z * z);
+    }
     template <class NT>
     static exact_form::LineAxial<NT> exact_axial(const EllipticCone& s, const Line& l,
                                                  int orientation) {

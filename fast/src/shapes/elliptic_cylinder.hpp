@@ -218,6 +218,19 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
         q.lo_capped = q.hi_capped = s.caps;
         return q;
     }
+    // The sign of D = B^2 - A C0 alone. With sigma = (1, 1, 0) and K = det^2, Lagrange's identity
+    // gives D = det^2 A - (V.x W.y - V.y W.x)^2, and for the rows n of adj(M) (b x c, c x a):
+    // (n_x . v)(n_y . w) - (n_y . v)(n_x . w) = (n_x x n_y) . (v x w) = det c . (v x w). So D =
+    // det^2 (A - det[c w v]^2), A = det[v b c]^2 + det[v c a]^2: three triple products of
+    // doubles (w = L0 - C), degree 6 rather than 12.
+    template <class NT>
+    static int discriminant_sign(const EllipticCylinder& s, const Line& l, int /*orientation*/) {
+        using exact_form::lift;
+        Vec3T<NT> a = lift<NT>(s.a), b = lift<NT>(s.b), c = lift<NT>(s.c), v = lift<NT>(l.v);
+        Vec3T<NT> wv = cross(lift<NT>(l.L0) - lift<NT>(s.C), v);
+        NT x = dot(v, cross(b, c)), y = dot(v, cross(c, a)), z = dot(c, wv);
+        return sign(x * x + y * y - z * z);
+    }
     // Its Z alone: W.z, V.z and det from adj(M)'s last row a x b, without the other two.
     template <class NT>
     static exact_form::LineAxial<NT> exact_axial(const EllipticCylinder& s, const Line& l,

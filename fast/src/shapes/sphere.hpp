@@ -117,6 +117,16 @@ exact_form::LineQuadratic<NT> sphere_quadratic(Vec3 centre, double r, const Line
     return q;
 }
 
+// The sign of the sphere's D = B^2 - A C0: r^2 v.v - |v x w|^2 (Lagrange's identity).
+template <class NT>
+int sphere_discriminant_sign(Vec3 centre, double r, const Line& l) {
+    using exact_form::lift;
+    Vec3T<NT> w = lift<NT>(l.L0) - lift<NT>(centre), v = lift<NT>(l.v);
+    Vec3T<NT> vw = cross(v, w);
+    NT R(r);
+    return sign(R * R * dot(v, v) - dot(vw, vw));
+}
+
 // g(t) = |w + t v|^2 - r^2, w = L0 - centre. precise: w exact in double-double; else w rounded,
 // its bound the low part it dropped. v and K = r^2 are exact either way (K from two_prod). No
 // extent (the caller sets one).
@@ -207,6 +217,13 @@ struct ShapeTraits<Sphere> {
     static exact_form::LineQuadratic<NT> exact_quadratic(const Sphere& s, const Line& l,
                                                          int /*orientation*/) {
         return sphere_quadratic<NT>(s.C, s.r, l);
+    }
+
+    // The sign of D = B^2 - A C0 alone: (v.w)^2 - v.v (w.w - r^2) = r^2 v.v - |v x w|^2
+    // (Lagrange's identity), w = L0 - C.
+    template <class NT>
+    static int discriminant_sign(const Sphere& s, const Line& l, int /*orientation*/) {
+        return sphere_discriminant_sign<NT>(s.C, s.r, l);
     }
 
     // ---- correct: the Newton rung's line form, and the hit test's quick one ----
