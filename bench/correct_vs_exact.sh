@@ -1,35 +1,48 @@
 #!/usr/bin/env bash
-# correct beside the exact oracle's solver in one audit run, family by family: each family's
-# time per solve (the audit's medians of chunks of 1024 cases, weighted by each shape's cases)
-# and exact's over correct's, then over all families.
-#   bash bench/correct_vs_exact.sh [BUILD_DIR] [CASES]     (defaults: build, 20000)
+# correct beside the exact oracle's solver, family by family, in RUNS audit runs: each run times
+# both on every chunk of cases (the audit's medians of chunks of 1024 cases, weighted by each
+# shape's cases); the table gives each family's median over the runs of correct's and exact's ns
+# per solve and of their ratio (exact's over correct's), then the same over all families. The
+# runs' spread, the largest ratio over the smallest, says how far to trust a row.
+#   bash bench/correct_vs_exact.sh [BUILD_DIR] [CASES] [RUNS]     (defaults: build, 20000, 3)
 set -euo pipefail
 build="${1:-build}"
 cases="${2:-20000}"
+runs="${3:-3}"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-if ! "$build/compare/linequad" audit --solvers correct,exact --cases "$cases" --no-plots \
-  --out "$out/report" >/dev/null 2>"$out/log"; then
-  cat "$out/log" >&2
-  exit 1
-fi
-echo "# bash bench/correct_vs_exact.sh $build $cases (linequad audit --solvers correct,exact --cases $cases; ns per solve, this run)"
-python3 - "$out/report/report.json" <<'PY'
-import collections, json, sys
-report = json.load(open(sys.argv[1]))
-time = collections.defaultdict(collections.Counter)
-cases = collections.Counter()
-for row in report["rows"]:
-    if row["solver"] in ("correct", "exact"):
-        time[row["family"]][row["solver"]] += row["ns_per_solve"]["median"] * row["cases"]
-        cases[row["family"]] += row["cases"] if row["solver"] == "correct" else 0
-print(f"{'family':18} {'correct':>8} {'exact':>8} {'ratio':>7}")
-total = collections.Counter()
-for family in sorted(time):
-    c, e = time[family]["correct"], time[family]["exact"]
-    total.update({"correct": c, "exact": e})
-    print(f"{family:18} {c / cases[family]:8.0f} {e / cases[family]:8.0f} {e / c:7.2f}")
-n = sum(cases.values())
-print(f"{'all':18} {total['correct'] / n:8.0f} {total['exact'] / n:8.0f} "
-      f"{total['exact'] / total['correct']:7.2f}")
+for run in $(seq 1 "$runs"); do
+  if ! "$build/compare/linequad" audit --solvers correct,exact --cases "$cases" --no-plots \
+    --out "$out/report$run" >/dev/null 2>"$out/log"; then
+    cat "$out/log" >&2
+    exit 1
+  fi
+done
+echo "# bash bench/correct_vs_exact.sh $build $cases $runs (linequad audit --solvers correct,exact --cases $cases, $runs runs; ns per solve, medians over the runs)"
+python3 - "$out" "$runs" <<'PY'
+import collections, json, statistics, sys
+out, runs = sys.argv[1], int(sys.argv[2])
+rows = collections.defaultdict(list)  # family -> [(correct, exact) per run]
+for run in range(1, runs + 1):
+    report = json.load(open(f"{out}/report{run}/report.json"))
+    time = collections.defaultdict(collections.Counter)
+    cases = collections.Counter()
+    for row in report["rows"]:
+        if row["solver"] in ("correct", "exact"):
+            time[row["family"]][row["solver"]] += row["ns_per_solve"]["median"] * row["cases"]
+            cases[row["family"]] += row["cases"] if row["solver"] == "correct" else 0
+    total = collections.Counter()
+    for family in time:
+        total.update(time[family])
+        rows[family].append((time[family]["correct"] / cases[family],
+                             time[family]["exact"] / cases[family]))
+    n = sum(cases.values())
+    rows["all"].append((total["correct"] / n, total["exact"] / n))
+print(f"{'family':18} {'correct':>8} {'exact':>8} {'ratio':>7} {'spread':>7}")
+for family in sorted(rows, key=lambda f: (f == "all", f)):
+    c = statistics.median(r[0] for r in rows[family])
+    e = statistics.median(r[1] for r in rows[family])
+    ratios = [r[1] / r[0] for r in rows[family]]
+    print(f"{family:18} {c:8.0f} {e:8.0f} {statistics.median(ratios):7.2f} "
+          f"{max(ratios) / min(ratios):7.2f}")
 PY

@@ -275,6 +275,10 @@ def correct_vs_exact():
     return verbatim(LATEST / "correct_vs_exact.txt")
 
 
+def family_instructions():
+    return verbatim(LATEST / "family_instructions.txt")
+
+
 def instructions_lanes():
     return verbatim(LATEST / "instructions_lanes.txt")
 
@@ -327,8 +331,8 @@ def plugin():
 
 
 TABLES = {f.__name__: f for f in [solvers, bench, rungs, headline, peers, peer_instructions, instructions,
-                                  instructions_closed, instructions_lanes, correct_vs_exact, batch, scenes,
-                                  plugin]}
+                                  instructions_closed, instructions_lanes, correct_vs_exact,
+                                  family_instructions, batch, scenes, plugin]}
 BEGIN = re.compile(r"^<!-- table: (\w+) -->$")
 END = "<!-- end table -->"
 # A measured figure: a time, a rate, a percentage, a ratio or a count of instructions.

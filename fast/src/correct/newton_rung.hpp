@@ -99,8 +99,8 @@ class ExtentEnds {
     // Where a root or a point's coordinate lies a few ulps from zero (a line starting on or
     // beside the surface, or a disc's plane; a hit beside a coordinate plane), the rung's bounds,
     // absolute, are wide beside it; the exact form's values are not. g's local quadratic at c,
-    // and an end's crossing t_E, in the rung's units. Never deferred: the double-double rung's
-    // bounds are as wide.
+    // and an end's crossing t_E, in the rung's units, from the exact form (a filter's bounds are
+    // as wide as the rung's).
     virtual std::optional<ExactLocal> local_at(double c, double t_factor) const = 0;
     virtual std::optional<BoundedDD> crossing(bool top, double t_factor) const = 0;
     // The planes of the extent's ends in double-double (DiscPlanes, without discs) for a shape

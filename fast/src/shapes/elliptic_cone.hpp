@@ -365,7 +365,8 @@ struct ShapeTraits<EllipticCone> {
                 f.hi_bounded = !two || s.finite;
                 f.discs = discs_of(s);
                 // The base disc at z = -1 (and the top at z = 1).
-                if (precise) {
+                // The batch lanes use planes only where there are discs.
+                if (precise && (s.caps || std::is_same_v<T, double>)) {
                     f.planes = DiscPlanesT<T>{{},     {},           -det, two ? det : BoundedDD(0),
                                               s.caps, s.caps && two};
                     // The base's plane through C, spanned by a and b: an exact coordinate for

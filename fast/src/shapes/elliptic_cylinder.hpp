@@ -39,6 +39,8 @@
 #include "shapes/on_frame.hpp"
 #include "shapes/seed_frame.hpp"
 
+#include <type_traits>
+
 namespace linequad::detail {
 
 // The arithmetic of stable's elliptic cylinder solve, once, for a lane type T (as CylinderStable
@@ -261,7 +263,8 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
             f.hi = det.hi, f.e_hi = bound_of_hi(det); // 0 <= Z <= |det|
             f.lo_bounded = f.hi_bounded = s.finite;
             f.discs = discs_of(s);
-            if (precise && s.finite) {
+            // The batch lanes use planes only where there are discs.
+            if (precise && s.finite && (s.caps || std::is_same_v<T, double>)) {
                 f.planes = DiscPlanesT<T>{{}, {}, BoundedDD(0), det, s.caps, s.caps};
                 // The discs' planes through C and C + c, spanned by a and b (only discs have
                 // points there).
