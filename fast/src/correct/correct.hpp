@@ -344,12 +344,14 @@ struct UnitScene {
 };
 
 // What the Newton rung's bounds leave open, answered exactly, each part formed once for the line
-// and only when asked. A sign is asked first of the double-double quadratic of the scene scaled
-// to unit size (the filter, which the double-double rung takes as it is): its bounds decide all
-// but the exact zeros (a root at a rim, a double root, g or Z constant along the line) at a small
-// part of the exact form's cost; where they do not, the double-double rung could not answer
-// either, and the exact form in BigFloat does, at once. Z alone (an end's crossing, the point
-// there) comes from the shape's exact_axial, a few products.
+// and only when asked. A sign is asked first of the exact form in double, where the inputs are
+// small dyadic numbers and nothing rounds; then of the double-double quadratic of the scene
+// scaled to unit size (the filter, which the double-double rung takes as it is), whose bounds
+// decide all but the exact zeros (a root at a rim, a double root, g or Z constant along the line)
+// at a small part of the exact form's cost; where they do not, the double-double rung could not
+// answer either, and the exact form in BigFloat does, at once. Z alone (an end's crossing, the
+// point there) comes from the shape's exact_axial, a few products; a tangency from the sign of D
+// alone, in a form of lower degree (discriminant_sign).
 template <class Source>
 class ExactForm final : public ExtentEnds {
     using S = typename Source::Shape;
@@ -679,9 +681,11 @@ class ExactForm final : public ExtentEnds {
     // The filter's parameter is the caller's over this.
     double filter_t() const { return unit_->unit.t_factor; }
 
-    // Each exact quadratic a question is asked of first, with the factor that takes its parameter
-    // into the rung's (`t_factor`, the caller's over the rung's): the exact form in double, then
-    // the filter, until `answer(q, factor)` decides (a value with a value); undecided otherwise.
+    // A question asked of the cheaper quadratics in turn, the exact form in double (where it is
+    // exact) and the filter, each with the factor that takes its parameter into the rung's
+    // (`t_factor` is the caller's over the rung's). `answer(q, factor)` returns no value where q's
+    // signs leave the question open, else the answer (itself perhaps none); the first answer
+    // stands, and none where both leave it open.
     template <class T, class Answer>
     std::optional<T> ask_filters(double t_factor, Answer answer) const {
         if (const exact_form::LineQuadratic<ExactDouble>* d = in_double())
@@ -691,6 +695,7 @@ class ExactForm final : public ExtentEnds {
         return std::nullopt;
     }
 
+    // The exact form in BigFloat from an exact one in double.
     static exact_form::LineQuadratic<BigFloat>
     lifted(const exact_form::LineQuadratic<ExactDouble>& d) {
         exact_form::LineQuadratic<BigFloat> q;
