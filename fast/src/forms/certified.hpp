@@ -254,7 +254,7 @@ Result quick_then_bounded(Solve solve) {
 template <class BT>
 struct BoundedDualFrame : exact_form::AdjugateFrame<BT> {
     using exact_form::AdjugateFrame<BT>::AdjugateFrame;
-    BoundedVec3<BT> local(const BoundedVec3<BT>& u) const {
+    LINEQUAD_INLINE BoundedVec3<BT> local(const BoundedVec3<BT>& u) const {
         BoundedVec3<BT> s = this->scaled_local(u);
         return {s.x / this->det, s.y / this->det, s.z / this->det};
     }

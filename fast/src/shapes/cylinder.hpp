@@ -381,7 +381,7 @@ struct ShapeTraits<Cylinder> {
         f.hi = axis.hh.hi, f.e_hi = bound_of_hi(axis.hh);
         f.lo_bounded = f.hi_bounded = s.finite;
         f.discs = discs_of(s);
-        if (s.caps) f.planes = planes<T>(s, axis, w, v);
+        if (s.caps) set_planes<T>(f.planes, s, axis, w, v);
         return f;
     }
     // The ends' planes of a finite open cylinder, which its form does not carry, for the line as
@@ -389,20 +389,21 @@ struct ShapeTraits<Cylinder> {
     template <class Source>
     static std::optional<DiscPlanes> end_planes(const Source& src, Vec3 L0, Vec3 v) {
         const Cylinder& s = src.shape;
-        if (!s.finite) return std::nullopt;
-        return planes<double>(s, newton_axis(src), difference_exact(L0, s.C), v);
+        std::optional<DiscPlanes> p;
+        if (s.finite) set_planes<double>(p, s, newton_axis(src), difference_exact(L0, s.C), v);
+        return p;
     }
 
   private:
-    // The ends at Z = 0 and Z = h.h, with discs where the cylinder is closed.
+    // The ends at Z = 0 and Z = h.h, with discs where the cylinder is closed; built in place.
     template <class T>
-    static DiscPlanesT<T> planes(const Cylinder& s, const NewtonAxis& axis,
-                                 const Vec3TwoTermT<T>& w, Vec3T<T> v) {
+    LINEQUAD_INLINE static void set_planes(std::optional<DiscPlanesT<T>>& p, const Cylinder& s,
+                                           const NewtonAxis& axis, const Vec3TwoTermT<T>& w,
+                                           Vec3T<T> v) {
         Vec3TwoTermT<T> h{lanes_of<T>(axis.h.hi), lanes_of<T>(axis.h.lo)};
-        DiscPlanesT<T> p{dot_dd(w, h), dot_dd(v, h), BoundedDD(0), axis.hh, s.caps, s.caps};
-        p.axis = axis_along(s.H - s.C);
-        if (p.axis >= 0) p.lo_at = s.C[p.axis], p.hi_at = s.H[p.axis];
-        return p;
+        p = DiscPlanesT<T>{dot_dd(w, h), dot_dd(v, h), BoundedDD(0), axis.hh, s.caps, s.caps};
+        p->axis = axis_along(s.H - s.C);
+        if (p->axis >= 0) p->lo_at = s.C[p->axis], p->hi_at = s.H[p->axis];
     }
 
   public:
