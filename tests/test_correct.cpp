@@ -974,6 +974,38 @@ TEST_CASE("correct finds a steep line's nappe beside the apex on the Newton rung
 }
 
 namespace {
+// Each of 12 cases of every family, shape and range (seed `seed`), valid ones only, as visit(s,
+// line, orientation) for each shape, or for each of a capsule's three patches.
+template <class Visit>
+void for_each_patch_case(std::uint64_t seed, Visit visit) {
+    for (int f = 0; f < family_count; ++f)
+        for (int shape = 0; shape < shape_kinds; ++shape) {
+            if (!family_applies(Family(f), shape)) continue;
+            for (Range range : {Range::line, Range::ray, Range::segment})
+                for (std::uint64_t i = 0; i < 12; ++i) {
+                    Case c = make_case(Family(f), shape, range, seed, i);
+                    INFO(format_case(c));
+                    std::visit(
+                        [&](const auto& s) {
+                            using S = std::decay_t<decltype(s)>;
+                            detail::Validity valid = detail::check(detail::AsGiven<S>{s}, c.line);
+                            if (!valid.error.ok()) return;
+                            if constexpr (std::is_same_v<S, Capsule>) {
+                                auto [side, base, top] = detail::ShapeTraits<Capsule>::patches(s);
+                                visit(side, c.line, 0);
+                                visit(base, c.line, 0);
+                                visit(top, c.line, 0);
+                            } else {
+                                visit(s, c.line, valid.orientation);
+                            }
+                        },
+                        c.shape);
+                }
+        }
+}
+} // namespace
+
+namespace {
 // Shape S's Z alone (exact_axial, where it has one) against its exact quadratic's Z: equal values
 // (exact, so compared exactly) and the same bounded ends.
 template <class S>
@@ -1000,30 +1032,9 @@ TEST_CASE("each shape's Z alone (exact_axial) is its exact quadratic's Z exactly
     // the exact rung for the whole quadratic. Both must be one form: every family, shape (the
     // capsule's three patches) and range, either orientation of an elliptic frame.
     long compared = 0;
-    for (int f = 0; f < family_count; ++f)
-        for (int shape = 0; shape < shape_kinds; ++shape) {
-            if (!family_applies(Family(f), shape)) continue;
-            for (Range range : {Range::line, Range::ray, Range::segment})
-                for (std::uint64_t i = 0; i < 12; ++i) {
-                    Case c = make_case(Family(f), shape, range, 72, i);
-                    INFO(format_case(c));
-                    std::visit(
-                        [&](const auto& s) {
-                            using S = std::decay_t<decltype(s)>;
-                            detail::Validity valid = detail::check(detail::AsGiven<S>{s}, c.line);
-                            if (!valid.error.ok()) return;
-                            if constexpr (std::is_same_v<S, Capsule>) {
-                                auto [side, base, top] = detail::ShapeTraits<Capsule>::patches(s);
-                                check_axial(side, c.line, 0, compared);
-                                check_axial(base, c.line, 0, compared);
-                                check_axial(top, c.line, 0, compared);
-                            } else {
-                                check_axial(s, c.line, valid.orientation, compared);
-                            }
-                        },
-                        c.shape);
-                }
-        }
+    for_each_patch_case(72, [&](const auto& s, const Line& l, int orientation) {
+        check_axial(s, l, orientation, compared);
+    });
     CHECK(compared > 2000);
 }
 
@@ -1058,30 +1069,9 @@ TEST_CASE("each shape's exact form in double, where nothing rounds, is its exact
     // patches) and range: each coefficient that says it is exact must equal BigFloat's, and
     // most generic coefficients must say they are not.
     long exact = 0, rounded = 0;
-    for (int f = 0; f < family_count; ++f)
-        for (int shape = 0; shape < shape_kinds; ++shape) {
-            if (!family_applies(Family(f), shape)) continue;
-            for (Range range : {Range::line, Range::ray, Range::segment})
-                for (std::uint64_t i = 0; i < 12; ++i) {
-                    Case c = make_case(Family(f), shape, range, 73, i);
-                    INFO(format_case(c));
-                    std::visit(
-                        [&](const auto& s) {
-                            using S = std::decay_t<decltype(s)>;
-                            detail::Validity valid = detail::check(detail::AsGiven<S>{s}, c.line);
-                            if (!valid.error.ok()) return;
-                            if constexpr (std::is_same_v<S, Capsule>) {
-                                auto [side, base, top] = detail::ShapeTraits<Capsule>::patches(s);
-                                check_in_double(side, c.line, 0, exact, rounded);
-                                check_in_double(base, c.line, 0, exact, rounded);
-                                check_in_double(top, c.line, 0, exact, rounded);
-                            } else {
-                                check_in_double(s, c.line, valid.orientation, exact, rounded);
-                            }
-                        },
-                        c.shape);
-                }
-        }
+    for_each_patch_case(73, [&](const auto& s, const Line& l, int orientation) {
+        check_in_double(s, l, orientation, exact, rounded);
+    });
     CHECK(exact > 3000);
     CHECK(rounded > 3000);
 }
@@ -1115,30 +1105,9 @@ TEST_CASE("each shape's sign of D from Lagrange's identity is its exact quadrati
     // a form of degree 6 (triple products of the inputs) instead of B^2 - A C0 of degree 8 or 12.
     // Every family (near_tangent and cap_plane make exact tangencies), shape and range.
     long compared = 0, zeros = 0;
-    for (int f = 0; f < family_count; ++f)
-        for (int shape = 0; shape < shape_kinds; ++shape) {
-            if (!family_applies(Family(f), shape)) continue;
-            for (Range range : {Range::line, Range::ray, Range::segment})
-                for (std::uint64_t i = 0; i < 12; ++i) {
-                    Case c = make_case(Family(f), shape, range, 74, i);
-                    INFO(format_case(c));
-                    std::visit(
-                        [&](const auto& s) {
-                            using S = std::decay_t<decltype(s)>;
-                            detail::Validity valid = detail::check(detail::AsGiven<S>{s}, c.line);
-                            if (!valid.error.ok()) return;
-                            if constexpr (std::is_same_v<S, Capsule>) {
-                                auto [side, base, top] = detail::ShapeTraits<Capsule>::patches(s);
-                                check_lower_degree(side, c.line, 0, compared, zeros);
-                                check_lower_degree(base, c.line, 0, compared, zeros);
-                                check_lower_degree(top, c.line, 0, compared, zeros);
-                            } else {
-                                check_lower_degree(s, c.line, valid.orientation, compared, zeros);
-                            }
-                        },
-                        c.shape);
-                }
-        }
+    for_each_patch_case(74, [&](const auto& s, const Line& l, int orientation) {
+        check_lower_degree(s, l, orientation, compared, zeros);
+    });
     CHECK(compared > 2000); // 2,844
     CHECK(zeros > 50);      // 102 exact tangencies
 }
