@@ -30,7 +30,7 @@ ir() { # instructions of one run; the cases it made go to $tmp/cases
   grep -v '^==' "$tmp/err" | tail -1 >"$tmp/cases"
   awk '/^(summary|totals):/ { print $2; exit }' "$tmp/out"
 }
-echo "# bash bench/family_instructions.sh $build $cases $seed $solvers ${*:-} (callgrind; (Ir(solved) - Ir(not solved)) / cases)"
+echo "# bash bench/family_instructions.sh $build $cases $seed $solvers${*:+ $*} (callgrind; (Ir(solved) - Ir(not solved)) / cases)"
 for family in "${families[@]}"; do
   printf '%s' "$family" >>"$tmp/rows"
   for solver in "${names[@]}"; do
