@@ -430,11 +430,12 @@ class ExactForm final : public ExtentEnds {
 
     std::optional<EndCrossing> at(bool top, double t_factor) const override {
         using Found = std::optional<EndCrossing>;
-        if (std::optional<Found> c = ask_filters<Found>(t_factor, [&](const auto& q, double f) {
-                Found c = end_crossing(q, top, f);
-                return c ? std::optional<Found>(c) : std::nullopt;
-            }))
-            return *c;
+        if (std::optional<Found> answer =
+                ask_filters<Found>(t_factor, [&](const auto& q, double f) {
+                    Found c = end_crossing(q, top, f);
+                    return c ? std::optional<Found>(c) : std::nullopt;
+                }))
+            return *answer;
         std::optional<EndCrossing> c = end_crossing(quadratic(), top, 1 / t_factor);
         exact_zero_ = exact_zero_ || (c && c->q_sign == 0); // a root at the end: a rim
         return c;
@@ -453,7 +454,7 @@ class ExactForm final : public ExtentEnds {
         int rung_sign = std::fabs(at_0) > e_at_0 ? (at_0 > 0 ? 1 : -1) : undecided_sign;
         if (parallel && rung_sign != undecided_sign) return rung_sign;
         using Found = std::optional<int>;
-        if (std::optional<Found> c = ask_filters<Found>(1, [&](const auto& q, double) {
+        if (std::optional<Found> answer = ask_filters<Found>(1, [&](const auto& q, double) {
                 std::optional<Found> none;
                 int A = sign(q.A), B = sign(q.B);
                 if ((A != undecided_sign && A != 0) || (B != undecided_sign && B != 0))
@@ -465,7 +466,7 @@ class ExactForm final : public ExtentEnds {
                 exact_zero_ = true; // A and B exactly 0: g is constant
                 return std::optional<Found>(c);
             }))
-            return *c;
+            return *answer;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) != 0) return std::nullopt;
         exact_zero_ = true;
@@ -476,7 +477,7 @@ class ExactForm final : public ExtentEnds {
         if (std::optional<ConstantZ> z = constant_z_of_line(shape_, line_, orientation_))
             return z->level;
         using Found = std::optional<int>;
-        if (std::optional<Found> level = ask_filters<Found>(1, [&](const auto& q, double) {
+        if (std::optional<Found> answer = ask_filters<Found>(1, [&](const auto& q, double) {
                 int dZ = sign(q.dZ);
                 if (dZ == undecided_sign) return std::optional<Found>();
                 if (dZ != 0) return std::optional<Found>(Found()); // Z is not constant
@@ -484,7 +485,7 @@ class ExactForm final : public ExtentEnds {
                 Found level = level_in(q);
                 return level ? std::optional<Found>(level) : std::nullopt;
             }))
-            return *level;
+            return *answer;
         const exact_form::LineAxial<BigFloat>& z = axial();
         if (sign(z.dZ) != 0) return std::nullopt;
         return level_in(z, [&] { return &quadratic(); }); // in an end's plane: its disc?
@@ -517,14 +518,16 @@ class ExactForm final : public ExtentEnds {
 
     std::optional<BoundedDD> double_root(double t_factor) const override {
         using Found = std::optional<BoundedDD>;
-        if (std::optional<Found> t = ask_filters<Found>(t_factor, [&](const auto& q, double f) {
-                int A = sign(q.A), D = sign(q.B * q.B - q.A * q.C0);
-                if (A == 0 || (D != undecided_sign && D != 0)) return std::optional<Found>(Found());
-                if (D != 0 || A == undecided_sign) return std::optional<Found>();
-                exact_zero_ = true; // D exactly 0: a double root
-                return std::optional<Found>(in_rung_units(-enclosure(q.B) / enclosure(q.A), f));
-            }))
-            return *t;
+        if (std::optional<Found> answer =
+                ask_filters<Found>(t_factor, [&](const auto& q, double f) {
+                    int A = sign(q.A), D = sign(q.B * q.B - q.A * q.C0);
+                    if (A == 0 || (D != undecided_sign && D != 0))
+                        return std::optional<Found>(Found());
+                    if (D != 0 || A == undecided_sign) return std::optional<Found>();
+                    exact_zero_ = true; // D exactly 0: a double root
+                    return std::optional<Found>(in_rung_units(-enclosure(q.B) / enclosure(q.A), f));
+                }))
+            return *answer;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) == 0 || sign(discriminant()) != 0) return std::nullopt;
         exact_zero_ = true;
@@ -563,16 +566,18 @@ class ExactForm final : public ExtentEnds {
 
     std::optional<LinearRoot> linear_root(double t_factor) const override {
         using Found = std::optional<LinearRoot>;
-        if (std::optional<Found> r = ask_filters<Found>(t_factor, [&](const auto& q, double f) {
-                int A = sign(q.A), B = sign(q.B);
-                if ((A != undecided_sign && A != 0) || B == 0) return std::optional<Found>(Found());
-                if (A != 0 || B == undecided_sign) return std::optional<Found>();
-                exact_zero_ = true; // A exactly 0: g is linear
-                std::optional<BoundedDD> t =
-                    in_rung_units(-enclosure(q.C0) / twice(enclosure(q.B)), f);
-                return t ? std::optional<Found>(LinearRoot{*t, B}) : std::nullopt;
-            }))
-            return *r;
+        if (std::optional<Found> answer =
+                ask_filters<Found>(t_factor, [&](const auto& q, double f) {
+                    int A = sign(q.A), B = sign(q.B);
+                    if ((A != undecided_sign && A != 0) || B == 0)
+                        return std::optional<Found>(Found());
+                    if (A != 0 || B == undecided_sign) return std::optional<Found>();
+                    exact_zero_ = true; // A exactly 0: g is linear
+                    std::optional<BoundedDD> t =
+                        in_rung_units(-enclosure(q.C0) / twice(enclosure(q.B)), f);
+                    return t ? std::optional<Found>(LinearRoot{*t, B}) : std::nullopt;
+                }))
+            return *answer;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         if (sign(q.A) != 0 || sign(q.B) == 0) return std::nullopt;
         exact_zero_ = true;
