@@ -1057,7 +1057,7 @@ void check_in_double(const S& s, const Line& l, int orientation, long& exact, lo
             continue;
         }
         CHECK(sign(BigFloat(x->v) - *y) == 0);
-        ++exact;
+        exact += x->v != 0; // a zero (an ellipsoid's Z0, a base at 0) is exact for any input
     }
 }
 } // namespace
@@ -1072,8 +1072,8 @@ TEST_CASE("each shape's exact form in double, where nothing rounds, is its exact
     for_each_patch_case(73, [&](const auto& s, const Line& l, int orientation) {
         check_in_double(s, l, orientation, exact, rounded);
     });
-    CHECK(exact > 3000);
-    CHECK(rounded > 3000);
+    CHECK(exact > 2000);   // 2,347 nonzero coefficients exact in double
+    CHECK(rounded > 3000); // 15,244 that round
 }
 
 namespace {

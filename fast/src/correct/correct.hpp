@@ -516,21 +516,12 @@ class ExactForm final : public ExtentEnds {
         }
     }
 
+    // After tangency(): D = 0 is known, A's sign (the rung's proof of A > 0) too, and the
+    // filter's -B/A would be no narrower than the rung's own; the exact form's (lifted from the
+    // form in double where that is exact).
     std::optional<BoundedDD> double_root(double t_factor) const override {
-        using Found = std::optional<BoundedDD>;
-        if (std::optional<Found> answer =
-                ask_filters<Found>(t_factor, [&](const auto& q, double f) {
-                    int A = sign(q.A), D = sign(q.B * q.B - q.A * q.C0);
-                    if (A == 0 || (D != undecided_sign && D != 0))
-                        return std::optional<Found>(Found());
-                    if (D != 0 || A == undecided_sign) return std::optional<Found>();
-                    exact_zero_ = true; // D exactly 0: a double root
-                    return std::optional<Found>(in_rung_units(-enclosure(q.B) / enclosure(q.A), f));
-                }))
-            return *answer;
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
-        if (sign(q.A) == 0 || sign(discriminant()) != 0) return std::nullopt;
-        exact_zero_ = true;
+        if (sign(q.A) == 0) return std::nullopt;
         return in_rung_units(enclosure(-q.B) / enclosure(q.A), 1 / t_factor);
     }
 
@@ -539,12 +530,9 @@ class ExactForm final : public ExtentEnds {
             if (!q_) { // from its form of lower degree, A != 0 shown by a few exact products
                 std::optional<bool> parallel = exactly_parallel(shape_, line_);
                 if (parallel && *parallel) return std::nullopt; // A = 0
-                if (parallel) {
-                    const exact_form::LineAxial<BigFloat>& z = axial();
-                    if (!(top ? z.hi_bounded : z.lo_bounded)) return std::nullopt;
+                if (parallel)
                     return ShapeTraits<S>::template tangency_against_end<BigFloat>(shape_, line_,
                                                                                    top);
-                }
             }
         }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();

@@ -855,15 +855,17 @@ int tangent_at_end(const LineForm& f, const Unit& unit, const Enclosure<double>&
 // 2^-95 of itself (B a few ulps from 0: a tangency at the line's origin), which the exact form
 // then gives.
 inline std::optional<BoundedDD> double_root_of(const LineForm& f) {
-    int terms = f.fourth ? 4 : f.sigma_z == 0 ? 2 : 3;
     BoundedDD B(0), A(0);
-    for (int k = 0; k < terms; ++k) {
-        const BoundedDD &u0 = U0_of(f, k), &u1 = U1_of(f, k);
-        bool minus = k == 3 || (k == 2 && f.sigma_z == -1);
-        BoundedDD b = u0 * u1, a = u1 * u1;
-        B = minus ? B - b : B + b;
-        A = minus ? A - a : A + a;
-    }
+    with_sigma_z(f.sigma_z, [&](auto sigma_z) {
+        constexpr int SigmaZ = decltype(sigma_z)::value;
+        for (int k = 0; k < used_components<SigmaZ>; ++k) {
+            const BoundedDD &u0 = U0_of(f, k), &u1 = U1_of(f, k);
+            BoundedDD b = u0 * u1, a = u1 * u1;
+            bool minus = sigma<SigmaZ>(k) < 0;
+            B = minus ? B - b : B + b;
+            A = minus ? A - a : A + a;
+        }
+    });
     BoundedDD t = -B / A;
     if (!std::isfinite(t.hi) || !std::isfinite(t.e) || !(t.e <= 0x1p-95 * std::fabs(t.hi)))
         return std::nullopt;

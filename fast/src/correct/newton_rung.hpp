@@ -81,8 +81,8 @@ class ExtentEnds {
     // Where the bounds prove no simple root and A > 0: whether g has a double root (B^2 - A C0
     // = 0 exactly: a tangency); none where it cannot be decided.
     virtual std::optional<bool> tangency() const = 0;
-    // That double root -B/A enclosed from the exact form, in the rung's units (where the rung's
-    // own enclosure of it is too wide).
+    // That double root -B/A (where tangency() showed one) enclosed from the exact form, in the
+    // rung's units: where the rung's own enclosure of it is too wide.
     virtual std::optional<BoundedDD> double_root(double t_factor) const = 0;
     // sgn(Z(-B/A) - end), Z at the vertex against the top's or the base's level, exactly (at a
     // double root, the tangency's side of that end); none where that end is not bounded or A = 0.

@@ -337,9 +337,11 @@ struct ShapeTraits<Cylinder> {
     }
     // At a double root t* = -B/A (A > 0), the sign of Z(t*) - end, the tangency's side of the
     // base (top = false) or the top: A (Z0 - end) - dZ B = h.h (h x v) . (w_e x v), w_e = L0 less
-    // that end's centre (Lagrange's identity twice): degree 4, not 6.
+    // that end's centre (Lagrange's identity twice): degree 4, not 6. None where the cylinder
+    // has no ends.
     template <class NT>
-    static int tangency_against_end(const Cylinder& s, const Line& l, bool top) {
+    static std::optional<int> tangency_against_end(const Cylinder& s, const Line& l, bool top) {
+        if (!s.finite) return std::nullopt;
         using exact_form::lift;
         Vec3T<NT> v = lift<NT>(l.v), h = lift<NT>(s.H) - lift<NT>(s.C);
         Vec3T<NT> w = lift<NT>(l.L0) - lift<NT>(top ? s.H : s.C);
