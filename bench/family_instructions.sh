@@ -6,6 +6,7 @@
 # families (weighted by their cases, as the audit weighs them).
 #   bash bench/family_instructions.sh [BUILD_DIR] [CASES] [SEED] [SOLVERS] [FAMILY...]
 #   (defaults: build, 200, 9, correct,exact, every family; SOLVERS comma-separated)
+#   SHAPE=NAME in the environment counts that shape's cases only (audit --shapes' names).
 set -euo pipefail
 build="${1:-build}"
 cases="${2:-200}"
@@ -30,12 +31,12 @@ ir() { # instructions of one run; the cases it made go to $tmp/cases
   grep -v '^==' "$tmp/err" | tail -1 >"$tmp/cases"
   awk '/^(summary|totals):/ { print $2; exit }' "$tmp/out"
 }
-echo "# bash bench/family_instructions.sh $build $cases $seed $solvers${*:+ $*} (callgrind; (Ir(solved) - Ir(not solved)) / cases)"
+echo "# ${SHAPE:+SHAPE=$SHAPE }bash bench/family_instructions.sh $build $cases $seed $solvers${*:+ $*} (callgrind; (Ir(solved) - Ir(not solved)) / cases)"
 for family in "${families[@]}"; do
   printf '%s' "$family" >>"$tmp/rows"
   for solver in "${names[@]}"; do
-    base=$(ir "$solver" "$family" "$cases" "$seed" 0)
-    full=$(ir "$solver" "$family" "$cases" "$seed" 1)
+    base=$(ir "$solver" "$family" "$cases" "$seed" 0 ${SHAPE:+"$SHAPE"})
+    full=$(ir "$solver" "$family" "$cases" "$seed" 1 ${SHAPE:+"$SHAPE"})
     printf ' %s %s' "$(cat "$tmp/cases")" $((full - base)) >>"$tmp/rows"
   done
   printf '\n' >>"$tmp/rows"
@@ -50,6 +51,8 @@ print(f"{'family':18} {'cases':>6}" + "".join(f" {n:>10}" for n in names) +
 totals = [0] * len(names)
 for r in rows:
     n = int(r[1])
+    if n == 0:  # the family does not apply to SHAPE
+        continue
     ir = [int(r[2 + 2 * i]) for i in range(len(names))]
     totals = [t + x for t, x in zip(totals, ir)]
     print(f"{r[0]:18} {n:6d}" + "".join(f" {x // n:10d}" for x in ir) +

@@ -1059,6 +1059,9 @@ void check_in_double(const S& s, const Line& l, int orientation, long& exact, lo
         CHECK(sign(BigFloat(x->v) - *y) == 0);
         exact += x->v != 0; // a zero (an ellipsoid's Z0, a base at 0) is exact for any input
     }
+    // Which ends belong to other parts, asked of the type (ExactForm::end_open), is the form's.
+    CHECK((q.lo_open && q.hi_open) == detail::ends_open<S>);
+    CHECK((q.lo_open || q.hi_open) == detail::ends_open<S>);
 }
 } // namespace
 
@@ -1110,6 +1113,48 @@ TEST_CASE("each shape's sign of D from Lagrange's identity is its exact quadrati
     });
     CHECK(compared > 2000); // 2,844
     CHECK(zeros > 50);      // 102 exact tangencies
+}
+
+namespace {
+// Whether x's enclosure holds the exact value y: |hi + lo - y| <= e, in BigFloat.
+bool holds(const BoundedDD& x, const BigFloat& y) {
+    BigFloat off = BigFloat(x.hi) + BigFloat(x.lo) - y;
+    return sign(BigFloat(x.e) - off) >= 0 && sign(BigFloat(x.e) + off) >= 0;
+}
+// A sphere-like patch's local quadratic (local_at) against its exact quadratic's at t = 0 and at
+// the double nearest each root: each value held by its enclosure, and G exactly 0 only where it is.
+template <class S>
+void check_local_at(const S& s, const Line& l, long& compared, long& exact_zeros) {
+    if constexpr (detail::has_local_at<S>) {
+        using Traits = detail::ShapeTraits<S>;
+        exact_form::LineQuadratic<BigFloat> q = Traits::template exact_quadratic<BigFloat>(s, l, 0);
+        double A = enclosure(q.A).hi, B = enclosure(q.B).hi, C0 = enclosure(q.C0).hi;
+        double root_D = std::sqrt(std::max(0.0, B * B - A * C0));
+        for (double t : {0.0, (-B - root_D) / A, (-B + root_D) / A, 0x1p-40}) {
+            std::optional<detail::LocalQuadratic> L = Traits::local_at(s, l, t);
+            if (!L) continue;
+            BigFloat at(t), half_slope = q.B + q.A * at, G = q.C0 + at * (half_slope + q.B);
+            CHECK(holds(L->A, q.A));
+            CHECK(holds(L->half_slope, half_slope));
+            CHECK(holds(L->G, G));
+            CHECK((L->G.hi == 0 && L->G.e == 0) == (t == 0 && sign(G) == 0));
+            ++compared, exact_zeros += sign(G) == 0;
+        }
+    }
+}
+} // namespace
+
+TEST_CASE("a sphere's local quadratic from C0 exact holds the exact form's values") {
+    // Where the rung's absolute bounds leave a root a few ulps from the line's origin open (a line
+    // starting on or just off a sphere or a capsule's end), G = C0 + t (2B + A t) with C0 exact
+    // in an expansion encloses G relative to itself, at a tenth of the BigFloat form's cost.
+    long compared = 0, exact_zeros = 0;
+    for_each_patch_case(75, [&](const auto& s, const Line& l, int) {
+        check_local_at(s, l, compared, exact_zeros);
+    });
+    INFO(compared << " local quadratics, " << exact_zeros << " exact zeros");
+    CHECK(compared > 1000);  // 2,286
+    CHECK(exact_zeros >= 4); // 8 lines starting on the sphere (G = 0 exactly at t = 0)
 }
 
 TEST_CASE("correct proves the roots of thin shapes on the Newton rung") {

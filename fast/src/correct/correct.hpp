@@ -327,6 +327,23 @@ inline constexpr bool has_tangency_against_end<
     S, std::void_t<decltype(ShapeTraits<S>::template tangency_against_end<BigFloat>(
            std::declval<const S&>(), std::declval<const Line&>(), true))>> = true;
 
+// Whether a shape's ends belong to other parts (a capsule side's seams: ShapeTraits::ends_open),
+// the same for every line; a root there is not the shape's.
+template <class S, class = void>
+inline constexpr bool ends_open = false;
+template <class S>
+inline constexpr bool ends_open<S, std::void_t<decltype(ShapeTraits<S>::ends_open)>> =
+    ShapeTraits<S>::ends_open;
+
+// Whether a shape gives g's local quadratic at a point by a cheaper form than its exact one
+// (local_at: a sphere's, from C0 exact in an expansion).
+template <class S, class = void>
+inline constexpr bool has_local_at = false;
+template <class S>
+inline constexpr bool
+    has_local_at<S, std::void_t<decltype(ShapeTraits<S>::local_at(
+                        std::declval<const S&>(), std::declval<const Line&>(), 0.0))>> = true;
+
 // Whether a shape gives its Z alone (exact_axial), cheaper than its whole exact quadratic.
 template <class S, class = void>
 inline constexpr bool has_exact_axial = false;
@@ -547,10 +564,8 @@ class ExactForm final : public ExtentEnds {
         return {sign(q.C0 + m * (half_slope + q.B)), sign(half_slope), sign(q.A)};
     }
 
-    bool end_open(bool top) const override {
-        const exact_form::LineQuadratic<BigFloat>& q = quadratic();
-        return top ? q.hi_open : q.lo_open;
-    }
+    // From the shape's type: not the exact form formed for a flag.
+    bool end_open(bool /*top*/) const override { return ends_open<S>; }
 
     std::optional<LinearRoot> linear_root(double t_factor) const override {
         using Found = std::optional<LinearRoot>;
@@ -575,19 +590,31 @@ class ExactForm final : public ExtentEnds {
         return LinearRoot{*t, sign(q.B)};
     }
 
-    // At t = c t_factor (the caller's units): G = C0 + t (2B + A t) and G' / 2 = B + A t exactly;
-    // in the rung's units G' and A carry t_factor and its square.
-    std::optional<ExactLocal> local_at(double c, double t_factor) const override {
+    // At t = c t_factor (the caller's units): G = C0 + t (2B + A t) and G' / 2 = B + A t, exactly
+    // or from the shape's cheaper form (where it has one: none otherwise); in the rung's units G'
+    // and A carry t_factor and its square.
+    std::optional<ExactLocal> local_at(double c, double t_factor, bool exactly) const override {
         double t = c * t_factor;
         if (!std::isfinite(t)) return std::nullopt;
+        auto in_rung = [&](const BoundedDD& A_at, const BoundedDD& half_slope,
+                           const BoundedDD& G_at) -> std::optional<ExactLocal> {
+            std::optional<BoundedDD> A = in_rung_units(A_at, t_factor * t_factor),
+                                     Gp = in_rung_units(half_slope, 2 * t_factor),
+                                     G0 = in_rung_units(G_at, 1);
+            if (!A || !Gp || !G0) return std::nullopt;
+            return ExactLocal{{A->hi, bound_of_hi(*A)},
+                              {G0->hi, bound_of_hi(*G0), Gp->hi, bound_of_hi(*Gp)}};
+        };
+        if (!exactly) {
+            if constexpr (has_local_at<S>) {
+                if (std::optional<LocalQuadratic> L = ShapeTraits<S>::local_at(shape_, line_, t))
+                    return in_rung(L->A, L->half_slope, L->G);
+            }
+            return std::nullopt;
+        }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         BigFloat at(t), half_slope = q.B + q.A * at, G = q.C0 + at * (half_slope + q.B);
-        std::optional<BoundedDD> A = in_rung_units(enclosure(q.A), t_factor * t_factor),
-                                 Gp = in_rung_units(enclosure(half_slope), 2 * t_factor),
-                                 G0 = in_rung_units(enclosure(G), 1);
-        if (!A || !Gp || !G0) return std::nullopt;
-        return ExactLocal{{A->hi, bound_of_hi(*A)},
-                          {G0->hi, bound_of_hi(*G0), Gp->hi, bound_of_hi(*Gp)}};
+        return in_rung(enclosure(q.A), enclosure(half_slope), enclosure(G));
     }
     std::optional<BoundedDD> crossing(bool top, double t_factor) const override {
         const exact_form::LineAxial<BigFloat>& q = axial();

@@ -76,19 +76,27 @@ LINEQUAD_INLINE Kept<double> in_range_tighter(const Unit& unit, const Enclosure<
 // beside it or beside a coordinate of its point: the same proof at c (a double next to the root)
 // on the exact form's local quadratic there (`ends`), whose G is enclosed relatively. Rare, so
 // out of line.
-[[gnu::noinline]] std::optional<Enclosure<double>>
-root_from_exact_form(const ExtentEnds& ends, double t_factor, double c, bool smaller) {
-    std::optional<ExactLocal> q = ends.local_at(c, t_factor);
-    if (!q || !(std::fabs(q->A.A) > q->A.e)) return std::nullopt;
-    if (q->at.G == 0 && q->at.e_G == 0) { // c is a root exactly (a line starting on the surface)
+LINEQUAD_INLINE std::optional<Enclosure<double>> root_from_local(const ExactLocal& q, double c,
+                                                                 bool smaller) {
+    if (!(std::fabs(q.A.A) > q.A.e)) return std::nullopt;
+    if (q.at.G == 0 && q.at.e_G == 0) { // c is a root exactly (a line starting on the surface)
         // The smaller root where g falls through 0 (G' A < 0), a simple one where G' != 0.
-        if (!(std::fabs(q->at.Gp) > q->at.e_Gp) || ((q->at.Gp < 0) == (q->A.A > 0)) != smaller)
+        if (!(std::fabs(q.at.Gp) > q.at.e_Gp) || ((q.at.Gp < 0) == (q.A.A > 0)) != smaller)
             return std::nullopt;
         return Enclosure<double>{c, 0, 0, smaller, true};
     }
-    Enclosure<double> en = newton::root_near_tight(q->at, q->A, c);
+    Enclosure<double> en = newton::root_near_tight(q.at, q.A, c);
     if (!en.proven || en.smaller != smaller) return std::nullopt;
     return en;
+}
+[[gnu::noinline]] std::optional<Enclosure<double>>
+root_from_exact_form(const ExtentEnds& ends, double t_factor, double c, bool smaller) {
+    // The shape's cheaper local quadratic first, where it has one; where that proves nothing, the
+    // exact form's, whose bounds are tighter.
+    if (std::optional<ExactLocal> q = ends.local_at(c, t_factor, false))
+        if (std::optional<Enclosure<double>> en = root_from_local(*q, c, smaller)) return en;
+    std::optional<ExactLocal> q = ends.local_at(c, t_factor, true);
+    return q ? root_from_local(*q, c, smaller) : std::nullopt;
 }
 
 // A disc's crossing from the exact form, where the rung's cannot decide or round it (a line

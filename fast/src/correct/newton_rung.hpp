@@ -45,7 +45,8 @@ struct EndCrossing {
     BoundedDD t; // t_E, in the rung's units
 };
 // g's local quadratic at a point c, g(c + x) = A x^2 + G' x + G, from the exact form: G, G' and A
-// each formed exactly, then enclosed (a multiple of the line form's g: the same roots).
+// each formed exactly, then enclosed, or enclosed by a shape's cheaper form (a multiple of the line
+// form's g: the same roots).
 struct ExactLocal {
     newton::Leading<double> A;
     newton::Local<double> at;
@@ -100,8 +101,9 @@ class ExtentEnds {
     // beside the surface, or a disc's plane; a hit beside a coordinate plane), the rung's bounds,
     // absolute, are wide beside it; the exact form's values are not. g's local quadratic at c,
     // and an end's crossing t_E, in the rung's units, from the exact form (a filter's bounds are
-    // as wide as the rung's).
-    virtual std::optional<ExactLocal> local_at(double c, double t_factor) const = 0;
+    // as wide as the rung's). g's local quadratic `exactly`, or else from the shape's cheaper
+    // form of it where it has one (a sphere's: C0 exact, the rest in double-double), or none.
+    virtual std::optional<ExactLocal> local_at(double c, double t_factor, bool exactly) const = 0;
     virtual std::optional<BoundedDD> crossing(bool top, double t_factor) const = 0;
     // The planes of the extent's ends in double-double (DiscPlanes, without discs) for a shape
     // whose form carries none, an open one: its Z in double leaves a root a few ulps from an end

@@ -5,8 +5,10 @@
 // as they neither overflow nor underflow; callers scale their inputs by powers of two first.
 #pragma once
 
+#include "numeric/bounded_dd.hpp"
 #include "numeric/eft.hpp"
 
+#include <cmath>
 #include <cstddef>
 
 namespace linequad {
@@ -43,10 +45,25 @@ class Expansion {
         if (size_ == 0) return 0;
         return terms_[size_ - 1] > 0 ? 1 : -1;
     }
+    std::size_t size() const { return size_; }
+    double operator[](std::size_t i) const { return terms_[i]; }
 
   private:
     double terms_[Capacity]; // the first size_ of them hold the sum
     std::size_t size_ = 0;
 };
+
+// The sum enclosed in double-double: its two largest components, and a bound on the others. Their
+// bits lie below the lowest bit of the component above them and overlap no other's, so all of
+// them below the second-largest sum to less than twice the third-largest. Exact (e = 0) where at
+// most two components are left, a zero among them.
+template <std::size_t Capacity>
+BoundedDD enclosure(const Expansion<Capacity>& x) {
+    std::size_t n = x.size();
+    if (n == 0) return BoundedDD(0);
+    if (n == 1) return BoundedDD(x[0]);
+    TwoTerm top = fast_two_sum(x[n - 1], x[n - 2]); // exact: the largest is above the other's bits
+    return {top.hi, top.lo, n == 2 ? 0 : 2 * std::fabs(x[n - 3])};
+}
 
 } // namespace linequad

@@ -97,6 +97,9 @@ struct ShapeTraits<CapsuleSide> {
         return f;
     }
 
+    // Both seams belong to the caps, for every line: known without an exact form.
+    static constexpr bool ends_open = true;
+
     template <class NT>
     static int exact_orientation(const CapsuleSide&) {
         return 0;
@@ -105,7 +108,7 @@ struct ShapeTraits<CapsuleSide> {
     static exact_form::LineQuadratic<NT> exact_quadratic(const CapsuleSide& s, const Line& l,
                                                          int orientation) {
         exact_form::LineQuadratic<NT> q = Of::exact_quadratic<NT>(side_cylinder(s), l, orientation);
-        q.lo_open = q.hi_open = true;
+        q.lo_open = q.hi_open = ends_open;
         return q;
     }
     template <class NT>
@@ -237,6 +240,9 @@ struct ShapeTraits<CapsuleEnd> {
     template <class NT>
     static int discriminant_sign(const CapsuleEnd& s, const Line& l, int /*orientation*/) {
         return sphere_discriminant_sign<NT>(s.centre, s.r, l);
+    }
+    static std::optional<LocalQuadratic> local_at(const CapsuleEnd& s, const Line& l, double t) {
+        return sphere_local_at(s.centre, s.r, l, t);
     }
     template <class NT>
     static exact_form::LineAxial<NT> exact_axial(const CapsuleEnd& s, const Line& l,

@@ -31,6 +31,8 @@
 #include "forms/line_form.hpp"
 #include "forms/roots.hpp"
 #include "forms/traits.hpp"
+#include "numeric/bounded_dd.hpp"
+#include "numeric/expansion.hpp"
 
 namespace linequad::detail {
 
@@ -125,6 +127,50 @@ int sphere_discriminant_sign(Vec3 centre, double r, const Line& l) {
     Vec3T<NT> vw = cross(v, w);
     NT R(r);
     return sign(R * R * dot(v, v) - dot(vw, vw));
+}
+
+// g's local quadratic at a point t of the line, g(t + x) = A x^2 + 2 half_slope x + G, enclosed.
+struct LocalQuadratic {
+    BoundedDD A, half_slope, G;
+};
+
+// The sphere's at t (the line's own parameter), for a root a few ulps from a point the rung's
+// absolute bounds cannot resolve (a line starting on or just off the sphere): G = C0 + t (2 B + A
+// t) with C0 = |w|^2 - r^2 exact, an expansion of w = L0 - centre's two doubles a component, so
+// that G is enclosed relative to itself rather than to |w|^2; B and A in bounded double-double.
+// Some forty products and sums where the exact form's BigFloat quadratic takes thousands of
+// instructions. None where the point lies farther than r from the line's origin (a line from far
+// away: there t (2 B + A t) cancels C0 as much as C0's own terms would, and the double-double
+// products lose what C0's exactness won), where a product may not be exact (underflow, overflow),
+// or where G's sign is not decided and G is not exactly 0 (t = 0 on the sphere): the exact form's
+// then.
+inline std::optional<LocalQuadratic> sphere_local_at(Vec3 centre, double r, const Line& l,
+                                                     double t) {
+    if (!(std::fabs(t) * max_abs(l.v) <= r)) return std::nullopt;
+    Expansion<20> C0; // 20 doubles: three squares of two-double components, and r^2
+    bool exact = true;
+    auto add_product = [&](double a, double b) {
+        double p = a * b;
+        exact = exact && std::isfinite(p) && dd_detail::product_exact(a, b, p);
+        C0.add_product(a, b);
+    };
+    BoundedDD B(0), A(0);
+    for (int k = 0; k < 3; ++k) {
+        TwoTerm w = two_sum(l.L0[k], -centre[k]); // exact: w_k = hi + lo
+        add_product(w.hi, w.hi);
+        add_product(2 * w.hi, w.lo);
+        add_product(w.lo, w.lo);
+        BoundedDD v(l.v[k]);
+        B = B + BoundedDD(w.hi, w.lo, 0) * v;
+        A = A + v * v;
+    }
+    add_product(-r, r);
+    if (!exact) return std::nullopt;
+    BoundedDD c0 = enclosure(C0);
+    if (t == 0) return LocalQuadratic{A, B, c0};
+    BoundedDD at(t), half_slope = B + A * at, G = c0 + at * (half_slope + B);
+    if (int s = sign(G); s != 1 && s != -1) return std::nullopt;
+    return LocalQuadratic{A, half_slope, G};
 }
 
 // g(t) = |w + t v|^2 - r^2, w = L0 - centre. precise: w exact in double-double; else w rounded,
@@ -224,6 +270,11 @@ struct ShapeTraits<Sphere> {
     template <class NT>
     static int discriminant_sign(const Sphere& s, const Line& l, int /*orientation*/) {
         return sphere_discriminant_sign<NT>(s.C, s.r, l);
+    }
+
+    // g's local quadratic at t, cheaper than the exact form's (sphere_local_at).
+    static std::optional<LocalQuadratic> local_at(const Sphere& s, const Line& l, double t) {
+        return sphere_local_at(s.C, s.r, l, t);
     }
 
     // ---- correct: the Newton rung's line form, and the hit test's quick one ----
