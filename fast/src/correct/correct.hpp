@@ -113,6 +113,20 @@ inline std::optional<BoundedDD> in_rung_units(BoundedDD t, double to_rung) {
     return t;
 }
 
+// The line through its point P = L0 + t v, each coordinate L0_k + t v_k enclosed in bounded
+// double-double from an exact product; none where that product may underflow or overflow.
+inline std::optional<exact_form::LineThrough<BoundedDD>> line_through(const Line& l, double t) {
+    exact_form::LineThrough<BoundedDD> through;
+    through.v = l.v;
+    BoundedDD* P[3] = {&through.L0.x, &through.L0.y, &through.L0.z};
+    for (int k = 0; k < 3; ++k) {
+        TwoTerm p = two_prod(t, l.v[k]);
+        if (!std::isfinite(p.hi) || !dd_detail::product_exact(t, l.v[k], p.hi)) return std::nullopt;
+        *P[k] = BoundedDD(l.L0[k]) + BoundedDD(p.hi, p.lo, 0);
+    }
+    return through;
+}
+
 // Where the line crosses one end of q's extent: dZ^2 q(t_E) = (A N + 2 B dZ) N + C0 dZ^2 with
 // N = end - Z0 (the exact form's own test of a disc), and t_E = N / dZ enclosed, times
 // `to_rung` (a power of two: q's parameter into the rung's). No value where the end is not
@@ -610,6 +624,12 @@ class ExactForm final : public ExtentEnds {
                 if (std::optional<LocalQuadratic> L = ShapeTraits<S>::local_at(shape_, line_, t))
                     return in_rung(L->A, L->half_slope, L->G);
             }
+            // From far away (t v reaching 64 times farther than the shape lies from the world's
+            // origin), the quadratic of the line through its point at t: its C0 is G there, its B
+            // G' / 2. Nearer, the line's own form cancels no more than that one would.
+            if (std::fabs(t) * max_abs(line_.v) >= 64 * src_.magnitude())
+                if (std::optional<exact_form::LineQuadratic<BoundedDD>> m = quadratic_through(t))
+                    if (int G = sign(m->C0); G == 1 || G == -1) return in_rung(m->A, m->B, m->C0);
             return std::nullopt;
         }
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
@@ -696,6 +716,17 @@ class ExactForm final : public ExtentEnds {
         const exact_form::LineQuadratic<BigFloat>& q = quadratic();
         BigFloat L(line_.L0[k]), v(line_.v[k]);
         return q.A * L * L - (q.B * L * v).scaled(1) + q.C0 * v * v;
+    }
+
+    // The exact form in bounded double-double of the line through its point at t. Its terms are
+    // of that point's size, not L0's: where t reaches from a far origin to the shape (a line from
+    // far away), its G keeps the digits g(t) in the line's own form would cancel; where the point
+    // lies a few ulps from the surface, G is as small as its bound and decides nothing (the exact
+    // form's then).
+    std::optional<exact_form::LineQuadratic<BoundedDD>> quadratic_through(double t) const {
+        std::optional<exact_form::LineThrough<BoundedDD>> through = line_through(line_, t);
+        if (!through) return std::nullopt;
+        return ShapeTraits<S>::template exact_quadratic<BoundedDD>(shape_, *through, orientation_);
     }
 
     // The filter's parameter is the caller's over this.

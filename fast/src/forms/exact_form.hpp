@@ -69,6 +69,24 @@ Vec3T<NT> lift(Vec3 p) {
     return {NT(p.x), NT(p.y), NT(p.z)};
 }
 
+// A line through a point given in NT (exactly, or enclosed: a point of a line moved along it), for
+// an exact form at that point rather than at the line's own origin: the shapes' exact_quadratic
+// take either line.
+template <class NT>
+struct LineThrough {
+    Vec3T<NT> L0;
+    Vec3 v;
+};
+// The line's origin in NT.
+template <class NT>
+Vec3T<NT> origin(const Line& l) {
+    return lift<NT>(l.L0);
+}
+template <class NT>
+const Vec3T<NT>& origin(const LineThrough<NT>& l) {
+    return l.L0;
+}
+
 // The line's range t0 <= t <= t1 in NT (ends exact: doubles, possibly scaled by a power of two).
 template <class NT>
 struct ParameterRange {

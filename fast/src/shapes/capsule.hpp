@@ -104,8 +104,8 @@ struct ShapeTraits<CapsuleSide> {
     static int exact_orientation(const CapsuleSide&) {
         return 0;
     }
-    template <class NT>
-    static exact_form::LineQuadratic<NT> exact_quadratic(const CapsuleSide& s, const Line& l,
+    template <class NT, class L>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const CapsuleSide& s, const L& l,
                                                          int orientation) {
         exact_form::LineQuadratic<NT> q = Of::exact_quadratic<NT>(side_cylinder(s), l, orientation);
         q.lo_open = q.hi_open = ends_open;
@@ -225,13 +225,13 @@ struct ShapeTraits<CapsuleEnd> {
     static int exact_orientation(const CapsuleEnd&) {
         return 0;
     }
-    template <class NT>
-    static exact_form::LineQuadratic<NT> exact_quadratic(const CapsuleEnd& s, const Line& l,
+    template <class NT, class L>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const CapsuleEnd& s, const L& l,
                                                          int /*orientation*/) {
         using exact_form::lift;
         exact_form::LineQuadratic<NT> q = sphere_quadratic<NT>(s.centre, s.r, l);
         Vec3T<NT> h = lift<NT>(s.centre) - lift<NT>(s.other);
-        q.Z0 = dot(lift<NT>(l.L0) - lift<NT>(s.centre), h);
+        q.Z0 = dot(exact_form::origin<NT>(l) - lift<NT>(s.centre), h);
         q.dZ = dot(lift<NT>(l.v), h);
         q.lo = NT(0);
         q.lo_bounded = true; // the seam belongs to the end: Z >= 0, closed

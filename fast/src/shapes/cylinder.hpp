@@ -307,11 +307,11 @@ struct ShapeTraits<Cylinder> {
 
     // Multiplied through by h.h: |P - C|^2 (h.h) - ((P - C).h)^2 = r^2 (h.h),
     // 0 <= (P - C).h <= h.h, with P = L0 + t v, w = L0 - C, h = H - C.
-    template <class NT>
-    static exact_form::LineQuadratic<NT> exact_quadratic(const Cylinder& s, const Line& l,
+    template <class NT, class L>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const Cylinder& s, const L& l,
                                                          int /*orientation*/) {
         using exact_form::lift;
-        Vec3T<NT> h = lift<NT>(s.H) - lift<NT>(s.C), w = lift<NT>(l.L0) - lift<NT>(s.C);
+        Vec3T<NT> h = lift<NT>(s.H) - lift<NT>(s.C), w = exact_form::origin<NT>(l) - lift<NT>(s.C);
         Vec3T<NT> v = lift<NT>(l.v);
         NT hh = dot(h, h), vh = dot(v, h), wh = dot(w, h), r(s.r);
         exact_form::LineQuadratic<NT> q;

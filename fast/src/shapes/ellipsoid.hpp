@@ -178,12 +178,12 @@ struct ShapeTraits<Ellipsoid> : OnFrame<Ellipsoid, ShapeTraits<Ellipsoid>> {
     // ---- exact ----
 
     // |W + t V|^2 = det^2 with W = adj(M) (L0 - C), V = adj(M) v; no extent.
-    template <class NT>
-    static exact_form::LineQuadratic<NT> exact_quadratic(const Ellipsoid& s, const Line& l,
+    template <class NT, class L>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const Ellipsoid& s, const L& l,
                                                          int /*orientation*/) {
         using exact_form::lift;
         exact_form::AdjugateFrame<NT> f(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.c));
-        Vec3T<NT> W = f.scaled_local(lift<NT>(l.L0) - lift<NT>(s.C));
+        Vec3T<NT> W = f.scaled_local(exact_form::origin<NT>(l) - lift<NT>(s.C));
         Vec3T<NT> V = f.scaled_local(lift<NT>(l.v));
         exact_form::LineQuadratic<NT> q;
         q.A = dot(V, V);

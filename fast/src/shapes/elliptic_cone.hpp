@@ -279,14 +279,14 @@ struct ShapeTraits<EllipticCone> {
 
     // x^2 + y^2 = z^2 (homogeneous, so the det^2 factor drops out), -1 <= z <= 0 (erratum 5;
     // with two nappes -1 <= z <= 1), with W = det M^-1 (L0 - H), V = det M^-1 v.
-    template <class NT>
-    static exact_form::LineQuadratic<NT> exact_quadratic(const EllipticCone& s, const Line& l,
+    template <class NT, class L>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const EllipticCone& s, const L& l,
                                                          int orientation) {
         using exact_form::lift;
         bool negative_det = orientation < 0;
         exact_form::AdjugateFrame<NT> f(lift<NT>(s.a), lift<NT>(s.b),
                                         lift<NT>(s.H) - lift<NT>(s.C));
-        Vec3T<NT> W = f.scaled_local(lift<NT>(l.L0) - lift<NT>(s.H));
+        Vec3T<NT> W = f.scaled_local(exact_form::origin<NT>(l) - lift<NT>(s.H));
         Vec3T<NT> V = f.scaled_local(lift<NT>(l.v));
         exact_form::LineQuadratic<NT> q;
         q.A = V.x * V.x + V.y * V.y - V.z * V.z;

@@ -200,13 +200,13 @@ struct ShapeTraits<EllipticCylinder> : OnFrame<EllipticCylinder, ShapeTraits<Ell
     // x^2 + y^2 = 1, 0 <= z <= 1, times det^2 with W = det w, V = det v'. The sign of det is
     // folded into the extent: the caller gives it (validation decided it exactly), so that a
     // filtered number type need not.
-    template <class NT>
-    static exact_form::LineQuadratic<NT> exact_quadratic(const EllipticCylinder& s, const Line& l,
+    template <class NT, class L>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const EllipticCylinder& s, const L& l,
                                                          int orientation) {
         using exact_form::lift;
         bool negative_det = orientation < 0;
         exact_form::AdjugateFrame<NT> f(lift<NT>(s.a), lift<NT>(s.b), lift<NT>(s.c));
-        Vec3T<NT> W = f.scaled_local(lift<NT>(l.L0) - lift<NT>(s.C));
+        Vec3T<NT> W = f.scaled_local(exact_form::origin<NT>(l) - lift<NT>(s.C));
         Vec3T<NT> V = f.scaled_local(lift<NT>(l.v));
         exact_form::LineQuadratic<NT> q;
         q.A = V.x * V.x + V.y * V.y;

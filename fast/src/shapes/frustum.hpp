@@ -283,11 +283,12 @@ struct ShapeTraits<Frustum> {
         return 0;
     }
 
-    template <class NT>
-    static exact_form::LineQuadratic<NT> exact_quadratic(const Frustum& s, const Line& l,
+    template <class NT, class L>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const Frustum& s, const L& l,
                                                          int /*orientation*/) {
         using exact_form::lift;
-        Vec3T<NT> h = lift<NT>(s.C1) - lift<NT>(s.C0), w = lift<NT>(l.L0) - lift<NT>(s.C0);
+        Vec3T<NT> h = lift<NT>(s.C1) - lift<NT>(s.C0),
+                  w = exact_form::origin<NT>(l) - lift<NT>(s.C0);
         Vec3T<NT> v = lift<NT>(l.v);
         NT r0(s.r0), dr = NT(s.r1) - r0, hh = dot(h, h), vh = dot(v, h), wh = dot(w, h);
         Vec3T<NT> X = cross(v, h), Y = cross(w, h);

@@ -105,10 +105,10 @@ SphereCertified<B> sphere_certified(Vec3 centre, double r, const Prescale& ps, c
 }
 
 // |P - centre|^2 = r^2 with P = L0 + t v, w = L0 - centre; no extent (the caller sets one).
-template <class NT>
-exact_form::LineQuadratic<NT> sphere_quadratic(Vec3 centre, double r, const Line& l) {
+template <class NT, class L>
+exact_form::LineQuadratic<NT> sphere_quadratic(Vec3 centre, double r, const L& l) {
     using exact_form::lift;
-    Vec3T<NT> w = lift<NT>(l.L0) - lift<NT>(centre), v = lift<NT>(l.v);
+    Vec3T<NT> w = exact_form::origin<NT>(l) - lift<NT>(centre), v = lift<NT>(l.v);
     NT R(r);
     exact_form::LineQuadratic<NT> q;
     q.A = dot(v, v);
@@ -135,15 +135,17 @@ struct LocalQuadratic {
 };
 
 // The sphere's at t (the line's own parameter), for a root a few ulps from a point the rung's
-// absolute bounds cannot resolve (a line starting on or just off the sphere): G = C0 + t (2 B + A
-// t) with C0 = |w|^2 - r^2 exact, an expansion of w = L0 - centre's two doubles a component, so
-// that G is enclosed relative to itself rather than to |w|^2; B and A in bounded double-double.
-// Some forty products and sums where the exact form's BigFloat quadratic takes thousands of
-// instructions. None where the point lies farther than r from the line's origin (a line from far
-// away: there t (2 B + A t) cancels C0 as much as C0's own terms would, and the double-double
-// products lose what C0's exactness won), where a product may not be exact (underflow, overflow),
-// or where G's sign is not decided and G is not exactly 0 (t = 0 on the sphere): the exact form's
-// then.
+// absolute bounds cannot resolve (a line starting on or just off the sphere):
+//   G = C0 + t (2 B + A t),  C0 = |w|^2 - r^2 exactly,
+// an expansion of w = L0 - centre's two doubles a component, so that G is enclosed relative to
+// itself rather than to |w|^2; B and A in bounded double-double. Some forty products and sums,
+// where the exact form's BigFloat quadratic takes thousands of instructions. None
+//  - where |t| max|v_k| > r: a point farther than about r from the line's origin (a line from far
+//    away), where t (2 B + A t) cancels C0 as much as C0's own terms would, and the
+//    double-double products lose what C0's exactness won;
+//  - where a product may not be exact (underflow, overflow);
+//  - where G's sign is not decided and G is not exactly 0 (t = 0 on the sphere).
+// The exact form's answers those.
 inline std::optional<LocalQuadratic> sphere_local_at(Vec3 centre, double r, const Line& l,
                                                      double t) {
     if (!(std::fabs(t) * max_abs(l.v) <= r)) return std::nullopt;
@@ -259,8 +261,8 @@ struct ShapeTraits<Sphere> {
         return 0;
     }
 
-    template <class NT>
-    static exact_form::LineQuadratic<NT> exact_quadratic(const Sphere& s, const Line& l,
+    template <class NT, class L>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const Sphere& s, const L& l,
                                                          int /*orientation*/) {
         return sphere_quadratic<NT>(s.C, s.r, l);
     }
