@@ -89,12 +89,16 @@ LINEQUAD_INLINE std::optional<Enclosure<double>> root_from_local(const ExactLoca
     if (!en.proven || en.smaller != smaller) return std::nullopt;
     return en;
 }
-[[gnu::noinline]] std::optional<Enclosure<double>>
-root_from_exact_form(const ExtentEnds& ends, double t_factor, double c, bool smaller) {
-    // The shape's cheaper local quadratic first, where it has one; where that proves nothing, the
-    // exact form's, whose bounds are tighter.
-    if (std::optional<ExactLocal> q = ends.local_at(c, t_factor, false))
-        if (std::optional<Enclosure<double>> en = root_from_local(*q, c, smaller)) return en;
+[[gnu::noinline]] std::optional<Enclosure<double>> root_from_exact_form(const ExtentEnds& ends,
+                                                                        double t_factor, double c,
+                                                                        bool smaller,
+                                                                        bool* cheaper) {
+    // The shape's cheaper local quadratic first (where `cheaper` is set, and left set where it
+    // answered), where it has one; where that proves nothing, the exact form's.
+    if (cheaper && *cheaper)
+        if (std::optional<ExactLocal> q = ends.local_at(c, t_factor, false))
+            if (std::optional<Enclosure<double>> en = root_from_local(*q, c, smaller)) return en;
+    if (cheaper) *cheaper = false;
     std::optional<ExactLocal> q = ends.local_at(c, t_factor, true);
     return q ? root_from_local(*q, c, smaller) : std::nullopt;
 }
@@ -370,8 +374,12 @@ LINEQUAD_INLINE bool add_rounded_hit(const Enclosure<double>& en, Part part, con
 // (t or a coordinate: a line starting beside the surface or a disc's plane, a hit beside a
 // coordinate plane): the hit's enclosure once more from the exact form (`ends`), a lateral
 // root's from its local quadratic, a disc's crossing exactly; no value where it is not narrower.
+// `cheaper` set: a lateral root's from the shape's cheaper local quadratic where it has one, and
+// left set where that answered; its wider bounds may still leave the value open, and the caller
+// then asks again with it cleared.
 LINEQUAD_INLINE std::optional<Enclosure<double>> tighter(const Enclosure<double>& en, Part part,
-                                                         const Unit& unit, const ExtentEnds& ends) {
+                                                         const Unit& unit, const ExtentEnds& ends,
+                                                         bool* cheaper = nullptr) {
     std::optional<Enclosure<double>> t;
     if (part == Part::lateral) {
         // About the range's end where the root lies beside it, or the line's origin (a line
@@ -381,7 +389,7 @@ LINEQUAD_INLINE std::optional<Enclosure<double>> tighter(const Enclosure<double>
         double c = at;
         for (double end : {unit.line.range.t0, unit.line.range.t1, 0.0})
             if (std::isfinite(end) && std::fabs(at - end) <= 2 * e_at) c = end;
-        t = root_from_exact_form(ends, unit.t_factor, c, en.smaller);
+        t = root_from_exact_form(ends, unit.t_factor, c, en.smaller, cheaper);
     } else {
         t = exact_crossing(ends, part == Part::base, unit);
     }
@@ -399,8 +407,13 @@ template <class Target>
                                        const Line& caller, Query q, Result& r,
                                        ExactCoordinate exact, const ExtentEnds& ends) {
     if (add_rounded_hit<Target>(en, part, unit, caller, q, r, exact, &ends)) return true;
-    std::optional<Enclosure<double>> t = tighter(en, part, unit, ends);
+    bool cheaper = true;
+    std::optional<Enclosure<double>> t = tighter(en, part, unit, ends, &cheaper);
     if (t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact, &ends)) return true;
+    if (t && cheaper) { // the exact form's local quadratic, where a cheaper one's did not do
+        t = tighter(en, part, unit, ends);
+        if (t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact, &ends)) return true;
+    }
     return (t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact, &ends, true)) ||
            add_rounded_hit<Target>(en, part, unit, caller, q, r, exact, &ends, true);
 }
@@ -629,9 +642,14 @@ piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double
     }
     for (int i = 0; i < points; ++i) {
         Kept<double> k = in_range(unit, at[i]);
-        if (!k.outside && !k.inside && ends) // t a few ulps from the range's end, 0 most often
-            if (std::optional<Enclosure<double>> narrower = tighter(at[i], part[i], unit, *ends))
-                k = in_range_tighter(unit, at[i] = *narrower);
+        // t a few ulps from the range's end (0 most often): from a cheaper local quadratic, then
+        // the exact form's
+        for (bool cheaper = true, again = true; again && !k.outside && !k.inside && ends;) {
+            std::optional<Enclosure<double>> narrower =
+                tighter(at[i], part[i], unit, *ends, &cheaper);
+            if (narrower) k = in_range_tighter(unit, at[i] = *narrower);
+            again = narrower && cheaper, cheaper = false;
+        }
         if (k.outside) continue;
         if (!k.inside || !add_hit<Target>(at[i], part[i], unit, caller, query, r, exact[i], ends))
             return false;
@@ -1152,9 +1170,13 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         if (inside < 0 && ends) { // t a few ulps from the range's end (0 most often), or an end
             Kept<double> by_range = in_range(unit, *en);
             if (!by_range.inside && !by_range.outside)
-                if (std::optional<Enclosure<double>> narrower =
-                        tighter(*en, Part::lateral, unit, *ends))
-                    inside = kept_tighter(f, unit, *(en = narrower));
+                // a cheaper local quadratic, then the exact one where that left it open
+                for (bool cheaper = true, again = true; again && inside < 0;) {
+                    std::optional<Enclosure<double>> narrower =
+                        tighter(*en, Part::lateral, unit, *ends, &cheaper);
+                    if (narrower) inside = kept_tighter(f, unit, *(en = narrower));
+                    again = narrower && cheaper, cheaper = false;
+                }
             if (inside < 0) inside = kept_at_end<SigmaZ, R>(f, roots, i, *en, exact, *ends, unit);
         }
         if (inside < 0) return false;
