@@ -1116,6 +1116,13 @@ TEST_CASE("each shape's sign of D from Lagrange's identity is its exact quadrati
 }
 
 namespace {
+// The roots of q's quadratic in double (points near them to test at: not correctly rounded), or
+// its vertex where it has none; not finite where A = 0.
+std::pair<double, double> roots_near(const exact_form::LineQuadratic<BigFloat>& q) {
+    double A = enclosure(q.A).hi, B = enclosure(q.B).hi, C0 = enclosure(q.C0).hi;
+    double root_D = std::sqrt(std::max(0.0, B * B - A * C0));
+    return {(-B - root_D) / A, (-B + root_D) / A};
+}
 // Whether x's enclosure holds the exact value y: |hi + lo - y| <= e, in BigFloat.
 bool holds(const BoundedDD& x, const BigFloat& y) {
     BigFloat off = BigFloat(x.hi) + BigFloat(x.lo) - y;
@@ -1128,9 +1135,8 @@ void check_local_at(const S& s, const Line& l, long& compared, long& exact_zeros
     if constexpr (detail::has_local_at<S>) {
         using Traits = detail::ShapeTraits<S>;
         exact_form::LineQuadratic<BigFloat> q = Traits::template exact_quadratic<BigFloat>(s, l, 0);
-        double A = enclosure(q.A).hi, B = enclosure(q.B).hi, C0 = enclosure(q.C0).hi;
-        double root_D = std::sqrt(std::max(0.0, B * B - A * C0));
-        for (double t : {0.0, (-B - root_D) / A, (-B + root_D) / A, 0x1p-40}) {
+        auto [t0, t1] = roots_near(q);
+        for (double t : {0.0, t0, t1, 0x1p-40}) {
             std::optional<detail::LocalQuadratic> L = Traits::local_at(s, l, t);
             if (!L) continue;
             BigFloat at(t), half_slope = q.B + q.A * at, G = q.C0 + at * (half_slope + q.B);
@@ -1166,9 +1172,8 @@ void check_through(const S& s, const Line& l, int orientation, long& compared) {
     using Traits = detail::ShapeTraits<S>;
     exact_form::LineQuadratic<BigFloat> q =
         Traits::template exact_quadratic<BigFloat>(s, l, orientation);
-    double A = enclosure(q.A).hi, B = enclosure(q.B).hi, C0 = enclosure(q.C0).hi;
-    double root_D = std::sqrt(std::max(0.0, B * B - A * C0));
-    for (double t : {(-B - root_D) / A, (-B + root_D) / A, -0.75, 1e3}) {
+    auto [t0, t1] = roots_near(q);
+    for (double t : {t0, t1, -0.75, 1e3}) {
         std::optional<exact_form::LineThrough<BoundedDD>> through = detail::line_through(l, t);
         if (!std::isfinite(t) || !through) continue;
         exact_form::LineQuadratic<BoundedDD> m =
