@@ -626,8 +626,9 @@ class ExactForm final : public ExtentEnds {
             }
             // From far away (t v reaching 64 times farther than the shape lies from the world's
             // origin), the quadratic of the line through its point at t: its C0 is G there, its B
-            // G' / 2. Nearer, the line's own form cancels no more than that one would.
-            if (std::fabs(t) * max_abs(line_.v) >= 64 * src_.magnitude())
+            // G' / 2. Nearer, the line's own form cancels no more than that one would; and once
+            // the exact form is formed, its local quadratic costs a few products.
+            if (!q_ && std::fabs(t) * max_abs(line_.v) >= 64 * src_.magnitude())
                 if (std::optional<exact_form::LineQuadratic<BoundedDD>> m = quadratic_through(t))
                     if (int G = sign(m->C0); G == 1 || G == -1) return in_rung(m->A, m->B, m->C0);
             return std::nullopt;
