@@ -72,10 +72,8 @@ LINEQUAD_INLINE Kept<double> in_range_tighter(const Unit& unit, const Enclosure<
     return at_range_end(unit, en) ? Kept<double>() : in_range(unit, en);
 }
 
-// Root `smaller` (or the larger one) next to c, where the rung's bounds, absolute, are wide
-// beside it or beside a coordinate of its point: the same proof at c (a double next to the root)
-// on the exact form's local quadratic there (`ends`), whose G is enclosed relatively. Rare, so
-// out of line.
+// Root `smaller` (or the larger one) next to c from g's local quadratic q at c: c itself where G is
+// exactly 0 there, else the rung's proof at c on q.
 LINEQUAD_INLINE std::optional<Enclosure<double>> root_from_local(const ExactLocal& q, double c,
                                                                  bool smaller) {
     if (!(std::fabs(q.A.A) > q.A.e)) return std::nullopt;
@@ -89,6 +87,10 @@ LINEQUAD_INLINE std::optional<Enclosure<double>> root_from_local(const ExactLoca
     if (!en.proven || en.smaller != smaller) return std::nullopt;
     return en;
 }
+// Root `smaller` (or the larger one) next to c, where the rung's bounds, absolute, are wide
+// beside it or beside a coordinate of its point: the same proof at c (a double next to the root)
+// on the exact form's local quadratic there (`ends`), whose G is enclosed relatively. Rare, so
+// out of line.
 [[gnu::noinline]] std::optional<Enclosure<double>> root_from_exact_form(const ExtentEnds& ends,
                                                                         double t_factor, double c,
                                                                         bool smaller,
