@@ -1137,7 +1137,7 @@ void check_local_at(const S& s, const Line& l, long& compared, long& exact_zeros
         exact_form::LineQuadratic<BigFloat> q = Traits::template exact_quadratic<BigFloat>(s, l, 0);
         auto [t0, t1] = roots_near(q);
         for (double t : {0.0, t0, t1, 0x1p-40}) {
-            std::optional<detail::LocalQuadratic> L = Traits::local_at(s, l, t);
+            std::optional<exact_form::LocalQuadratic> L = Traits::local_at(s, l, t);
             if (!L) continue;
             BigFloat at(t), half_slope = q.B + q.A * at, G = q.C0 + at * (half_slope + q.B);
             CHECK(holds(L->A, q.A));

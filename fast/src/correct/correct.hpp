@@ -116,14 +116,14 @@ inline std::optional<BoundedDD> in_rung_units(BoundedDD t, double to_rung) {
 // The line through its point P = L0 + t v, each coordinate L0_k + t v_k enclosed in bounded
 // double-double from an exact product; none where that product may underflow or overflow.
 inline std::optional<exact_form::LineThrough<BoundedDD>> line_through(const Line& l, double t) {
-    exact_form::LineThrough<BoundedDD> through;
-    through.v = l.v;
-    BoundedDD* P[3] = {&through.L0.x, &through.L0.y, &through.L0.z};
-    for (int k = 0; k < 3; ++k) {
+    bool exact = true;
+    auto at = [&](int k) {
         TwoTerm p = two_prod(t, l.v[k]);
-        if (!std::isfinite(p.hi) || !dd_detail::product_exact(t, l.v[k], p.hi)) return std::nullopt;
-        *P[k] = BoundedDD(l.L0[k]) + BoundedDD(p.hi, p.lo, 0);
-    }
+        exact = exact && std::isfinite(p.hi) && dd_detail::product_exact(t, l.v[k], p.hi);
+        return BoundedDD(l.L0[k]) + BoundedDD(p.hi, p.lo, 0);
+    };
+    exact_form::LineThrough<BoundedDD> through{{at(0), at(1), at(2)}, l.v};
+    if (!exact) return std::nullopt;
     return through;
 }
 
@@ -621,7 +621,8 @@ class ExactForm final : public ExtentEnds {
         };
         if (!exactly) {
             if constexpr (has_local_at<S>) {
-                if (std::optional<LocalQuadratic> L = ShapeTraits<S>::local_at(shape_, line_, t))
+                if (std::optional<exact_form::LocalQuadratic> L =
+                        ShapeTraits<S>::local_at(shape_, line_, t))
                     return in_rung(L->A, L->half_slope, L->G);
             }
             // From far away (t v reaching 64 times farther than the shape lies from the world's

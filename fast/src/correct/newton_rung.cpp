@@ -399,6 +399,22 @@ LINEQUAD_INLINE std::optional<Enclosure<double>> tighter(const Enclosure<double>
     return t;
 }
 
+// tighter() from the shape's cheaper local quadratic first, and where its enclosure does not
+// `settle` the value (its wider bounds leave it open), from the exact form's; the last enclosure
+// found, or none.
+template <class Settles>
+LINEQUAD_INLINE std::optional<Enclosure<double>>
+tighter_until(const Enclosure<double>& en, Part part, const Unit& unit, const ExtentEnds& ends,
+              Settles settles) {
+    bool cheaper = true;
+    std::optional<Enclosure<double>> t = tighter(en, part, unit, ends, &cheaper);
+    if (!t || settles(*t) || !cheaper) return t;
+    std::optional<Enclosure<double>> exactly = tighter(*t, part, unit, ends);
+    if (!exactly) return t;
+    settles(*exactly);
+    return exactly;
+}
+
 // The same, and where a bound does not prove a rounding: with the coordinates the exact form gives
 // (exact_coordinate: a coordinate at or beside zero is what fails most often), then once more
 // from a tighter enclosure, and last with what the exact form's roots give (a t or a coordinate
@@ -409,13 +425,13 @@ template <class Target>
                                        const Line& caller, Query q, Result& r,
                                        ExactCoordinate exact, const ExtentEnds& ends) {
     if (add_rounded_hit<Target>(en, part, unit, caller, q, r, exact, &ends)) return true;
-    bool cheaper = true;
-    std::optional<Enclosure<double>> t = tighter(en, part, unit, ends, &cheaper);
-    if (t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact, &ends)) return true;
-    if (t && cheaper) { // the exact form's local quadratic, where a cheaper one's did not do
-        t = tighter(en, part, unit, ends);
-        if (t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact, &ends)) return true;
-    }
+    bool added = false;
+    std::optional<Enclosure<double>> t =
+        tighter_until(en, part, unit, ends, [&](const Enclosure<double>& narrower) {
+            return added =
+                       add_rounded_hit<Target>(narrower, part, unit, caller, q, r, exact, &ends);
+        });
+    if (added) return true;
     return (t && add_rounded_hit<Target>(*t, part, unit, caller, q, r, exact, &ends, true)) ||
            add_rounded_hit<Target>(en, part, unit, caller, q, r, exact, &ends, true);
 }
@@ -644,14 +660,13 @@ piece_hits(const LineForm& f, bool between, const std::optional<Enclosure<double
     }
     for (int i = 0; i < points; ++i) {
         Kept<double> k = in_range(unit, at[i]);
-        // t a few ulps from the range's end (0 most often): from a cheaper local quadratic, then
-        // the exact form's
-        for (bool cheaper = true, again = true; again && !k.outside && !k.inside && ends;) {
-            std::optional<Enclosure<double>> narrower =
-                tighter(at[i], part[i], unit, *ends, &cheaper);
-            if (narrower) k = in_range_tighter(unit, at[i] = *narrower);
-            again = narrower && cheaper, cheaper = false;
-        }
+        if (!k.outside && !k.inside && ends) // t a few ulps from the range's end, 0 most often
+            if (std::optional<Enclosure<double>> narrower =
+                    tighter_until(at[i], part[i], unit, *ends, [&](const Enclosure<double>& t) {
+                        k = in_range_tighter(unit, t);
+                        return k.outside || k.inside;
+                    }))
+                at[i] = *narrower;
         if (k.outside) continue;
         if (!k.inside || !add_hit<Target>(at[i], part[i], unit, caller, query, r, exact[i], ends))
             return false;
@@ -1172,13 +1187,11 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
         if (inside < 0 && ends) { // t a few ulps from the range's end (0 most often), or an end
             Kept<double> by_range = in_range(unit, *en);
             if (!by_range.inside && !by_range.outside)
-                // a cheaper local quadratic, then the exact one where that left it open
-                for (bool cheaper = true, again = true; again && inside < 0;) {
-                    std::optional<Enclosure<double>> narrower =
-                        tighter(*en, Part::lateral, unit, *ends, &cheaper);
-                    if (narrower) inside = kept_tighter(f, unit, *(en = narrower));
-                    again = narrower && cheaper, cheaper = false;
-                }
+                if (std::optional<Enclosure<double>> narrower = tighter_until(
+                        *en, Part::lateral, unit, *ends, [&](const Enclosure<double>& t) {
+                            return (inside = kept_tighter(f, unit, t)) >= 0;
+                        }))
+                    en = narrower;
             if (inside < 0) inside = kept_at_end<SigmaZ, R>(f, roots, i, *en, exact, *ends, unit);
         }
         if (inside < 0) return false;

@@ -77,6 +77,12 @@ struct LineThrough {
     Vec3T<NT> L0;
     Vec3 v;
 };
+// g's local quadratic at a point t of the line, g(t + x) = A x^2 + 2 half_slope x + G, enclosed:
+// what a shape gives where it has a cheaper form of it than its exact quadratic (a sphere's).
+struct LocalQuadratic {
+    BoundedDD A, half_slope, G;
+};
+
 // The line's origin in NT.
 template <class NT>
 Vec3T<NT> origin(const Line& l) {

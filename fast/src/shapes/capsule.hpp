@@ -241,7 +241,8 @@ struct ShapeTraits<CapsuleEnd> {
     static int discriminant_sign(const CapsuleEnd& s, const Line& l, int /*orientation*/) {
         return sphere_discriminant_sign<NT>(s.centre, s.r, l);
     }
-    static std::optional<LocalQuadratic> local_at(const CapsuleEnd& s, const Line& l, double t) {
+    static std::optional<exact_form::LocalQuadratic> local_at(const CapsuleEnd& s, const Line& l,
+                                                              double t) {
         return sphere_local_at(s.centre, s.r, l, t);
     }
     template <class NT>

@@ -129,11 +129,6 @@ int sphere_discriminant_sign(Vec3 centre, double r, const Line& l) {
     return sign(R * R * dot(v, v) - dot(vw, vw));
 }
 
-// g's local quadratic at a point t of the line, g(t + x) = A x^2 + 2 half_slope x + G, enclosed.
-struct LocalQuadratic {
-    BoundedDD A, half_slope, G;
-};
-
 // The sphere's at t (the line's own parameter), for a root a few ulps from a point the rung's
 // absolute bounds cannot resolve (a line starting on or just off the sphere):
 //   G = C0 + t (2 B + A t),  C0 = |w|^2 - r^2 exactly,
@@ -146,8 +141,8 @@ struct LocalQuadratic {
 //  - where a product may not be exact (underflow, overflow);
 //  - where G's sign is not decided and G is not exactly 0 (t = 0 on the sphere).
 // The exact form's answers those.
-inline std::optional<LocalQuadratic> sphere_local_at(Vec3 centre, double r, const Line& l,
-                                                     double t) {
+inline std::optional<exact_form::LocalQuadratic> sphere_local_at(Vec3 centre, double r,
+                                                                 const Line& l, double t) {
     if (!(std::fabs(t) * max_abs(l.v) <= r)) return std::nullopt;
     Expansion<20> C0; // 20 doubles: three squares of two-double components, and r^2
     bool exact = true;
@@ -169,10 +164,10 @@ inline std::optional<LocalQuadratic> sphere_local_at(Vec3 centre, double r, cons
     add_product(-r, r);
     if (!exact) return std::nullopt;
     BoundedDD c0 = enclosure(C0);
-    if (t == 0) return LocalQuadratic{A, B, c0};
+    if (t == 0) return exact_form::LocalQuadratic{A, B, c0};
     BoundedDD at(t), half_slope = B + A * at, G = c0 + at * (half_slope + B);
     if (int s = sign(G); s != 1 && s != -1) return std::nullopt;
-    return LocalQuadratic{A, half_slope, G};
+    return exact_form::LocalQuadratic{A, half_slope, G};
 }
 
 // g(t) = |w + t v|^2 - r^2, w = L0 - centre. precise: w exact in double-double; else w rounded,
@@ -275,7 +270,8 @@ struct ShapeTraits<Sphere> {
     }
 
     // g's local quadratic at t, cheaper than the exact form's (sphere_local_at).
-    static std::optional<LocalQuadratic> local_at(const Sphere& s, const Line& l, double t) {
+    static std::optional<exact_form::LocalQuadratic> local_at(const Sphere& s, const Line& l,
+                                                              double t) {
         return sphere_local_at(s.C, s.r, l, t);
     }
 
