@@ -16,6 +16,7 @@ table, so that no figure in the docs can go stale (the CTest test `docs_tables_m
 import json
 import pathlib
 import re
+import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
@@ -279,6 +280,15 @@ def family_instructions():
     return verbatim(LATEST / "family_instructions.txt")
 
 
+def time_per_instruction():
+    """Derived from the two tables above by bench/time_per_instruction.py (run, not stored)."""
+    times, ir = (relative(LATEST / f) for f in ("correct_vs_exact.txt", "family_instructions.txt"))
+    text = subprocess.run([sys.executable, str(ROOT / "bench" / "time_per_instruction.py"),
+                           str(times), str(ir)], cwd=ROOT, check=True, capture_output=True,
+                          text=True).stdout.splitlines()
+    return ["From `" + times + "` and `" + ir + "`:", "", "```"] + text + ["```"]
+
+
 def instructions_lanes():
     return verbatim(LATEST / "instructions_lanes.txt")
 
@@ -332,7 +342,7 @@ def plugin():
 
 TABLES = {f.__name__: f for f in [solvers, bench, rungs, headline, peers, peer_instructions, instructions,
                                   instructions_closed, instructions_lanes, correct_vs_exact,
-                                  family_instructions, batch, scenes, plugin]}
+                                  family_instructions, time_per_instruction, batch, scenes, plugin]}
 BEGIN = re.compile(r"^<!-- table: (\w+) -->$")
 END = "<!-- end table -->"
 # A measured figure: a time, a rate, a percentage, a ratio or a count of instructions.
