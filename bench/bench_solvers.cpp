@@ -110,6 +110,12 @@ void stable_scalar_loop(benchmark::State& state, int shape) {
     }
     state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
 }
+// The lanes a batch runs on, for the row's label: the capsule, made of patches, is the scalar
+// loop on any path.
+Lanes lanes_taken(const Shape& shape, Lanes asked) {
+    return std::holds_alternative<Capsule>(shape) ? Lanes::scalar : std::min(asked, batch_lanes());
+}
+
 template <class R>
 void stable_batch(benchmark::State& state, int shape, Lanes lanes) {
     bench::OneShape<R> o = bench::one_shape<R>(shape);
@@ -128,7 +134,7 @@ void stable_batch(benchmark::State& state, int shape, Lanes lanes) {
     }
     state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
     // Float lines run on AVX2's eight lanes on an AVX-512 machine too.
-    Lanes used = std::min(lanes, batch_lanes());
+    Lanes used = lanes_taken(o.shape, lanes);
     if (std::is_same_v<R, float>) used = std::min(used, Lanes::avx2);
     state.SetLabel(lanes_name(used));
 }
@@ -156,9 +162,7 @@ void correct_lines(benchmark::State& state, int shape, Lanes lanes, bool closed)
         },
         o.shape);
     state.SetItemsProcessed(std::int64_t(state.iterations() * l.count));
-    // The frustum has no Newton form: its batch is the scalar loop on any path.
-    bool in_lanes = !std::holds_alternative<Frustum>(o.shape);
-    state.SetLabel(lanes_name(in_lanes ? std::min(lanes, batch_lanes()) : Lanes::scalar));
+    state.SetLabel(lanes_name(lanes_taken(o.shape, lanes)));
 }
 
 int register_all() {

@@ -43,7 +43,7 @@ void intersect(const S& shape, const LineArrays& lines, Query query, Result* out
 namespace correct {
 // out[i] = correct::intersect(shape, line i, query) for every i < lines.count, bit for bit, on
 // `lanes` (at most batch_lanes()). The Newton rung (a hit test's quick rung) runs in lanes for
-// the shapes that have it (all but the frustum, without caps); the lines it cannot prove are
+// every shape but the capsule (made of patches), open or closed; the lines it cannot prove are
 // solved one at a time.
 template <class S, if_solvable<S> = 0>
 void intersect(const S& shape, const LineArrays& lines, Query query, Result* out,

@@ -46,7 +46,7 @@ template <int SigmaZ>
 constexpr double more_terms = SigmaZ == four_terms ? 1.0 : 0.0;
 
 // f(std::integral_constant<int, sigma_z>{}): each step is compiled for its sigma_z (1: the
-// cylinder, 0: the elliptic cylinder, -1: the cone, four_terms: the frustum, scalar only).
+// cylinder, 0: the elliptic cylinder, -1: the cone, four_terms: the frustum).
 template <class F>
 LINEQUAD_INLINE decltype(auto) with_sigma_z(int sigma_z, F&& f) {
     switch (sigma_z) {
@@ -60,16 +60,21 @@ LINEQUAD_INLINE decltype(auto) with_sigma_z(int sigma_z, F&& f) {
         return f(std::integral_constant<int, -1>{});
     }
 }
-// The same for the batch kernels' lanes, which take no four-term form.
-template <class F>
+// The same for the batch kernels' lanes: a four-term form (the frustum's: FourTerms) compiled
+// apart, so that the other shapes' kernels carry no fourth term.
+template <bool FourTerms, class F>
 LINEQUAD_INLINE decltype(auto) with_sigma_z_of_lanes(int sigma_z, F&& f) {
-    switch (sigma_z) {
-    case 1:
-        return f(std::integral_constant<int, 1>{});
-    case 0:
-        return f(std::integral_constant<int, 0>{});
-    default:
-        return f(std::integral_constant<int, -1>{});
+    if constexpr (FourTerms) {
+        return f(std::integral_constant<int, four_terms>{});
+    } else {
+        switch (sigma_z) {
+        case 1:
+            return f(std::integral_constant<int, 1>{});
+        case 0:
+            return f(std::integral_constant<int, 0>{});
+        default:
+            return f(std::integral_constant<int, -1>{});
+        }
     }
 }
 

@@ -173,14 +173,15 @@ LINEQUAD_INLINE BoundedDDT<T> dot_row(const BoundedDD (&n)[3], const Q& w) {
 }
 
 // a b, from a and b within their bounds: a'b' - ab = a' eb + b' ea + ea eb.
-inline BoundedDD product(const BoundedDD& a, const BoundedDD& b) {
-    CompensatedSum s;
+template <class T>
+LINEQUAD_INLINE BoundedDDT<T> product(const BoundedDDT<T>& a, const BoundedDDT<T>& b) {
+    using std::fabs;
+    CompensatedSumT<T> s;
     s.add_product(a.hi, b.hi);
     s.add_small(a.hi * b.lo);
     s.add_small(a.lo * b.hi);
     s.add_small(a.lo * b.lo);
-    double propagated = a.e * (std::fabs(b.hi) + std::fabs(b.lo)) +
-                        b.e * (std::fabs(a.hi) + std::fabs(a.lo)) + a.e * b.e;
+    T propagated = a.e * (fabs(b.hi) + fabs(b.lo)) + b.e * (fabs(a.hi) + fabs(a.lo)) + a.e * b.e;
     return s.result(propagated);
 }
 

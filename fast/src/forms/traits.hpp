@@ -12,8 +12,8 @@
 //   certified_form<B>      the stable quantities in a bounded type
 //   exact_orientation<NT>, exact_quadratic<NT>  the exact, division-free form in any ring
 //   has_line_form, line_form, quick_line_form  the correct solver's Newton rung and hit test
-//                          views, where the shape's quadratic has one (signed squares);
-//                          line_form_in_lanes = false where the batch lanes cannot take it
+//                          views, where the shape's quadratic has one (signed squares), for
+//                          double and for the batch kernels' lane types
 // Every field is a position: it scales with the scene (the scene's magnitude and the checks for
 // components too small for double arithmetic run over them).
 #pragma once
@@ -287,15 +287,10 @@ auto with_patch(const S& shape, Part part, F&& f) {
         patches);
 }
 
-// Whether the batch kernels' lanes take the shape's Newton form: where it has one, unless its
-// traits say line_form_in_lanes = false (a form computed per line in scalar arithmetic only).
-template <class S, class = void>
-struct LineFormInLanes : std::bool_constant<ShapeTraits<S>::has_line_form> {};
+// Whether the batch kernels' lanes take the shape's Newton form: wherever it has one (every
+// line_form is written for a lane type too).
 template <class S>
-struct LineFormInLanes<S, std::void_t<decltype(ShapeTraits<S>::line_form_in_lanes)>>
-    : std::bool_constant<ShapeTraits<S>::has_line_form && ShapeTraits<S>::line_form_in_lanes> {};
-template <class S>
-inline constexpr bool line_form_in_lanes = LineFormInLanes<S>::value;
+inline constexpr bool line_form_in_lanes = ShapeTraits<S>::has_line_form;
 
 // Whether discs close the shape's ends (the Newton rung's LineFormT::discs).
 template <class S>

@@ -39,6 +39,12 @@ struct BoundedDDT {
 };
 using BoundedDD = BoundedDDT<double>;
 
+// x in every lane of T (x itself for T = double).
+template <class T>
+LINEQUAD_INLINE BoundedDDT<T> lanes_of(const BoundedDD& x) {
+    return {T(x.hi), T(x.lo), T(x.e)};
+}
+
 namespace dd_detail {
 using F = detail::Binary64;
 constexpr double u2 = F::u * F::u;

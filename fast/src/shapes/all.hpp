@@ -18,9 +18,9 @@
 // The shapes that are one quadric (not made of patches: the batch kernels take them).
 #define LINEQUAD_FOR_EACH_QUADRIC_SHAPE(X)                                                         \
     X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid)
-// The shapes whose quadratic has the Newton rung's form (ShapeTraits<S>::has_line_form).
+// The shapes whose quadratic has the Newton rung's form in the batch lanes (line_form_in_lanes).
 #define LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X)                                                       \
-    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Sphere) X(Ellipsoid)
+    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid)
 
 namespace linequad::detail {
 #define LINEQUAD_COUNT_SHAPE(S) +1

@@ -226,7 +226,7 @@ struct ShapeTraits<Cylinder> {
             }
             a.hh = hh_sum.result();
             TwoTerm r2 = two_prod(s.r, s.r);
-            a.K = product({r2.hi, r2.lo, 0}, a.hh);
+            a.K = product(BoundedDD{r2.hi, r2.lo, 0}, a.hh);
             return a;
         }
     }

@@ -56,6 +56,7 @@
 #include "forms/line_form.hpp"
 #include "forms/roots.hpp"
 #include "forms/traits.hpp"
+#include "numeric/bounded_dd_lanes.hpp"
 #include "shapes/cylinder.hpp"
 
 namespace linequad::detail {
@@ -192,7 +193,6 @@ struct ShapeTraits<Frustum> {
     static constexpr const char* scale_fields = "r0,r1,C1-C0";
     static constexpr const char* fragile_fields = "v,C1-C0";
     static constexpr bool has_line_form = true;
-    static constexpr bool line_form_in_lanes = false; // a square root and quotients per shape
 
     static Validity validate(const Frustum& s) {
         if (Error e = check_caps(s); !e.ok()) return {e};
@@ -322,35 +322,47 @@ struct ShapeTraits<Frustum> {
 
     // ---- correct: the Newton rung's line form (four terms) ----
 
+    // For the line L0 + t v in T: double, or a lane type (a line per lane). The shape's own
+    // values (h, h.h, r1 - r0, |h|) are formed once in double; each lane's are formed from them
+    // as the scalar form forms its line's, operation for operation.
     template <class T = double, class Source>
-    static LineForm line_form(const Source& src, Vec3 L0, Vec3 v, int /*orientation*/) {
-        static_assert(std::is_same_v<T, double>, "the frustum's line form is scalar");
+    static LineFormT<T> line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v, int /*orientation*/) {
         const Frustum& s = src.shape;
-        Vec3TwoTerm h = difference_exact(s.C1, s.C0), w = difference_exact(L0, s.C0);
-        LineForm f;
+        Vec3TwoTerm h_shape = difference_exact(s.C1, s.C0);
+        Vec3TwoTermT<T> h{lanes_of<T>(h_shape.hi), lanes_of<T>(h_shape.lo)};
+        Vec3TwoTermT<T> w = difference_exact(L0, lanes_of<T>(s.C0));
+        LineFormT<T> f;
 #pragma GCC unroll 3
         for (int k = 0; k < 3; ++k) {
             f.U0[k] = cross_component(w, h, k);
             f.U1[k] = cross_component(v, h, k);
         }
-        BoundedDD hh = dot_dd(h, h), wh = dot_dd(w, h), vh = dot_dd(v, h);
+        BoundedDD hh = dot_dd(h_shape, h_shape);
+        BoundedDDT<T> wh = dot_dd(w, h), vh = dot_dd(v, h);
         TwoTerm dr_exact = two_sum(s.r1, -s.r0);
-        BoundedDD dr(dr_exact.hi, dr_exact.lo, 0);
-        BoundedDD R0 = product(BoundedDD(s.r0), hh) + product(dr, wh), dR = product(dr, vh);
-        BoundedDD length = sqrt(hh);
-        f.fourth = FourthTerm<double>{R0 / length, dR / length};
+        BoundedDD dr(dr_exact.hi, dr_exact.lo, 0), length = sqrt(hh);
+        BoundedDD base = product(BoundedDD(s.r0), hh); // r0 h.h
+        BoundedDDT<T> R0, dR = product(lanes_of<T>(dr), vh);
+        if constexpr (std::is_same_v<T, double>) {
+            R0 = base + product(dr, wh);
+            f.fourth = FourthTerm<T>{R0 / length, dR / length};
+        } else {
+            R0 = sum_lanes(lanes_of<T>(base), product(lanes_of<T>(dr), wh));
+            f.fourth = FourthTerm<T>{quotient_lanes(R0, lanes_of<T>(length)),
+                                     quotient_lanes(dR, lanes_of<T>(length))};
+        }
         f.sigma_z = four_terms;
         f.K = BoundedDD(0);
         // Z = u in [0, h.h] (finite), or R >= 0 (the nappe).
-        const BoundedDD& Z0 = s.finite ? wh : R0;
-        const BoundedDD& dZ = s.finite ? vh : dR;
+        const BoundedDDT<T>& Z0 = s.finite ? wh : R0;
+        const BoundedDDT<T>& dZ = s.finite ? vh : dR;
         f.Z0 = Z0.hi, f.e_Z0 = bound_of_hi(Z0), f.dZ = dZ.hi, f.e_dZ = bound_of_hi(dZ);
         f.lo = 0, f.e_lo = 0, f.lo_bounded = true;
         f.hi = hh.hi, f.e_hi = bound_of_hi(hh), f.hi_bounded = s.finite;
         f.discs = discs_of(s);
         if (s.finite) { // the ends' planes, from what the form has: discs where closed
             Closure discs = frustum_closure(s); // none where open
-            f.planes = DiscPlanes{wh, vh, BoundedDD(0), hh, discs.lo, discs.hi};
+            f.planes = DiscPlanesT<T>{wh, vh, BoundedDD(0), hh, discs.lo, discs.hi};
             f.planes->axis = s.caps ? axis_along(s.C1 - s.C0) : -1; // only discs have points there
             if (f.planes->axis >= 0)
                 f.planes->lo_at = s.C0[f.planes->axis], f.planes->hi_at = s.C1[f.planes->axis];
@@ -361,13 +373,14 @@ struct ShapeTraits<Frustum> {
     // The hit test's: the same values as doubles with their bounds (no cheaper form of the
     // fourth term).
     template <class T = double, class Source>
-    static LineForm quick_line_form(const Source& src, Vec3 L0, Vec3 v, int orientation) {
-        LineForm f = line_form<T>(src, L0, v, orientation);
-        auto quick = [](BoundedDD& x) { x = {x.hi, 0, bound_of_hi(x)}; };
+    static LineFormT<T> quick_line_form(const Source& src, Vec3T<T> L0, Vec3T<T> v,
+                                        int orientation) {
+        LineFormT<T> f = line_form<T>(src, L0, v, orientation);
+        auto quick = [](BoundedDDT<T>& x) { x = {x.hi, T(0.0), bound_of_hi(x)}; };
         for (int k = 0; k < 3; ++k)
             quick(f.U0[k]), quick(f.U1[k]);
         quick(f.fourth->U0), quick(f.fourth->U1);
-        quick(f.K);
+        f.K = {f.K.hi, 0, bound_of_hi(f.K)};
         f.planes.reset();
         return f;
     }

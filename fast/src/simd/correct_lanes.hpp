@@ -10,6 +10,7 @@
 
 #include "correct/correct.hpp"
 #include "correct/newton_steps.hpp"
+#include "numeric/bounded_dd_lanes.hpp"
 #include "simd/batch_kernels.hpp"
 #include "simd/lanes.hpp"
 
@@ -101,44 +102,6 @@ void put_hit_test(const Result& r, int k, CorrectBlock<N>& out) {
     }
 }
 
-// bounded_dd.hpp's a - b (as a + (-b)) and a / b in lanes, a the shape's: the same operations
-// in the same order, each branch a select, so the same bits as the scalar rung's plane crossing.
-template <class L>
-LINEQUAD_INLINE BoundedDDT<L> difference_lanes(const BoundedDD& a, const BoundedDDT<L>& b) {
-    const L zero(0.0), ahi(a.hi), alo(a.lo), ae(a.e), bhi = -b.hi, blo = -b.lo;
-    TwoTermT<L> s = two_sum(ahi, bhi);
-    Mask<L> exact = equal(alo, zero) & equal(blo, zero) & equal(ae, zero) & equal(b.e, zero);
-    TwoTermT<L> t = two_sum(alo, blo);
-    TwoTermT<L> v = fast_two_sum(s.hi, s.lo + t.hi);
-    TwoTermT<L> z = fast_two_sum(v.hi, t.lo + v.lo);
-    L e = (ae + b.e + L(4 * u * u) * fabs(z.hi)) * L(F::cover(8)) + L(F::underflow_floor);
-    return {select(exact, s.hi, z.hi), select(exact, s.lo, z.lo), select(exact, zero, e)};
-}
-template <class L>
-LINEQUAD_INLINE BoundedDDT<L> quotient_lanes(const BoundedDDT<L>& a, const BoundedDDT<L>& b) {
-    const L zero(0.0), size = fabs(b.hi);
-    // By a power of two 2^k, |k| < 1000 (moderate_power_of_two): exact, far from underflow.
-    Mask<L> by_power = equal(a.e, zero) & equal(b.e, zero) & equal(b.lo, zero) &
-                       is_power_of_two(b.hi) & (L(0x1p-999) <= size) & (size <= L(0x1p+999));
-    L inv = L(1.0) / b.hi;
-    Mask<L> far = (equal(a.hi, zero) | (L(0x1p-900) <= fabs(a.hi * inv))) &
-                  (equal(a.lo, zero) | (L(0x1p-1000) <= fabs(a.lo * inv)));
-    Mask<L> exact = by_power & far;
-    L th = a.hi / b.hi;
-    TwoTermT<L> r = two_prod(b.hi, th);
-    L rl = fma(b.lo, th, r.lo);
-    TwoTermT<L> rr = fast_two_sum(r.hi, rl);
-    L d = (a.hi - rr.hi) + (a.lo - rr.lo);
-    TwoTermT<L> z = fast_two_sum(th, d / b.hi);
-    L gap = size * L(F::shrink(8)) - b.e;
-    L q = fabs(z.hi) * L(F::cover(8));
-    L e = (a.e + q * b.e) / gap + L(16 * u * u) * q;
-    e = select(zero < gap, (e * L(F::cover(8))) * L(F::cover(8)) + L(F::underflow_floor),
-               L(F::inf));
-    return {select(exact, a.hi * inv, z.hi), select(exact, a.lo * inv, z.lo),
-            select(exact, zero, e)};
-}
-
 // Where each lane's line crosses the plane Z = end (newton_rung.cpp's plane_crossing), and in
 // which lanes that is finite.
 template <class L>
@@ -149,7 +112,9 @@ struct CrossingLanes {
 template <class L>
 LINEQUAD_INLINE CrossingLanes<L> plane_crossing_lanes(const DiscPlanesT<L>& p,
                                                       const BoundedDD& end) {
-    BoundedDDT<L> t = quotient_lanes(difference_lanes(end, p.Z0), p.dZ);
+    // end - Z0 as bounded_dd.hpp's a - b, a + (-b).
+    BoundedDDT<L> t =
+        quotient_lanes(sum_lanes(lanes_of<L>(end), {-p.Z0.hi, -p.Z0.lo, p.Z0.e}), p.dZ);
     const L largest(std::numeric_limits<double>::max());
     Mask<L> finite = (fabs(t.hi) <= largest) & (fabs(t.e) <= largest);
     return {{t.hi, t.lo, t.e, finite, finite}, finite};
@@ -189,7 +154,7 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
         for (int j = 0; j < 2; ++j)
             at[j] = root[j] = root_near(local[j], A, c[j]);
         // Each root below, within or above the extent (side_of), and for a cone which side of
-        // the apex it lies on (root_on_nappe).
+        // the apex it lies on (root_on_nappe): the sign of Z, or of a frustum's R.
         Mask<L> below[2], above[2], within[2], z_pos[2], z_neg[2];
         for (int j = 0; j < 2; ++j) {
             Axial<L> a = axial_at(f, root[j]);
@@ -198,6 +163,10 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
             below[j] = dlo.d < -dlo.bound;
             above[j] = (!below[j]) & (dhi.d < -dhi.bound);
             within[j] = (dlo.bound < dlo.d) & (dhi.bound < dhi.d);
+            if constexpr (SigmaZ == four_terms) {
+                const FourthTerm<L>& R = *f.fourth;
+                a = linear_at(R.U0.hi, bound_of_hi(R.U0), R.U1.hi, bound_of_hi(R.U1), root[j]);
+            }
             z_pos[j] = a.e_z < a.z, z_neg[j] = a.z < -a.e_z;
         }
         Mask<L> sides = (below[0] | above[0] | within[0]) & (below[1] | above[1] | within[1]);
@@ -212,8 +181,18 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
         // root i is within the extent, across both discs (first, then last in t) when it is on
         // the other side, no hit when it is on that side already.
         Mask<L> i0 = z_neg[0] & z_pos[1], i1 = z_pos[0] & z_neg[1];
+        if constexpr (SigmaZ == four_terms) {
+            // The frustum's nappe is R >= 0: root i's R positive, the other's negative; where
+            // the bounds tell neither, R's rate along the line (its proven sign) does.
+            i0 = z_pos[0] & z_neg[1], i1 = z_neg[0] & z_pos[1];
+            const BoundedDDT<L>& rate = f.fourth->U1;
+            Mask<L> by_rate = (!(i0 | i1)) & (bound_of_hi(rate) < fabs(rate.hi));
+            i1 = i1 | (by_rate & (zero < rate.hi));
+            i0 = i0 | (by_rate & (!(zero < rate.hi)));
+        }
         Mask<L> neg = none;
-        if (f.sigma_z == -1) neg = closing & (A.A < zero) & (i0 | i1) & (f.e_dZ < fabs(f.dZ));
+        if constexpr (SigmaZ == -1 || SigmaZ == four_terms)
+            neg = closing & (A.A < zero) & (i0 | i1) & (f.e_dZ < fabs(f.dZ));
         Mask<L> rising = zero < f.dZ;
         Mask<L> away_above = (rising & i1) | ((!rising) & i0), away_below = !away_above;
         Mask<L> b_i = (i0 & below[0]) | (i1 & below[1]), a_i = (i0 & above[0]) | (i1 & above[1]);
@@ -404,6 +383,7 @@ template <class L, class S>
 void correct_lanes(const Prepared<S>& shape, int orientation, const Real<L>* const soa[6],
                    std::size_t i, Interval range, Query q, CorrectBlock<lane_count<L>>& out) {
     using Traits = ShapeTraits<S>;
+    constexpr bool fourth_term = std::is_same_v<S, Frustum>; // the frustum's four-term form
     auto src = source(shape);
     Vec3T<L> L0{load(soa[0] + i), load(soa[1] + i), load(soa[2] + i)};
     Vec3T<L> v{load(soa[3] + i), load(soa[4] + i), load(soa[5] + i)};
@@ -413,7 +393,7 @@ void correct_lanes(const Prepared<S>& shape, int orientation, const Real<L>* con
     auto usable = usual_line(L0, v) & moderate(extent) & moderate(max_abs(v));
     if (q.need == Need::any) { // the quick rung, on the quick line form
         LineFormT<L> f = Traits::template quick_line_form<L>(src, L0, v, orientation);
-        return newton::with_sigma_z_of_lanes(f.sigma_z, [&](auto sigma_z) {
+        return newton::with_sigma_z_of_lanes<fourth_term>(f.sigma_z, [&](auto sigma_z) {
             constexpr int sz = decltype(sigma_z)::value;
             if (f.discs == Discs::none)
                 newton::hit_test_lanes<sz, false>(f, usable, L0, v, range, out);
@@ -422,7 +402,7 @@ void correct_lanes(const Prepared<S>& shape, int orientation, const Real<L>* con
         });
     }
     LineFormT<L> f = Traits::template line_form<L>(src, L0, v, orientation);
-    newton::with_sigma_z_of_lanes(f.sigma_z, [&](auto sigma_z) {
+    newton::with_sigma_z_of_lanes<fourth_term>(f.sigma_z, [&](auto sigma_z) {
         constexpr int sz = decltype(sigma_z)::value;
         if (f.discs == Discs::convex)
             newton::solve_lanes<sz, true>(f, usable, L0, v, range, q, out);
