@@ -3,7 +3,7 @@
 (bench/correct_vs_exact.sh) with an instruction table (bench/family_instructions.sh, the solvers
 correct,exact) and says how many instructions a solve of `correct` could take, at its measured
 time per instruction, for `exact` to take TARGET times as long (5 per family, 10 over all: the
-targets of issue 41).
+targets docs/limits.md names as not yet met).
 
     python3 bench/time_per_instruction.py [TIMES] [INSTRUCTIONS]
     (defaults: reports/latest/correct_vs_exact.txt, reports/latest/family_instructions.txt)
