@@ -154,8 +154,9 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
         for (int j = 0; j < 2; ++j)
             at[j] = root[j] = root_near(local[j], A, c[j]);
         // Each root below, within or above the extent (side_of), and for a cone which side of
-        // the apex it lies on (root_on_nappe): the sign of Z, or of a frustum's R.
-        Mask<L> below[2], above[2], within[2], z_pos[2], z_neg[2];
+        // the apex it lies on (root_on_nappe): the solid's nappe is Z <= 0 for the cone, R >= 0
+        // (the fourth term's sign) for the frustum.
+        Mask<L> below[2], above[2], within[2], on_solid[2], off_solid[2];
         for (int j = 0; j < 2; ++j) {
             Axial<L> a = axial_at(f, root[j]);
             DifferenceTest<L> dlo = difference_test(a.z, a.e_z, L(f.lo), L(f.e_lo));
@@ -166,8 +167,10 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
             if constexpr (SigmaZ == four_terms) {
                 const FourthTerm<L>& R = *f.fourth;
                 a = linear_at(R.U0.hi, bound_of_hi(R.U0), R.U1.hi, bound_of_hi(R.U1), root[j]);
+                on_solid[j] = a.e_z < a.z, off_solid[j] = a.z < -a.e_z;
+            } else {
+                on_solid[j] = a.z < -a.e_z, off_solid[j] = a.e_z < a.z;
             }
-            z_pos[j] = a.e_z < a.z, z_neg[j] = a.z < -a.e_z;
         }
         Mask<L> sides = (below[0] | above[0] | within[0]) & (below[1] | above[1] | within[1]);
         Mask<L> both_proven =
@@ -180,11 +183,10 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
         // from the other root, running towards `away` along Z; from root i to the disc there when
         // root i is within the extent, across both discs (first, then last in t) when it is on
         // the other side, no hit when it is on that side already.
-        Mask<L> i0 = z_neg[0] & z_pos[1], i1 = z_pos[0] & z_neg[1];
+        Mask<L> i0 = on_solid[0] & off_solid[1], i1 = off_solid[0] & on_solid[1];
         if constexpr (SigmaZ == four_terms) {
-            // The frustum's nappe is R >= 0: root i's R positive, the other's negative; where
-            // the bounds tell neither, R's rate along the line (its proven sign) does.
-            i0 = z_pos[0] & z_neg[1], i1 = z_neg[0] & z_pos[1];
+            // Where the bounds tell neither root's side, R's rate along the line (its proven
+            // sign) does, as in root_on_nappe.
             const BoundedDDT<L>& rate = f.fourth->U1;
             Mask<L> by_rate = (!(i0 | i1)) & (bound_of_hi(rate) < fabs(rate.hi));
             i1 = i1 | (by_rate & (zero < rate.hi));
