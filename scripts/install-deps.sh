@@ -10,6 +10,8 @@ packages=(build-essential cmake pkg-config git
           # Campaigns under GNU parallel (scripts/campaign.sh; its test reads the Kubernetes Job with
           # python3-yaml); the audit's history (SQLite).
           parallel libsqlite3-dev python3-yaml
+          # A real Slurm for the campaign test (tests/slurm_test.sh starts and stops it).
+          slurm-wlm munge
           # The measurement scripts (bench/*.sh): callgrind, GNU time, bc.
           valgrind time bc
           # The peer libraries the audit grades beside linequad (compare/peers/).

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# The peer libraries' audit (reports/peers): linequad's correct beside every peer library built
-# in (compare/peers/), on axis-aligned circular shapes, which all of them can hold.
+# The peer libraries' audit into OUT (default reports/peers, the committed one; the main job
+# passes its own): linequad's correct beside every peer library built in (compare/peers/), on
+# axis-aligned circular shapes, which all of them can hold.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+out="${OUT:-reports/peers}"
 linequad=./build/compare/linequad
 peers=$($linequad solvers | awk '/\(peer library\)/ {printf ",%s", $1}')
 if [ -z "$peers" ]; then
@@ -10,7 +12,7 @@ if [ -z "$peers" ]; then
   exit 0
 fi
 $linequad audit --solvers "correct$peers" --frames axis --cases "${PEER_CASES:-5000}" --seed 1 \
-  --out reports/peers
+  --out "$out"
 
 # Instructions per solve under callgrind (repeatable on a loaded machine): each peer on posed
 # generic segments of each shape it takes, (Ir(N) - Ir(0)) / N; correct beside it from
@@ -35,5 +37,5 @@ if command -v valgrind >/dev/null; then
         printf '%-8s %-18s %10d\n' "$peer" "$shape" $(( (full - base) / n ))
       done
     done
-  } | tee reports/peers/instructions.txt
+  } | tee "$out/instructions.txt"
 fi

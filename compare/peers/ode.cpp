@@ -5,13 +5,39 @@
 #include <ode/ode.h>
 
 #include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <memory>
+#include <string>
 
 namespace linequad::peers {
 
 namespace {
 
+// What ODE prints (its internal errors, as "ODE INTERNAL ERROR 1: assertion ... in
+// dxNormalize3()" before an abort that the audit counts as a crash) goes to the report, not to
+// the terminal of whoever runs the audit.
+const std::shared_ptr<audit::OwnOutput>& ode_output() {
+    static const auto out = std::make_shared<audit::OwnOutput>();
+    return out;
+}
+
+void keep_message(const char* what, int errnum, const char* msg, va_list ap) {
+    char text[512];
+    std::vsnprintf(text, sizeof text, msg, ap);
+    ode_output()->write(std::string(what) + " " + std::to_string(errnum) + ": " + text + "\n");
+}
+
 struct World {
-    World() { dInitODE2(0); }
+    World() {
+        dSetErrorHandler(
+            [](int n, const char* m, va_list ap) { keep_message("ODE Error", n, m, ap); });
+        dSetDebugHandler(
+            [](int n, const char* m, va_list ap) { keep_message("ODE INTERNAL ERROR", n, m, ap); });
+        dSetMessageHandler(
+            [](int n, const char* m, va_list ap) { keep_message("ODE Message", n, m, ap); });
+        dInitODE2(0);
+    }
     ~World() { dCloseODE(); }
 };
 
@@ -65,6 +91,7 @@ audit::ExternalSolver ode() {
     s.parametrisation = audit::Parametrisation::unit_direction;
     s.surface = audit::Surface::closed;
     s.kinds = false, s.parts = false;
+    s.own_output = ode_output();
     s.mapping =
         "dCollide(dCreateRay(0, length), dCreateCylinder(0, r, |H - C|), 1 contact) "
         "with dGeomRaySetClosestHit; the ray from L0 along u = v/|v| (ODE normalises it "

@@ -255,6 +255,16 @@ inline constexpr const char* batch_name = "batch";
 // beside grading it, and that batch's packet is the benchmarks' 1024 lines.
 inline constexpr std::uint64_t chunk_size = 1024;
 
+// How far a run has come: cases graded of those it will grade, and the time it took so far.
+struct Progress {
+    std::uint64_t done = 0, total = 0;
+    double seconds = 0;
+    // The time left at the pace so far (0 before any case is graded, or once all are).
+    double seconds_left() const {
+        return done && done < total ? seconds * double(total - done) / double(done) : 0;
+    }
+};
+
 struct Options {
     std::uint64_t seed = 1, cases_per_group = 100000;
     std::vector<Family> families; // empty: all
@@ -278,6 +288,11 @@ struct Options {
     // Written into out_dir at the end, from report.md and the figures, before report.json says
     // the run ended (the linequad program's report.html); nothing when empty.
     std::function<void(const std::string& dir)> finish_with;
+    // The library writes nothing on the terminal: how far the run has come (called on run's own
+    // thread after each chunk of cases is graded) and notes on it (a result line graded as
+    // refused, an early stop) go to these, which the linequad program draws; empty ones drop them.
+    std::function<void(const Progress&)> progress;
+    std::function<void(const std::string&)> notice;
 };
 
 // Runs the campaign (or grades a results file) and writes the report; returns it. The output

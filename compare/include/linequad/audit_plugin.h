@@ -18,6 +18,8 @@
 #ifndef LINEQUAD_AUDIT_PLUGIN_H
 #define LINEQUAD_AUDIT_PLUGIN_H
 
+#include <stddef.h> /* NULL, for the fields a plugin leaves empty */
+
 #ifdef __cplusplus
 extern "C" {
 #endif

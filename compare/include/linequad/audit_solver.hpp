@@ -18,8 +18,10 @@
 
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -87,6 +89,24 @@ struct ExternalAnswer {
 
 class PluginWorker; // a plugin's solvers in a worker process (plugin_worker.hpp)
 
+// What a library in linequad's process writes of its own (its warnings and internal errors, taken
+// from its message hooks), kept for the report as a plugin worker's standard output and error are,
+// and off the terminal: its first lines and how much it wrote in all. Shared by the threads that
+// call the library.
+class OwnOutput {
+  public:
+    static constexpr std::size_t kept = 4096; // bytes of its first lines
+    void write(std::string_view text);
+    std::string head() const;
+    std::uint64_t bytes() const;
+    void clear(); // a new run starts counting afresh
+
+  private:
+    mutable std::mutex lock_;
+    std::string head_;
+    std::uint64_t bytes_ = 0;
+};
+
 // A solver from outside linequad. Each callable gets the posed case and returns the solver's
 // answer as a linequad::Result (hits in order of t), or nullopt where the library cannot represent
 // the case (counted as unrepresented, never graded); an empty callable: the library has no such
@@ -112,6 +132,9 @@ struct ExternalSolver {
     bool points = true, kinds = true, parts = true;
     std::string mapping; // for the report: how a case is handed over, what cannot be represented
     std::string plugin;  // the shared library it came from (an absolute path), if any
+    // Where an in-process library's own messages go, if it has hooks for them (the peers'
+    // adapters set it): counted in the report like a plugin's output. None: it writes nothing.
+    std::shared_ptr<OwnOutput> own_output;
     // Its callable for shape S; an empty one: the library has no such shape.
     //     mine.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {..};
     template <class S>
@@ -128,8 +151,9 @@ struct ExternalSolver {
     int worker_index = -1;
     unsigned worker_shapes = 0; // bit k: takes the shape of index k in linequad::Shape
 
-    // Whether it takes this shape.
+    // Whether it takes this shape, or the shape of this index in linequad::Shape.
     bool takes(const Shape& s) const;
+    bool takes_shape(std::size_t index) const;
     // One posed case: the answer and what was noted of the call. A crash or abort inside an
     // in-process callable (a signal) is caught: the answer is then a failure named "crashed".
     ExternalAnswer answer(const Shape& s, const Line& l) const;

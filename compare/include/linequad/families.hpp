@@ -5,6 +5,7 @@
 #include "linequad/case_io.hpp"
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -52,6 +53,10 @@ const char* family_name(Family f);
 bool parse_family(std::string_view name, Family* f);
 // The index in linequad::Shape of the shape named `name` (its case format name), or -1.
 int shape_named(std::string_view name);
+// Every family's name, and every shape's (in the order of linequad::Shape), as the case format
+// and the options write them.
+std::vector<std::string> family_names();
+std::vector<std::string> shape_names();
 
 // apex and generator: the cone and the frustum; two_nappes: the cone only; the closed solids'
 // own families for them alone.

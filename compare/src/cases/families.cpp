@@ -748,6 +748,20 @@ bool parse_frames(std::string_view name, Frames* f) {
     return false;
 }
 
+std::vector<std::string> family_names() {
+    std::vector<std::string> out;
+    for (int f = 0; f < family_count; ++f)
+        out.emplace_back(family_name(Family(f)));
+    return out;
+}
+
+std::vector<std::string> shape_names() {
+    std::vector<std::string> out;
+    for (std::size_t s = 0; s < shape_count; ++s)
+        out.emplace_back(shape_name_at(s));
+    return out;
+}
+
 int shape_named(std::string_view name) {
     std::size_t i = shape_index(name);
     return i < shape_count ? int(i) : -1;

@@ -12,7 +12,10 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <memory>
 #include <optional>
+
+#include <unistd.h>
 
 namespace linequad::cli {
 
@@ -67,17 +70,14 @@ void add_campaign_options(CLI::App* app, CampaignArgs& a) {
         ->type_name("S")
         ->check(WholeNumber(0, UINT64_MAX))
         ->capture_default_str();
-    app->add_option("--families", a.families, "families to run (default: all)")
+    app->add_option("--families", a.families,
+                    "families to run (default: all): " + joined(family_names()))
         ->type_name("F[,F...]")
-        ->check(each_of_list([](const std::string& f) {
-            Family x;
-            return parse_family(f, &x) ? std::string() : "no family named '" + f + "'";
-        }));
-    app->add_option("--shapes", a.shapes, "shapes to build (default: all)")
+        ->check(names_in({"family", "families"}, family_names()));
+    app->add_option("--shapes", a.shapes,
+                    "shapes to build (default: all): " + joined(shape_names()))
         ->type_name("S[,S...]")
-        ->check(each_of_list([](const std::string& s) {
-            return shape_named(s) >= 0 ? std::string() : "no shape named '" + s + "'";
-        }));
+        ->check(names_in({"shape", "shapes"}, shape_names()));
     app->add_option("--frames", a.frames,
                     "the shapes' frames: any (oblique and sheared elliptic shapes), circular "
                     "(circular cross-sections) or axis (circular, along a coordinate axis)")
@@ -96,6 +96,40 @@ void add_campaign_options(CLI::App* app, CampaignArgs& a) {
         ->capture_default_str();
 }
 
+// The run's progress on standard error: a bar with the time left on a terminal, redrawn at most
+// five times a second; elsewhere (a log, CI) a line at every tenth, with the time left.
+void show_progress(audit::Options& o) {
+    struct Shown {
+        bool tty = ::isatty(STDERR_FILENO) != 0;
+        int tenth = 0;
+        double last = -1;
+    };
+    auto shown = std::make_shared<Shown>();
+    o.progress = [shown](const audit::Progress& p) {
+        double frac = p.total ? double(p.done) / double(p.total) : 1;
+        bool last = p.done >= p.total;
+        if (shown->tty) {
+            if (p.seconds - shown->last < 0.2 && !last) return;
+            shown->last = p.seconds;
+            int width = 40, filled = int(frac * width);
+            std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %llu/%llu cases  %.0fs left ", filled,
+                         "########################################", width - filled, "", 100 * frac,
+                         (unsigned long long)p.done, (unsigned long long)p.total, p.seconds_left());
+            if (last) std::fputc('\n', stderr);
+        } else if (int(frac * 10) > shown->tenth) {
+            shown->tenth = int(frac * 10);
+            std::fprintf(stderr, "audit: %3d%% (%llu/%llu cases, %.1f s", shown->tenth * 10,
+                         (unsigned long long)p.done, (unsigned long long)p.total, p.seconds);
+            if (!last) std::fprintf(stderr, ", about %.0f s left", p.seconds_left());
+            std::fprintf(stderr, ")\n");
+        }
+    };
+    o.notice = [shown](const std::string& note) {
+        std::fprintf(stderr, "%saudit: %s\n", shown->tty && shown->last >= 0 ? "\n" : "",
+                     note.c_str());
+    };
+}
+
 // One line per solver on standard output: cases, mismatches, t error. Returns how many results
 // were graded.
 std::uint64_t print_summary(const audit::Report& r) {
@@ -112,6 +146,38 @@ std::uint64_t print_summary(const audit::Report& r) {
         throw std::runtime_error(std::string("cannot write standard output: ") +
                                  std::strerror(errno));
     return graded;
+}
+
+// The solvers that graded no case, each with why (what kept its cases from it, counted). A
+// solver asked for that grades nothing is a mistake in the command (a plugin asked about shapes
+// it does not take, a first-exit solver on families that never start inside), not a clean bill.
+std::vector<std::string> graded_nothing(const audit::Report& r,
+                                        const std::vector<audit::ExternalSolver>& ext) {
+    std::vector<std::string> out;
+    if (r.status == audit::Status::stopped) return out; // it may not have reached them yet
+    for (const std::string& s : r.solvers) {
+        audit::Row t = r.total(s);
+        if (t.cases) continue;
+        std::string why = "solver '" + s + "' graded no case";
+        if (t.unrepresented) {
+            why += ": " + std::to_string(t.unrepresented) + " could not be asked of it (";
+            std::string reasons;
+            for (const auto& [reason, n] : t.unrepresented_why)
+                reasons += (reasons.empty() ? "" : "; ") + reason + ": " + std::to_string(n);
+            why += (reasons.empty() ? std::string("no reason given") : reasons) + ")";
+        } else if (const audit::ExternalSolver* e = find_external(ext, s)) {
+            std::vector<std::string> names = shape_names();
+            std::string takes;
+            for (std::size_t i = 0; i < names.size(); ++i)
+                if (e->takes_shape(i)) takes += (takes.empty() ? "" : ", ") + names[i];
+            why += ": it takes none of the shapes asked for (" + joined(r.shapes) + "); it takes " +
+                   (takes.empty() ? std::string("none") : takes);
+        } else {
+            why += ": the families, shapes and ranges asked for posed none to it";
+        }
+        out.push_back(why + " (linequad solvers --plugin LIB says what a plugin's solver takes)");
+    }
+    return out;
 }
 
 // audit --check: 0 when every claim the README makes holds on what was graded.
@@ -150,6 +216,7 @@ int run_audit(const CampaignArgs& a, const std::string& command) {
     std::optional<audit::History> history;
     if (!a.history.empty()) history.emplace(a.history);
     o.finish_with = audit::write_report_html;
+    show_progress(o);
     audit::Report r = audit::run(o, ext);
     if (history) {
         std::size_t n = history->add(r, a.commit);
@@ -158,6 +225,10 @@ int run_audit(const CampaignArgs& a, const std::string& command) {
     std::fprintf(stderr, "audit: %s/report.md and report.html (%.1f s)\n", o.out_dir.c_str(),
                  r.seconds);
     std::uint64_t graded = print_summary(r);
+    std::vector<std::string> idle = graded_nothing(r, ext);
+    for (const std::string& why : idle)
+        std::fprintf(stderr, "audit: %s%s\n", a.check ? "" : "warning: ", why.c_str());
+    if (a.check && !idle.empty()) return 1;
     if (a.check && check_claims(r, graded) != 0) return 1;
     return r.status == audit::Status::stopped ? 130 : 0;
 }

@@ -64,6 +64,21 @@ std::vector<std::string> split_list(const std::string& list);
 // A validator of a list option: each name must pass check (which says why not).
 CLI::Validator each_of_list(std::function<std::string(const std::string&)> check);
 
+// ---- names a user can discover
+
+// "a, b, c" (for help texts and errors).
+std::string joined(const std::vector<std::string>& names);
+// What a list of names holds: "family", "families".
+struct Kind {
+    std::string one, many;
+};
+// "" when name is one of known; else "no family named 'x' (did you mean 'y'?); the families: ..."
+// (the nearest name by edit distance, when it is near enough to be a slip).
+std::string unknown_name(const Kind& kind, const std::string& name,
+                         const std::vector<std::string>& known);
+// A list option whose names must each be one of known.
+CLI::Validator names_in(const Kind& kind, std::vector<std::string> known);
+
 // --plugin and --solver-timeout; --history and --commit.
 void add_plugin_options(CLI::App* app, std::vector<std::string>& plugins, std::string& timeout);
 void add_history_options(CLI::App* app, std::string& history, std::string& commit);

@@ -16,7 +16,9 @@ struct HistoryArgs {
 
 int run_history(const HistoryArgs& h) {
     if (!h.commit.empty() && h.add.empty()) return fail("history: --commit goes with --add");
-    audit::History history(h.db);
+    // Reading a trend needs no write access: a shared, read-only history can be read.
+    audit::History history(h.db, h.add.empty() ? audit::History::Access::read_only
+                                               : audit::History::Access::read_write);
     if (!h.add.empty()) {
         audit::Report r;
         std::string why;

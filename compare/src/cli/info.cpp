@@ -1,8 +1,10 @@
 // linequad solvers, version, and the plugin worker (the mode a plugin's worker process runs in).
 #include "cli/cli.hpp"
 
+#include "linequad/families.hpp"
 #include "linequad/registry.hpp"
 
+#include "io/escape.hpp"
 #include "io/jsonl.hpp"
 #include "peers/peers.hpp"
 
@@ -27,9 +29,41 @@ Command version_command(CLI::App& app) {
     return {c, [](const std::string&) { return print_version(); }, {}};
 }
 
+namespace {
+
+// What a solver from outside declares, in words: how it is asked, and the shapes it takes.
+std::string declared(const audit::ExternalSolver& e) {
+    std::string shapes;
+    std::vector<std::string> names = shape_names();
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (e.takes_shape(i)) shapes += (shapes.empty() ? "" : ",") + names[i];
+    std::string out =
+        std::string(audit::answers_name(e.answers)) + ", " +
+        audit::parametrisation_name(e.parametrisation) + ", " + audit::surface_name(e.surface) +
+        ", " + (e.precision == Precision::binary32 ? "binary32" : "binary64") +
+        ", start inside: " + audit::start_inside_name(e.inside) +
+        (e.contact_as_point ? ", a contact as its first point" : "") + "; answers carry" +
+        (e.points ? " points" : "") + (e.kinds ? " kinds" : "") + (e.parts ? " parts" : "") +
+        (!e.points && !e.kinds && !e.parts ? " t alone" : "") + "; shapes " +
+        (shapes.empty() ? "none" : shapes);
+    return e.mapping.empty() ? out : out + ": " + e.mapping;
+}
+
+struct SolversArgs {
+    std::vector<std::string> plugins;
+    std::string solver_timeout = "5";
+};
+
+} // namespace
+
 Command solvers_command(CLI::App& app) {
-    CLI::App* c = app.add_subcommand("solvers", "List the solver names.");
-    auto run = [](const std::string&) {
+    auto a = std::make_shared<SolversArgs>();
+    CLI::App* c = app.add_subcommand(
+        "solvers", "List the solvers: linequad's, the peer libraries built in, and those of the "
+                   "plugins given, each with what it declares.");
+    add_plugin_options(c, a->plugins, a->solver_timeout);
+    auto run = [a](const std::string&) {
+        std::vector<audit::ExternalSolver> ext = external_solvers(a->plugins, a->solver_timeout);
         jsonl::Output out;
         auto line = [&](std::string name, const std::string& summary) {
             out.line(name + std::string(name.size() < 9 ? 9 - name.size() : 0, ' ') + " " +
@@ -37,10 +71,10 @@ Command solvers_command(CLI::App& app) {
         };
         for (const Solver& s : all_solvers())
             line(std::string(s.name), std::string(s.summary));
-        for (const audit::ExternalSolver& e : peers::solvers())
-            line(e.name, std::string("(peer library) ") + audit::answers_name(e.answers) + ", " +
-                             audit::parametrisation_name(e.parametrisation) + ", " +
-                             audit::surface_name(e.surface) + ": " + e.mapping);
+        for (const audit::ExternalSolver& e : ext)
+            line(e.name, (e.plugin.empty() ? std::string("(peer library) ")
+                                           : "(plugin " + escape::shell_word(e.plugin) + ") ") +
+                             declared(e));
         out.finish();
         return 0;
     };

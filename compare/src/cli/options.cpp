@@ -1,6 +1,7 @@
 // What the subcommands share: options read strictly, solvers from outside, output.
 #include "cli/cli.hpp"
 
+#include "linequad/families.hpp"
 #include "linequad/registry.hpp"
 
 #include "io/jsonl.hpp"
@@ -8,6 +9,7 @@
 #include "peers/peers.hpp"
 #include "run/plugin_worker.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -103,6 +105,53 @@ CLI::Validator each_of_list(std::function<std::string(const std::string&)> check
         "");
 }
 
+std::string joined(const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names)
+        out += (out.empty() ? "" : ", ") + n;
+    return out;
+}
+
+namespace {
+
+// Levenshtein distance: insertions, deletions and substitutions of one character.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j)
+        row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            std::size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+} // namespace
+
+std::string unknown_name(const Kind& kind, const std::string& name,
+                         const std::vector<std::string>& known) {
+    if (std::find(known.begin(), known.end(), name) != known.end()) return "";
+    std::string why = "no " + kind.one + " named '" + name + "'";
+    // A slip: at most a third of the name's letters wrong (and not the whole of a short name).
+    std::size_t best = SIZE_MAX;
+    std::string nearest;
+    for (const std::string& k : known)
+        if (std::size_t d = edit_distance(name, k); d < best) best = d, nearest = k;
+    if (!nearest.empty() && best <= std::max<std::size_t>(1, name.size() / 3))
+        why += " (did you mean '" + nearest + "'?)";
+    return why + "; the " + kind.many + ": " + joined(known);
+}
+
+CLI::Validator names_in(const Kind& kind, std::vector<std::string> known) {
+    return each_of_list(
+        [kind, known](const std::string& name) { return unknown_name(kind, name, known); });
+}
+
 void add_plugin_options(CLI::App* app, std::vector<std::string>& plugins, std::string& timeout) {
     app->add_option("--plugin", plugins,
                     "a shared library of solvers (the C ABI of linequad/audit_plugin.h), run in "
@@ -161,7 +210,14 @@ std::string solver_error(const std::string& name, bool batch_too,
                          const std::vector<audit::ExternalSolver>& ext) {
     if (find_solver(name) || find_external(ext, name) || (batch_too && name == audit::batch_name))
         return "";
-    return "no solver named '" + name + "' (see: linequad solvers)";
+    std::vector<std::string> known;
+    for (const Solver& s : all_solvers())
+        known.emplace_back(s.name);
+    if (batch_too) known.emplace_back(audit::batch_name);
+    for (const audit::ExternalSolver& e : ext)
+        known.push_back(e.name);
+    return unknown_name({"solver", "solvers"}, name, known) +
+           " (linequad solvers --plugin LIB lists a plugin's)";
 }
 
 void report_plugin_output(const std::vector<audit::ExternalSolver>& ext) {

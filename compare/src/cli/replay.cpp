@@ -20,8 +20,11 @@ int run_replay(const ReplayArgs& a) {
     std::vector<audit::ExternalSolver> ext = external_solvers(a.plugins, a.solver_timeout);
     const Solver* own = find_solver(a.solver);
     const audit::ExternalSolver* theirs = find_external(ext, a.solver);
+    if (a.solver.find(',') != std::string::npos)
+        return fail("--solver: replay takes one solver, not a list ('" + a.solver +
+                    "'): a worst case is replayed as the solver that answered it saw it");
     if (!own && !theirs && a.solver != audit::batch_name)
-        return fail("--solver: no solver named '" + a.solver + "' (see: linequad solvers)");
+        return fail("--solver: " + solver_error(a.solver, true, ext));
     jsonl::LineReader in(a.file, jsonl::default_max_line_bytes);
     jsonl::Output out;
     std::string line, why;
@@ -58,7 +61,8 @@ Command replay_command(CLI::App& app) {
         "replay", "Replay cases as a solver saw them in an audit (a report's worst cases): the "
                   "solver's answer and the reference its grade used, one line each per case. "
                   "Nothing is posed again.");
-    rp->add_option("--solver", a->solver, "the solver (linequad's, a peer's or a plugin's)")
+    rp->add_option("--solver", a->solver,
+                   "the one solver to replay (linequad's, a peer's or a plugin's)")
         ->type_name("S")
         ->required();
     add_plugin_options(rp, a->plugins, a->solver_timeout);

@@ -104,15 +104,13 @@ Command scenes_command(CLI::App& app) {
         ->type_name("S")
         ->check(WholeNumber(0, UINT64_MAX))
         ->capture_default_str();
+    std::vector<std::string> scene_families;
+    for (int f = 0; f < audit::scene_family_count; ++f)
+        scene_families.emplace_back(audit::scene_family_name(audit::SceneFamily(f)));
     c->add_option("--families", a->families,
-                  "families, comma separated (default: all): touching, nested, coaxial, "
-                  "shared_rim, far_grid, spawned, from_hit")
+                  "families, comma separated (default: all): " + joined(scene_families))
         ->type_name("F[,F...]")
-        ->check(each_of_list([](const std::string& name) {
-            audit::SceneFamily f;
-            return audit::parse_scene_family(name, &f) ? ""
-                                                       : "no scene family named '" + name + "'";
-        }));
+        ->check(names_in({"scene family", "scene families"}, scene_families));
     c->add_option("--cases-file", a->cases_file,
                   "grade the scenes of this file (the case format) instead")
         ->type_name("FILE")

@@ -9,6 +9,9 @@
 
 #include "io/jsonl.hpp"
 
+#include <cmath>
+#include <cstdio>
+#include <map>
 #include <optional>
 #include <unordered_set>
 
@@ -18,9 +21,66 @@ namespace {
 
 struct SolveArgs {
     std::string solvers = "stable", need = "all", file = "-", max_line_bytes = "1048576";
-    std::string solver_timeout = "5";
+    std::string solver_timeout = "5", format = "hex";
     std::vector<std::string> plugins;
-    bool no_points = false;
+    bool no_points = false, summary = false;
+};
+
+// A result line for a person: its numbers (t, points, bounds, contact intervals) as JSON numbers
+// in the shortest decimal that reads back to the same double, where the line has them as C99
+// hex floats (exact, and what a program diffs). An infinite or NaN value stays a string, as JSON
+// has no such number; the line still reads back as a result.
+std::string in_decimal(const std::string& line) {
+    jsonl::OrderedJson j = jsonl::OrderedJson::parse(line);
+    auto number = [](jsonl::OrderedJson& v) {
+        if (!v.is_string()) return;
+        const std::string& text = v.get_ref<const std::string&>();
+        double x = std::strtod(text.c_str(), nullptr);
+        if (std::isfinite(x)) v = x;
+    };
+    auto each = [&](jsonl::OrderedJson& v) {
+        if (v.is_array())
+            for (jsonl::OrderedJson& x : v)
+                number(x);
+        else
+            number(v);
+    };
+    if (j.contains("on_surface")) each(j["on_surface"]);
+    if (j.contains("hits"))
+        for (jsonl::OrderedJson& h : j["hits"])
+            for (const char* key : {"t", "p", "bound"})
+                if (h.contains(key)) each(h[key]);
+    return jsonl::dump(j);
+}
+
+// What the result lines said, for --summary: answers, and failures by code and message.
+struct Tally {
+    std::uint64_t lines = 0, answers = 0, with_hits = 0;
+    std::map<std::pair<std::string, std::string>, std::uint64_t> failures; // (code, message)
+
+    void add(const std::string& line) {
+        jsonl::Json j = jsonl::Json::parse(line);
+        ++lines;
+        if (j.contains("code")) {
+            ++failures[{j["code"].get<std::string>(), j["error"].get<std::string>()}];
+        } else {
+            ++answers;
+            if (!j["hits"].empty() || !j["on_surface"].is_null()) ++with_hits;
+        }
+    }
+    void print(std::FILE* to, std::size_t solvers) const {
+        auto count = [](std::uint64_t n, const char* one, const char* many) {
+            return std::to_string(n) + " " + (n == 1 ? one : many);
+        };
+        std::uint64_t failed = lines - answers;
+        std::fprintf(to, "solve: %s from %s: %llu answered (%llu with a hit), %llu not%s\n",
+                     count(lines, "result line", "result lines").c_str(),
+                     count(solvers, "solver", "solvers").c_str(), (unsigned long long)answers,
+                     (unsigned long long)with_hits, (unsigned long long)failed, failed ? ":" : "");
+        for (const auto& [why, n] : failures)
+            std::fprintf(to, "  %6llu  %s: %s\n", (unsigned long long)n, why.first.c_str(),
+                         why.second.c_str());
+    }
 };
 
 // One of linequad's solvers, or one from outside posed its way, as the audit poses it (the case
@@ -104,8 +164,10 @@ std::string OpenScene::answer_line(const std::string& solver, const SceneLine& l
 // input's order.
 class Records {
   public:
-    Records(const std::vector<NamedSolver>& solvers, bool every_solver, Query q)
-        : solvers_(solvers), every_solver_(every_solver), query_(q) {}
+    Records(const std::vector<NamedSolver>& solvers, bool every_solver, Query q, bool decimal,
+            Tally* tally)
+        : solvers_(solvers), every_solver_(every_solver), query_(q), decimal_(decimal),
+          tally_(tally) {}
     long errors() const { return errors_; }
     // A line that did not read (why names it) as what it was meant as.
     void malformed(const Record& rec, const std::string& why);
@@ -117,6 +179,7 @@ class Records {
 
   private:
     void write(std::string text);
+    void emit(const std::string& text); // a line out, now
     struct Pending {
         std::string text;                    // a line to write as it is, or
         std::optional<SceneLine> scene_line; // a scene's line, answered when the scene closes
@@ -124,6 +187,8 @@ class Records {
     const std::vector<NamedSolver>& solvers_;
     bool every_solver_;
     Query query_;
+    bool decimal_;
+    Tally* tally_; // or none
     std::optional<OpenScene> open_;
     std::vector<Pending> pending_;
     jsonl::Output out_;
@@ -134,19 +199,24 @@ void Records::write(std::string text) {
     if (open_)
         pending_.push_back({std::move(text), std::nullopt});
     else
-        out_.line(text);
+        emit(text);
+}
+
+void Records::emit(const std::string& text) {
+    if (tally_) tally_->add(text);
+    out_.line(decimal_ ? in_decimal(text) : text);
 }
 
 void Records::close_scene() {
     if (open_) {
         for (Pending& p : pending_) {
             if (!p.scene_line) {
-                out_.line(p.text);
+                emit(p.text);
                 continue;
             }
             for (const NamedSolver& s : solvers_)
                 if (!every_solver_ || answers_scenes(s.name()))
-                    out_.line(open_->answer_line(s.name(), *p.scene_line, query_));
+                    emit(open_->answer_line(s.name(), *p.scene_line, query_));
         }
         pending_.clear();
         open_.reset();
@@ -202,7 +272,7 @@ void Records::take(const Record& rec) {
     default: // a single case ends the scene before it
         close_scene();
         for (const NamedSolver& s : solvers_)
-            out_.line(s.answer_line(rec.single, query_));
+            emit(s.answer_line(rec.single, query_));
     }
 }
 
@@ -227,7 +297,9 @@ int run_solve(const SolveArgs& a) {
     query.points = !a.no_points;
     std::size_t max_bytes = std::size_t(to_whole(a.max_line_bytes));
     jsonl::LineReader in(a.file, max_bytes);
-    Records records(solvers, every_solver, query);
+    Tally tally;
+    Records records(solvers, every_solver, query, a.format == "decimal",
+                    a.summary ? &tally : nullptr);
     std::string line, why;
     for (Record rec;;) {
         auto status = in.next(&line);
@@ -254,6 +326,7 @@ int run_solve(const SolveArgs& a) {
     }
     records.finish();
     report_plugin_output(ext);
+    if (a.summary) tally.print(stderr, solvers.size());
     return records.errors() ? 1 : 0;
 }
 
@@ -274,6 +347,15 @@ Command solve_command(CLI::App& app) {
         ->check(CLI::IsMember({"any", "nearest", "all"}))
         ->capture_default_str();
     s->add_flag("--no-points", a->no_points, "leave the hit points out");
+    s->add_option("--format", a->format,
+                  "numbers as hex (C99 hex floats: exact, for programs) or decimal (JSON "
+                  "numbers, the shortest decimal that reads back to the same double: for a "
+                  "person)")
+        ->type_name("hex|decimal")
+        ->check(CLI::IsMember({"hex", "decimal"}))
+        ->capture_default_str();
+    s->add_flag("--summary", a->summary,
+                "at the end, on standard error: how many answers, and the failures by reason");
     s->add_option("--max-line-bytes", a->max_line_bytes, "the longest line read")
         ->type_name("N")
         ->check(WholeNumber(64, std::uint64_t(1) << 30))

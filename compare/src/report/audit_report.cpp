@@ -231,8 +231,8 @@ void write_external(std::ostream& md, const Report& r) {
                   "their cases were asked again one at a time.\n";
         if (e.output_bytes) {
             md << "- " << markdown_text(name) << " wrote " << e.output_bytes
-               << " bytes on its standard output and error (kept apart from linequad's); its "
-                  "first lines:\n\n";
+               << " bytes of its own (its standard output and error, or its library's message "
+                  "hooks; kept apart from linequad's): its first lines:\n\n";
             std::vector<std::string> lines;
             std::string line;
             for (char c : e.output)
@@ -388,7 +388,9 @@ void write_difficulty(std::ostream& md, const Report& r) {
 void write_worst(std::ostream& md, const Report& r) {
     using escape::markdown_text;
     md << "## Worst cases\n\nEach replays with the command under it: the case as the solver saw "
-          "it, its answer and the reference its grade used, as above.\n\n";
+          "it, its answer and the reference its grade used, as above. The commands run the "
+          "`linequad` on your `PATH` (`cmake --install` puts it there; in a clone, "
+          "`export PATH=\"$PWD/build/compare:$PATH\"` first).\n\n";
     for (const auto& [key, row] : r.rows) {
         if (row.worst.empty()) continue;
         md << "### " << markdown_text(key.name()) << "\n\n";

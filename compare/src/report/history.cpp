@@ -9,6 +9,8 @@
 
 #include <sqlite3.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -162,36 +164,52 @@ std::string campaign_of(const Report& r) {
     return c.str();
 }
 
-History::History(const std::string& path) : db_(std::make_unique<Db>()), path_(path) {
+History::History(const std::string& path, Access access)
+    : db_(std::make_unique<Db>()), path_(path) {
     db_->path = path;
-    if (sqlite3_open_v2(path.c_str(), &db_->handle, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE,
-                        nullptr) != SQLITE_OK) {
+    bool writes = access == Access::read_write;
+    int flags = writes ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READONLY;
+    if (!writes && ::access(path.c_str(), F_OK) != 0)
+        throw std::runtime_error(path + ": no such history (audit --history and history --add "
+                                        "create one)");
+    if (sqlite3_open_v2(path.c_str(), &db_->handle, flags, nullptr) != SQLITE_OK) {
         std::string why = db_->handle ? sqlite3_errmsg(db_->handle) : "cannot open";
         sqlite3_close(db_->handle);
         throw std::runtime_error(path + ": " + why);
     }
     // SQLite opens a file it cannot write read-only, without a word: refused here, before an
     // audit's work, not when its report is added.
-    if (sqlite3_db_readonly(db_->handle, "main") == 1) {
+    if (writes && sqlite3_db_readonly(db_->handle, "main") == 1) {
         sqlite3_close(db_->handle);
         throw std::runtime_error(path + ": cannot write it (read-only)");
     }
     try {
         sqlite3_busy_timeout(db_->handle, 30000);
         db_->exec("PRAGMA foreign_keys = ON");
-        db_->exec("BEGIN IMMEDIATE");
-        db_->exec(schema);
+        if (writes) {
+            db_->exec("BEGIN IMMEDIATE");
+            db_->exec(schema);
+        }
+        bool has_meta = false;
+        {
+            Statement meta(db_->handle, path_,
+                           "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'meta'");
+            has_meta = meta.step();
+        }
+        if (!has_meta) throw std::runtime_error(path + ": not a linequad history (no meta table)");
         Statement get(db_->handle, path_, "SELECT value FROM meta WHERE key = 'format'");
         if (get.step()) {
             std::string found = get.column_text(0);
             if (found != format)
                 throw std::runtime_error(path + ": a history in format '" + found + "', not '" +
                                          format + "'");
-        } else {
+        } else if (writes) {
             Statement put(db_->handle, path_, "INSERT INTO meta(key, value) VALUES('format', ?)");
             put.text(1, format).run();
+        } else {
+            throw std::runtime_error(path + ": not a linequad history (no format recorded)");
         }
-        db_->exec("COMMIT");
+        if (writes) db_->exec("COMMIT");
     } catch (...) {
         sqlite3_close(db_->handle); // rolls the transaction back
         throw;

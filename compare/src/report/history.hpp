@@ -26,9 +26,13 @@ struct HistoryPoint {
 
 class History {
   public:
-    // Opens (creating if need be) the database at path. Throws std::runtime_error naming the
-    // path and SQLite's reason (not a database, not writable, a schema not linequad's).
-    explicit History(const std::string& path);
+    // To add reports (the database created if need be, and refused at once if it cannot be
+    // written), or only to read trends (a database someone else keeps, on a read-only file or
+    // file system: never created, never written).
+    enum class Access { read_write, read_only };
+    // Opens the database at path. Throws std::runtime_error naming the path and SQLite's reason
+    // (not a database, not writable when it must be, a schema not linequad's).
+    explicit History(const std::string& path, Access access = Access::read_write);
     ~History();
     History(const History&) = delete;
     History& operator=(const History&) = delete;

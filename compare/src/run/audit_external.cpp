@@ -158,6 +158,34 @@ std::optional<Result> guarded(const ShapeCallable<S>& f, const S& s, const Line&
 
 } // namespace
 
+void OwnOutput::write(std::string_view text) {
+    std::lock_guard<std::mutex> hold(lock_);
+    bytes_ += text.size();
+    if (head_.size() < kept) head_.append(text.substr(0, kept - head_.size()));
+}
+
+std::string OwnOutput::head() const {
+    std::lock_guard<std::mutex> hold(lock_);
+    return head_;
+}
+
+std::uint64_t OwnOutput::bytes() const {
+    std::lock_guard<std::mutex> hold(lock_);
+    return bytes_;
+}
+
+void OwnOutput::clear() {
+    std::lock_guard<std::mutex> hold(lock_);
+    head_.clear();
+    bytes_ = 0;
+}
+
+bool ExternalSolver::takes_shape(std::size_t index) const {
+    if (worker) return (worker_shapes >> index) & 1u;
+    return with_shape_type(index,
+                           [&](auto tag) { return bool(on<typename decltype(tag)::type>()); });
+}
+
 bool ExternalSolver::takes(const Shape& s) const {
     if (worker) return (worker_shapes >> s.index()) & 1u;
     return std::visit([&](const auto& x) { return bool(on<std::decay_t<decltype(x)>>()); }, s);

@@ -130,36 +130,21 @@ void fill_provenance(Report& r, const Options& o) {
         r.ranges.emplace_back(range_name(x));
 }
 
-// A progress bar with time left on a terminal; a plain line every tenth otherwise.
-class Progress {
+// Counts graded cases and tells o.progress, if set.
+class ProgressCount {
   public:
-    explicit Progress(std::uint64_t total) : total_(total), tty_(isatty(STDERR_FILENO)) {}
+    ProgressCount(const Options& o, std::uint64_t total) : tell_(o.progress) { now_.total = total; }
     void advance(std::uint64_t n) {
-        done_ += n;
-        auto now = std::chrono::steady_clock::now();
-        double elapsed = std::chrono::duration<double>(now - start_).count();
-        double frac = total_ ? double(done_) / double(total_) : 1;
-        if (tty_) {
-            if (std::chrono::duration<double>(now - last_).count() < 0.2 && done_ < total_) return;
-            last_ = now;
-            int width = 40, filled = int(frac * width);
-            double left = frac > 0 ? elapsed * (1 - frac) / frac : 0;
-            std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %llu/%llu cases  %.0fs left ", filled,
-                         "########################################", width - filled, "", 100 * frac,
-                         (unsigned long long)done_, (unsigned long long)total_, left);
-            if (done_ >= total_) std::fputc('\n', stderr);
-        } else if (int(frac * 10) > tenth_) {
-            tenth_ = int(frac * 10);
-            std::fprintf(stderr, "audit: %d%% (%llu/%llu cases, %.1fs)\n", tenth_ * 10,
-                         (unsigned long long)done_, (unsigned long long)total_, elapsed);
-        }
+        now_.done += n;
+        now_.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        if (tell_) tell_(now_);
     }
 
   private:
-    std::uint64_t total_, done_ = 0;
-    bool tty_;
-    int tenth_ = 0;
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_ = start_;
+    const std::function<void(const Progress&)>& tell_;
+    Progress now_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 struct Group {
@@ -235,6 +220,10 @@ Report::External describe(const ExternalSolver& e) {
 
 // What a plugin's worker saw while the run went on: its output, its restarts.
 void note_worker(Report::External& x, const ExternalSolver& e) {
+    if (e.own_output) {
+        x.output = e.own_output->head();
+        x.output_bytes = e.own_output->bytes();
+    }
     if (!e.worker) return;
     const DeclaredSolver& d = e.worker->solvers().at(std::size_t(e.worker_index));
     x.batch = d.batch;
@@ -368,8 +357,7 @@ ResultsByCase read_answers(const Options& o,
             // An answer that names its case is graded as refused; one that does not cannot be
             // attributed to any case.
             if (!a.result.has_id) throw std::runtime_error(where + ": " + why);
-            std::fprintf(stderr, "linequad: %s: %s (graded as refused)\n", where.c_str(),
-                         why.c_str());
+            if (o.notice) o.notice(where + ": " + why + " (graded as refused)");
             a.malformed = true;
         }
         auto it = index.find(a.result.id);
@@ -614,7 +602,9 @@ void grade_chunks(const Options& o, const Solvers& solvers, bool batch,
     auto start = std::chrono::steady_clock::now();
     Saver saver(o);
     saver.begin(rep);
-    Progress progress(total_cases);
+    for (const ExternalSolver* e : solvers.external)
+        if (e->own_output) e->own_output->clear();
+    ProgressCount progress(o, total_cases);
     struct Graded {
         Report stats;
         std::uint64_t cases = 0;
@@ -647,8 +637,7 @@ void grade_chunks(const Options& o, const Solvers& solvers, bool batch,
     for (const ExternalSolver* e : solvers.external)
         note_worker(rep.external[e->name], *e);
     rep.status = stop_requested() ? Status::stopped : Status::complete;
-    if (stop_requested())
-        std::fprintf(stderr, "\naudit: stopped early; writing what was measured\n");
+    if (stop_requested() && o.notice) o.notice("stopped early; writing what was measured");
     saver.end(rep, o, start);
 }
 

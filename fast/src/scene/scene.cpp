@@ -8,14 +8,13 @@
 #include "linequad/solvers.hpp"
 #include "numeric/fp_environment.hpp"
 #include "scene/bounds.hpp"
+#include "scene/box_traversal.hpp"
 #include "scene/exact_order.hpp"
+#include "scene/slab.hpp"
 #include "shapes/all.hpp"
 
-#ifdef LINEQUAD_HAVE_EMBREE
-#include <embree3/rtcore.h>
-#endif
-
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -25,6 +24,9 @@ namespace linequad {
 
 namespace {
 
+using detail::merged;
+using detail::slab;
+using detail::SlabLine;
 using PreparedShape = detail::PreparedVariant<Shape>;
 
 template <class S>
@@ -49,58 +51,6 @@ constexpr int sah_depth = 64;
 // The traversal's stack: one entry per level at most, plus one.
 constexpr int max_depth = sah_depth + 32;
 
-Box merged(const Box& a, const Box& b) {
-    return {{std::min(a.lo.x, b.lo.x), std::min(a.lo.y, b.lo.y), std::min(a.lo.z, b.lo.z)},
-            {std::max(a.hi.x, b.hi.x), std::max(a.hi.y, b.hi.y), std::max(a.hi.z, b.hi.z)}};
-}
-
-// The line as the slab test takes it: 1 / v_i per axis, where that is a normal double.
-struct SlabLine {
-    Vec3 L0, inv;
-    bool exact_axis[3]; // v_i = 0: the line stays in the slab's plane or never meets it
-    bool divide[3];     // 1 / v_i overflowed or is subnormal: divide by v_i instead
-    Vec3 v;
-    explicit SlabLine(const Line& l) : L0(l.L0), inv{1 / l.v.x, 1 / l.v.y, 1 / l.v.z}, v(l.v) {
-        for (int i = 0; i < 3; ++i) {
-            exact_axis[i] = v[i] == 0;
-            // Overflowed or subnormal: its relative error would not hold.
-            double inv_i = inv[i];
-            divide[i] =
-                !(std::fabs(inv_i) >= std::numeric_limits<double>::min() && std::isfinite(inv_i));
-        }
-    }
-};
-
-// The part [t0, t1] of the line's range where it may be inside the box, or false when it cannot
-// be. Each slab's t = (bound - L0_i) / v_i, as three roundings ((bound - L0_i), 1 / v_i and
-// their product), lies within 2^-51 |t| of the exact quotient (or is 0, or has overflowed); it is
-// widened by 2^-50 |t| and the smallest subnormal, or not used at all when it overflowed from
-// finite numbers (the box's bounds are finite).
-bool slab(const Box& box, const SlabLine& line, double& t0, double& t1) {
-    constexpr double tiny = 0x1p-1074;
-    for (int i = 0; i < 3; ++i) {
-        double L = line.L0[i];
-        double lo = box.lo[i], hi = box.hi[i];
-        if (line.exact_axis[i]) {
-            if (L < lo || L > hi) return false;
-            continue;
-        }
-        double ta, tb;
-        if (line.divide[i]) {
-            double vi = line.v[i];
-            ta = (lo - L) / vi, tb = (hi - L) / vi;
-        } else {
-            double inv = line.inv[i];
-            ta = (lo - L) * inv, tb = (hi - L) * inv;
-        }
-        if (ta > tb) std::swap(ta, tb);
-        if (std::isfinite(ta)) t0 = std::max(t0, ta - (std::fabs(ta) * 0x1p-50 + tiny));
-        if (std::isfinite(tb)) t1 = std::min(t1, tb + (std::fabs(tb) * 0x1p-50 + tiny));
-        if (t0 > t1) return false;
-    }
-    return true;
-}
-
 // The smallest t that is not tied with best: hits at t <= tie_end(best) may round to best.
 double tie_end(double best) {
     return best == std::numeric_limits<double>::infinity()
@@ -110,184 +60,6 @@ double tie_end(double best) {
 
 } // namespace
 
-#ifdef LINEQUAD_HAVE_EMBREE
-// Embree's BVH over the bounded shapes' boxes, as user geometry whose callback hands each shape
-// to the scene's visit. Embree traverses with a float ray and keeps only boxes within 2^60 of
-// its origin, so the boxes are moved to a local frame, x_local = 2^m (x - c) around their centre
-// c with 2^m fitting the scene into [-2, 2], and widened by delta (in world units), which covers
-// how far that ray strays from the double line inside the scene's box G (every bounded box lies
-// in G). The line is clipped to G (the slab test: [ta, tb] holds all of it in G) and restarted
-// there as the float ray o + s d:
-//   O = fl(fl(L0 + ta v) - c) (an fma, then one subtraction) is within 2^-52 (|c| + R) of the
-//   exact point, R the largest |corner of G - c|, and o = float(2^m O) within 2^-24 R more;
-//   d = float(2^k v), 2^k |v|_inf in [1, 2), is within 2^-24 |2^k v|_inf of 2^k v in each
-//   component, and within G the line moves (t - ta) |v|_inf <= W along it: 2^-24 W more.
-// So every point of the line in G is within 2^-24 (R + W) + 2^-51 (|c| + R) of the float ray's
-// point at s = (t - ta) 2^(m - k) (plus float's and double's subnormal steps); delta doubles
-// that, and Embree's robust traversal tests each of its boxes conservatively for its own ray. A
-// shape's hits at t <= end are then all found: the callback narrows tfar to end's s, rounded up.
-class EmbreeBoxes {
-  public:
-    // Nothing (ok() false) if Embree fails or G is not finite.
-    EmbreeBoxes(const std::vector<Box>& boxes, const std::vector<std::uint32_t>& ids) : ids_(ids) {
-        if (ids.empty()) return;
-        Box all = boxes[ids[0]];
-        for (std::uint32_t i : ids)
-            all = merged(all, boxes[i]);
-        global_ = all;
-        centre_ = 0.5 * all.lo + 0.5 * all.hi; // any point will do; this one keeps R small
-        double R = 0, W = 0;
-        for (int i = 0; i < 3; ++i) {
-            R = std::max({R, std::fabs(all.lo[i] - centre_[i]), std::fabs(all.hi[i] - centre_[i])});
-            W = std::max(W, all.hi[i] - all.lo[i]);
-        }
-        delta_ =
-            2 * (0x1p-24 * (R + W) + 0x1p-51 * (max_abs(centre_) + R)) * (1 + 0x1p-20) + 0x1p-1060;
-        reach_ = R + W + 2 * delta_; // no point of the float ray that matters lies farther out
-        if (!(reach_ > 0 && reach_ < 0x1p1000)) return;
-        m_ = -std::ilogb(reach_); // 2^m reach in [1, 2)
-        local_.reserve(ids.size());
-        for (std::uint32_t i : ids) {
-            const Box& b = boxes[i];
-            RTCBounds f{};
-            f.lower_x = down(local(b.lo.x - centre_.x - delta_));
-            f.lower_y = down(local(b.lo.y - centre_.y - delta_));
-            f.lower_z = down(local(b.lo.z - centre_.z - delta_));
-            f.upper_x = up(local(b.hi.x - centre_.x + delta_));
-            f.upper_y = up(local(b.hi.y - centre_.y + delta_));
-            f.upper_z = up(local(b.hi.z - centre_.z + delta_));
-            local_.push_back(f);
-        }
-        RTCDevice device = shared_device();
-        if (!device) return;
-        scene_ = rtcNewScene(device);
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-        rtcSetGeometryUserPrimitiveCount(geom, unsigned(ids.size()));
-        rtcSetGeometryUserData(geom, this);
-        rtcSetGeometryBoundsFunction(geom, &EmbreeBoxes::bounds, this);
-        rtcSetGeometryIntersectFunction(geom, &EmbreeBoxes::intersect);
-        rtcSetGeometryOccludedFunction(geom, &EmbreeBoxes::occluded);
-        rtcCommitGeometry(geom);
-        rtcAttachGeometry(scene_, geom);
-        rtcReleaseGeometry(geom);
-        rtcCommitScene(scene_);
-        ok_ = rtcGetDeviceError(device) == RTC_ERROR_NONE;
-    }
-    ~EmbreeBoxes() {
-        if (scene_) rtcReleaseScene(scene_);
-    }
-    EmbreeBoxes(const EmbreeBoxes&) = delete;
-    EmbreeBoxes& operator=(const EmbreeBoxes&) = delete;
-    bool ok() const { return ok_; }
-
-    using Visit = double (*)(void*, std::uint32_t);
-
-    // Calls visit(data, shape) for the bounded shapes the line may come near over [t0, end], as
-    // the hierarchy's traversal does; false (nothing visited) when the line cannot be posed as a
-    // float ray here, and the caller must traverse its own way.
-    bool traverse(const Line& line, double end, bool any, Visit visit, void* data) const {
-        double ta = line.range.t0, tb = end;
-        if (!slab(global_, SlabLine(line), ta, tb)) return true; // the line misses every box
-        if (!std::isfinite(ta) || !std::isfinite(tb)) return false;
-        int k = -std::ilogb(max_abs(line.v)); // 2^k |v|_inf in [1, 2)
-        Vec3 O{std::fma(ta, line.v.x, line.L0.x) - centre_.x,
-               std::fma(ta, line.v.y, line.L0.y) - centre_.y,
-               std::fma(ta, line.v.z, line.L0.z) - centre_.z};
-        if (!(max_abs(O) <= reach_)) return false;
-        Query q;
-        rtcInitIntersectContext(&q.context);
-        q.self = this, q.visit = visit, q.data = data, q.ta = ta, q.e = m_ - k;
-        RTCRayHit rh{};
-        rh.ray.org_x = float(local(O.x)), rh.ray.org_y = float(local(O.y));
-        rh.ray.org_z = float(local(O.z));
-        rh.ray.dir_x = float(std::ldexp(line.v.x, k)),
-        rh.ray.dir_y = float(std::ldexp(line.v.y, k));
-        rh.ray.dir_z = float(std::ldexp(line.v.z, k));
-        rh.ray.tnear = 0, rh.ray.tfar = q.s_after(tb), rh.ray.mask = ~0u;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        if (any)
-            rtcOccluded1(scene_, &q.context, &rh.ray);
-        else
-            rtcIntersect1(scene_, &q.context, &rh);
-        return true;
-    }
-
-  private:
-    // The query's state, after Embree's context (which the callbacks are handed).
-    struct Query {
-        RTCIntersectContext context;
-        const EmbreeBoxes* self;
-        Visit visit;
-        void* data;
-        double ta;
-        int e; // the ray's point at s stands for the line's at t = ta + s 2^-e
-        // The float ray's s for t = end, rounded up: at least (end - ta) 2^e.
-        float s_after(double end) const {
-            if (end == std::numeric_limits<double>::infinity()) return INFINITY;
-            double d = end - ta;
-            d += std::fabs(d) * 0x1p-50 + 0x1p-1074; // the subtraction's rounding
-            return up(std::ldexp(d, e));
-        }
-        float on(std::uint32_t prim) const {
-            double end = visit(data, self->ids_[prim]);
-            return end == -std::numeric_limits<double>::infinity() ? -INFINITY : s_after(end);
-        }
-    };
-
-    double local(double world_offset) const { return std::ldexp(world_offset, m_); }
-
-    // One device for every scene, made once (a device per scene would cost more than building a
-    // small scene's BVH); never released, so that no scene can outlive it. A single build thread:
-    // the scene is built on the caller's thread, as the hierarchy is.
-    static RTCDevice shared_device() {
-        static RTCDevice d = rtcNewDevice("threads=1");
-        return d;
-    }
-    // Rounded outward to float, and never to a subnormal (Embree may run with denormals read as
-    // zero, which must not move a bound inward).
-    static float down(double x) {
-        float f = float(x);
-        if (double(f) > x) f = std::nextafter(f, -INFINITY);
-        if (std::fabs(f) < std::numeric_limits<float>::min() && f != 0)
-            f = f > 0 ? 0.0f : -std::numeric_limits<float>::min();
-        return f;
-    }
-    static float up(double x) {
-        float f = float(x);
-        if (double(f) < x) f = std::nextafter(f, INFINITY);
-        if (std::fabs(f) < std::numeric_limits<float>::min() && f != 0)
-            f = f < 0 ? 0.0f : std::numeric_limits<float>::min();
-        return f;
-    }
-    static void bounds(const RTCBoundsFunctionArguments* args) {
-        *args->bounds_o =
-            static_cast<const EmbreeBoxes*>(args->geometryUserPtr)->local_[args->primID];
-    }
-    static void intersect(const RTCIntersectFunctionNArguments* args) {
-        if (!args->valid[0]) return;
-        const Query& q = *reinterpret_cast<const Query*>(args->context);
-        float& tfar = RTCRayN_tfar(RTCRayHitN_RayN(args->rayhit, args->N), args->N, 0);
-        tfar = std::min(tfar, q.on(args->primID));
-    }
-    static void occluded(const RTCOccludedFunctionNArguments* args) {
-        if (!args->valid[0]) return;
-        const Query& q = *reinterpret_cast<const Query*>(args->context);
-        float& tfar = RTCRayN_tfar(args->ray, args->N, 0);
-        tfar = std::min(tfar, q.on(args->primID)); // -inf: a hit, and Embree stops
-    }
-
-    std::vector<std::uint32_t> ids_; // the shape of each primitive
-    std::vector<RTCBounds> local_;
-    Box global_{};
-    Vec3 centre_{};
-    double delta_ = 0, reach_ = 0;
-    int m_ = 0;
-    RTCScene scene_ = nullptr;
-    bool ok_ = false;
-};
-#endif
-
 struct Scene::Impl {
     SceneSolver solver;
     std::vector<PreparedShape> shapes;
@@ -296,10 +68,8 @@ struct Scene::Impl {
     std::vector<std::uint32_t> order;     // the bounded shapes, in the hierarchy's leaf order
     std::vector<std::uint32_t> unbounded; // shapes that are not finite: solved for every line
     std::vector<Node> nodes;
-    int depth = 0; // the deepest node's level (the root's is 0)
-#ifdef LINEQUAD_HAVE_EMBREE
-    std::unique_ptr<EmbreeBoxes> embree; // when the scene traverses with Embree
-#endif
+    int depth = 0;                                // the deepest node's level (the root's is 0)
+    std::unique_ptr<detail::BoxTraversal> embree; // when the scene traverses with Embree
     Error error;
     std::uint32_t error_shape = no_shape;
 
@@ -415,7 +185,6 @@ struct Scene::Impl {
         for (std::uint32_t s : unbounded)
             if ((end = visit(s)) == stop) return;
         if (nodes.empty()) return;
-#ifdef LINEQUAD_HAVE_EMBREE
         if (embree) {
             struct Thunk {
                 const Impl& m;
@@ -430,7 +199,6 @@ struct Scene::Impl {
             };
             if (embree->traverse(line, end, any, call, &thunk)) return;
         }
-#endif
         SlabLine slab_line(line);
         struct Entry {
             std::uint32_t node;
@@ -469,13 +237,20 @@ struct Scene::Impl {
     }
 };
 
+namespace {
+
+// Set by the Embree component (linequad::embree) when a program links it; null otherwise. Constant
+// initialised, so that it is null before any registration runs.
+std::atomic<detail::BoxTraversalMaker> embree_maker{nullptr};
+
+} // namespace
+
+void detail::register_embree(BoxTraversalMaker make) {
+    embree_maker.store(make);
+}
+
 bool scene_traversal_available(SceneTraversal t) {
-#ifdef LINEQUAD_HAVE_EMBREE
-    (void)t; // every traversal is built in
-    return true;
-#else
-    return t != SceneTraversal::embree;
-#endif
+    return t != SceneTraversal::embree || embree_maker.load() != nullptr;
 }
 
 Scene::Scene(const std::vector<Shape>& shapes, SceneSolver solver, SceneTraversal traversal)
@@ -497,15 +272,10 @@ Scene::Scene(const std::vector<Shape>& shapes, SceneSolver solver, SceneTraversa
         (detail::bounded(box) ? m.order : m.unbounded).push_back(i);
     }
     if (!m.order.empty()) m.build(0, std::uint32_t(m.order.size()));
-#ifdef LINEQUAD_HAVE_EMBREE
     // The own hierarchy stays: lines Embree's float ray cannot carry go through it.
-    if (traversal != SceneTraversal::hierarchy && !m.order.empty()) {
-        m.embree = std::make_unique<EmbreeBoxes>(m.boxes, m.order);
-        if (!m.embree->ok()) m.embree.reset();
-    }
-#else
-    (void)traversal;
-#endif
+    detail::BoxTraversalMaker make = embree_maker.load();
+    if (traversal != SceneTraversal::hierarchy && !m.order.empty() && make)
+        m.embree = make(m.boxes, m.order); // null if Embree cannot hold these boxes
 }
 
 Scene::~Scene() = default;
@@ -519,9 +289,7 @@ SceneSolver Scene::solver() const {
     return impl_->solver;
 }
 SceneTraversal Scene::traversal() const {
-#ifdef LINEQUAD_HAVE_EMBREE
     if (impl_->embree) return SceneTraversal::embree;
-#endif
     return SceneTraversal::hierarchy;
 }
 Error Scene::error() const {
