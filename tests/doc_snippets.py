@@ -74,8 +74,11 @@ def scratch(name):
     d = WORK / name
     shutil.rmtree(d, ignore_errors=True)
     d.mkdir(parents=True)
+    # Folders only: a file a block writes (mine.c) lands in the scratch folder, never through a
+    # link into the repository.
     for entry in ROOT.iterdir():
-        if entry.name not in (".git", "build") and not entry.name.startswith("build-"):
+        if entry.is_dir() and entry.name not in (".git", "build") and \
+                not entry.name.startswith("build-"):
             (d / entry.name).symlink_to(entry)
     (d / "build").symlink_to(BUILD)
     return d
@@ -109,8 +112,10 @@ def compare(block, got, want):
         fail(block, f"printed\n{got}\ninstead of\n{want}")
 
 
-def check_programs(page, page_blocks, work):
+def check_programs(page, page_blocks, scratch_dir):
     """The page's cmake and cpp blocks as one project against the installed package."""
+    work = scratch_dir / "programs"
+    work.mkdir()
     cmake = ["cmake_minimum_required(VERSION 3.18)", "project(snippets LANGUAGES CXX)",
              "set(CMAKE_CXX_STANDARD 17)", "set(CMAKE_CXX_STANDARD_REQUIRED ON)"]
     programs = []  # (block, executable, expected output)
@@ -168,9 +173,9 @@ def check_shell(block, work, want):
                 i += 1
                 continue
             command = lines[i][2:]
-            while command.endswith("\\"):
+            while command.endswith("\\"):  # continued: bash reads the backslash-newline
                 i += 1
-                command = command[:-1] + "\n" + lines[i]
+                command += "\n" + lines[i]
             i += 1
             printed = []
             while i < len(lines) and not lines[i].startswith("$ "):
@@ -206,6 +211,8 @@ def main():
             elif b.lang == "c":
                 if len(b.args) != 1:
                     fail(b, "a c block names the file it is (```c mine.c)")
+                elif "/" in b.args[0] or b.args[0].startswith("."):
+                    fail(b, "a c block's file is a plain name in the scratch folder")
                 else:
                     (work / b.args[0]).write_text(b.code)
             elif b.lang not in ("", "cpp", "cmake", "sh", "text"):
