@@ -206,9 +206,39 @@ TEST_CASE("first hour: a library's own messages are kept, bounded, for the repor
     std::string big(2 * audit::OwnOutput::kept, 'x');
     out.write(big);
     CHECK(out.bytes() == 39 + big.size());
-    CHECK(out.head().size() == audit::OwnOutput::kept);
-    CHECK(out.head().rfind("ODE INTERNAL ERROR 1", 0) == 0);
+    CHECK(out.head() == "ODE INTERNAL ERROR 1: assertion failed\n"); // whole messages only
+    out.write("a later message\n"); // after one that did not fit: the head holds the first
+    CHECK(out.head() == "ODE INTERNAL ERROR 1: assertion failed\n");
+    CHECK(out.bytes() == 39 + big.size() + 16);
     out.clear();
     CHECK(out.bytes() == 0);
     CHECK(out.head().empty());
+    out.write("after a new start\n");
+    CHECK(out.head() == "after a new start\n");
+}
+
+TEST_CASE("first hour: an in-process library's messages reach the report, runs counted",
+          "[audit][first_hour]") {
+    audit::ExternalSolver noisy;
+    noisy.name = "noisy";
+    noisy.answers = audit::Answers::nearest;
+    noisy.own_output = std::make_shared<audit::OwnOutput>();
+    noisy.on<Cylinder>() = [out = noisy.own_output](const Cylinder&, const Line&) {
+        out->write("INTERNAL ERROR 1: the same assertion\n");
+        return std::optional<Result>(Result{});
+    };
+    audit::Options o;
+    o.cases_per_group = 5, o.plots = false;
+    o.families = {Family::generic};
+    o.shapes = {0};
+    o.solvers = {"noisy"};
+    audit::Report r = audit::run(o, {noisy});
+    std::uint64_t calls = r.total("noisy").cases;
+    REQUIRE(calls > 1);
+    const audit::Report::External& x = r.external.at("noisy");
+    CHECK(x.output_bytes == 37 * calls);
+    CHECK_THAT(audit::markdown(r), Catch::Contains("noisy wrote " + std::to_string(37 * calls) +
+                                                   " bytes through its library's message hooks") &&
+                                       Catch::Contains("INTERNAL ERROR 1: the same assertion   (" +
+                                                       std::to_string(calls) + " times)"));
 }

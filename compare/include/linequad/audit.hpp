@@ -190,7 +190,7 @@ struct Report {
         std::string inside, contact;       // its conventions (empty: none)
         bool batch = false;                // a plugin's batch entry answered it
         std::string load_environment;      // how loading the plugin changed the environment
-        std::string output;                // the first lines it wrote on stdout or stderr
+        std::string output;                // its first lines (stdout, stderr or message hooks)
         std::uint64_t output_bytes = 0;    // how much it wrote in all
         std::uint64_t restarts = 0;        // workers started again after a crash, exit or hang
         std::uint64_t batch_fallbacks = 0; // packets asked again one case at a time

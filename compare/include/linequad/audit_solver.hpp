@@ -95,7 +95,7 @@ class PluginWorker; // a plugin's solvers in a worker process (plugin_worker.hpp
 // call the library.
 class OwnOutput {
   public:
-    static constexpr std::size_t kept = 4096; // bytes of its first lines
+    static constexpr std::size_t kept = 4096; // bytes of its first messages, each kept whole
     void write(std::string_view text);
     std::string head() const;
     std::uint64_t bytes() const;
@@ -105,6 +105,7 @@ class OwnOutput {
     mutable std::mutex lock_;
     std::string head_;
     std::uint64_t bytes_ = 0;
+    bool full_ = false; // a message did not fit: the head is closed
 };
 
 // A solver from outside linequad. Each callable gets the posed case and returns the solver's

@@ -35,8 +35,9 @@ std::string in_decimal(const std::string& line) {
     auto number = [](jsonl::OrderedJson& v) {
         if (!v.is_string()) return;
         const std::string& text = v.get_ref<const std::string&>();
-        double x = std::strtod(text.c_str(), nullptr);
-        if (std::isfinite(x)) v = x;
+        char* end = nullptr;
+        double x = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() + text.size() && std::isfinite(x)) v = x;
     };
     auto each = [&](jsonl::OrderedJson& v) {
         if (v.is_array())

@@ -41,6 +41,35 @@ std::string fmt_ulps(std::uint64_t u) {
     return u == UINT64_MAX ? "inf" : fmt(double(u));
 }
 
+// A library's output as a person reads it: a line repeated in a run (ODE repeats its internal
+// error once per crash) shown once, with how many times it came; a last line cut off where the
+// kept text ends (cut: there was more) marked as such.
+std::vector<std::string> runs_counted(const std::string& text, bool cut) {
+    std::vector<std::string> out;
+    std::string last;
+    std::uint64_t repeats = 0;
+    auto flush = [&] {
+        if (repeats)
+            out.push_back(repeats == 1 ? last
+                                       : last + "   (" + std::to_string(repeats) + " times)");
+    };
+    std::size_t at = 0;
+    while (at < text.size()) {
+        std::size_t nl = text.find('\n', at);
+        std::string line = text.substr(at, nl == std::string::npos ? nl : nl - at);
+        if (nl == std::string::npos && cut) line += " [cut: more followed]";
+        at = nl == std::string::npos ? text.size() : nl + 1;
+        if (repeats && line == last) {
+            ++repeats;
+            continue;
+        }
+        flush();
+        last = std::move(line), repeats = 1;
+    }
+    flush();
+    return out;
+}
+
 // The command that replays a worst case: the case as the solver saw it (for a solver from
 // outside, the posed case: replay does not pose it again), its answer and the reference its grade
 // used, as `linequad replay` prints them. Every word is quoted for the shell.
@@ -230,18 +259,13 @@ void write_external(std::ostream& md, const Report& r) {
                << " calls of its batch entry failed (declined, crashed, exited or timed out); "
                   "their cases were asked again one at a time.\n";
         if (e.output_bytes) {
-            md << "- " << markdown_text(name) << " wrote " << e.output_bytes
-               << " bytes of its own (its standard output and error, or its library's message "
-                  "hooks; kept apart from linequad's): its first lines:\n\n";
-            std::vector<std::string> lines;
-            std::string line;
-            for (char c : e.output)
-                if (c == '\n')
-                    lines.push_back(line), line.clear();
-                else
-                    line += c;
-            if (!line.empty()) lines.push_back(line);
-            md << escape::markdown_block(lines, "  ") << "\n";
+            md << "- " << markdown_text(name) << " wrote " << e.output_bytes << " bytes "
+               << (e.plugin.empty() ? "through its library's message hooks"
+                                    : "on its standard output and error")
+               << " (kept apart from linequad's); the first of them, each run of one line once "
+                  "with its count:\n\n";
+            bool cut = e.output_bytes > e.output.size();
+            md << escape::markdown_block(runs_counted(e.output, cut), "  ") << "\n";
         }
     }
     md << "\n";

@@ -161,7 +161,10 @@ std::optional<Result> guarded(const ShapeCallable<S>& f, const S& s, const Line&
 void OwnOutput::write(std::string_view text) {
     std::lock_guard<std::mutex> hold(lock_);
     bytes_ += text.size();
-    if (head_.size() < kept) head_.append(text.substr(0, kept - head_.size()));
+    // Whole messages only (one cut in two would read as another), and the first ones: after the
+    // first that does not fit, none.
+    full_ = full_ || head_.size() + text.size() > kept;
+    if (!full_) head_.append(text);
 }
 
 std::string OwnOutput::head() const {
@@ -178,6 +181,7 @@ void OwnOutput::clear() {
     std::lock_guard<std::mutex> hold(lock_);
     head_.clear();
     bytes_ = 0;
+    full_ = false;
 }
 
 bool ExternalSolver::takes_shape(std::size_t index) const {
@@ -187,8 +191,7 @@ bool ExternalSolver::takes_shape(std::size_t index) const {
 }
 
 bool ExternalSolver::takes(const Shape& s) const {
-    if (worker) return (worker_shapes >> s.index()) & 1u;
-    return std::visit([&](const auto& x) { return bool(on<std::decay_t<decltype(x)>>()); }, s);
+    return takes_shape(s.index());
 }
 
 ExternalAnswer ExternalSolver::answer(const Shape& s, const Line& l) const {

@@ -133,7 +133,11 @@ void fill_provenance(Report& r, const Options& o) {
 // Counts graded cases and tells o.progress, if set.
 class ProgressCount {
   public:
-    ProgressCount(const Options& o, std::uint64_t total) : tell_(o.progress) { now_.total = total; }
+    ProgressCount(const Options& o, std::uint64_t total,
+                  std::chrono::steady_clock::time_point start)
+        : tell_(o.progress), start_(start) {
+        now_.total = total;
+    }
     void advance(std::uint64_t n) {
         now_.done += n;
         now_.seconds =
@@ -143,8 +147,8 @@ class ProgressCount {
 
   private:
     const std::function<void(const Progress&)>& tell_;
+    std::chrono::steady_clock::time_point start_;
     Progress now_;
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 struct Group {
@@ -218,7 +222,8 @@ Report::External describe(const ExternalSolver& e) {
     return x;
 }
 
-// What a plugin's worker saw while the run went on: its output, its restarts.
+// What a solver from outside did while the run went on beside its answers: what it wrote of its
+// own (a plugin's worker, or an in-process library's message hooks), a worker's restarts.
 void note_worker(Report::External& x, const ExternalSolver& e) {
     if (e.own_output) {
         x.output = e.own_output->head();
@@ -604,7 +609,7 @@ void grade_chunks(const Options& o, const Solvers& solvers, bool batch,
     saver.begin(rep);
     for (const ExternalSolver* e : solvers.external)
         if (e->own_output) e->own_output->clear();
-    ProgressCount progress(o, total_cases);
+    ProgressCount progress(o, total_cases, start);
     struct Graded {
         Report stats;
         std::uint64_t cases = 0;
