@@ -209,20 +209,51 @@ def peers():
     solvers = report["solvers"]
     totals = {}
     for row in report["rows"]:
-        t = totals.setdefault((row["family"], row["solver"]), [0, 0])
+        t = totals.setdefault((row["family"], row["solver"]), [0, 0, 0])
         t[0] += row["cases_mismatched"]
-        t[1] += row["cases"]  # graded: the unrepresented are counted apart
+        t[1] += row["cases"]  # graded: the unrepresented and the unasked are counted apart
+        t[2] += row["within_tolerance"]
     out = [source_line(PEERS / "report.json", report["command"], report_machine(report))
-           + " Cases misclassified, of those each library could take:",
+           + " Cases misclassified beyond each library's declared tolerance, of those each could"
+           " take (and, where it declares one, how many more were within it):",
            "",
            "| family | " + " | ".join(f"`{s}`" for s in solvers) + " |",
            "|---|" + "---:|" * len(solvers)]
     for family in peer_families(report):
         cells = []
         for s in solvers:
-            bad, graded = totals.get((family, s), [0, 0])
-            cells.append(f"{count(bad)} of {count(graded)}" if graded else "-")
+            bad, graded, within = totals.get((family, s), [0, 0, 0])
+            cell = f"{count(bad)} of {count(graded)}" if graded else "-"
+            cells.append(cell + (f" (+{count(within)})" if within else ""))
         out.append(f"| {family} | " + " | ".join(cells) + " |")
+    return out
+
+
+def vecgeom():
+    """VecGeom on elliptic sections along the axes: per solid and family, what remains beyond its
+    declared tolerance, split by which way it is wrong."""
+    path = PEERS / "aligned" / "report.json"
+    report = read_json(path)
+    shapes = [s for s in SHAPES if s != "capsule" and s in report["shapes"]]
+    out = [source_line(path, report["command"], report_machine(report))
+           + " `vecgeom` (DistanceToIn): cases misclassified beyond its declared tolerance, of those"
+           " graded, and which way (invented: a hit where there is none; missed: one not found):",
+           "",
+           "| family | " + " | ".join(f"`{s}`" for s in shapes) + " |",
+           "|---|" + "---:|" * len(shapes)]
+    rows = {(r["family"], r["shape"]): r for r in report["rows"] if r["solver"] == "vecgeom"}
+    for family in report["families"]:
+        cells = []
+        for shape in shapes:
+            r = rows.get((family, shape))
+            if not r or not r["cases"]:
+                cells.append("-")
+                continue
+            kinds = ", ".join(f"{k} {count(v)}" for k, v in r["mismatches"].items() if v)
+            cells.append(f"{count(r['cases_mismatched'])} of {count(r['cases'])}"
+                         + (f" ({kinds})" if kinds else ""))
+        if any(c != "-" for c in cells):
+            out.append(f"| {family} | " + " | ".join(cells) + " |")
     return out
 
 
@@ -340,7 +371,7 @@ def plugin():
     return out
 
 
-TABLES = {f.__name__: f for f in [solvers, bench, rungs, headline, peers, peer_instructions, instructions,
+TABLES = {f.__name__: f for f in [solvers, bench, rungs, headline, peers, vecgeom, peer_instructions, instructions,
                                   instructions_closed, instructions_lanes, correct_vs_exact,
                                   family_instructions, time_per_instruction, batch, scenes, plugin]}
 BEGIN = re.compile(r"^<!-- table: (\w+) -->$")

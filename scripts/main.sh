@@ -52,5 +52,5 @@ main job done in $((SECONDS - start)) s. Reports:
   $reports/latest/report.html   the default audit (report.md, report.json beside it)
   $reports/latest/spawn.md      rays leaving a hit
   $reports/latest/scenes.md     scenes
-  $reports/peers/report.html    four other libraries beside linequad's correct
+  $reports/peers/report.html    five other libraries beside linequad's correct
 SUMMARY

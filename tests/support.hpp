@@ -1,6 +1,7 @@
 // Helpers shared by the tests: run a solver by name, describe results for failure messages.
 #pragma once
 
+#include "linequad/audit.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/families.hpp"
 #include "linequad/registry.hpp"
@@ -59,6 +60,15 @@ inline Ran program(const std::string& args, const std::filesystem::path& dir) {
     r.out = slurp(dir / "stdout.txt");
     r.err = slurp(dir / "stderr.txt");
     INFO("linequad " << args << "\nstatus " << r.status << "\nstderr: " << r.err);
+    return r;
+}
+
+// The report.json an audit wrote into dir, read back strictly.
+inline audit::Report read_report(const std::filesystem::path& dir) {
+    audit::Report r;
+    std::string why;
+    INFO(why);
+    REQUIRE(audit::read_json((dir / "report.json").string(), &r, &why));
     return r;
 }
 

@@ -326,7 +326,7 @@ TEST_CASE("cli: diff exits 1 when a report got worse and writes JUnit XML", "[cl
             for (json& row : j["rows"])
                 if (row["solver"] == "correct" && row["cases"] > 0) {
                     row["cases_mismatched"] = 1;
-                    row["mismatches"]["hit_count"] = 1;
+                    row["mismatches"]["missed"] = 1;
                     break;
                 }
         });

@@ -22,14 +22,6 @@ namespace {
 // markdown table, and is raw HTML.
 const std::string hostile_name = "x'; system('touch PWNED'); print '|<b>$(touch PWNED2)`x`";
 
-audit::Report read_report(const fs::path& dir) {
-    audit::Report r;
-    std::string why;
-    INFO(why);
-    REQUIRE(audit::read_json((dir / "report.json").string(), &r, &why));
-    return r;
-}
-
 // Every file under dir, by its path from dir.
 std::vector<std::string> files_under(const fs::path& dir) {
     std::vector<std::string> out;

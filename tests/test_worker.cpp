@@ -30,14 +30,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-audit::Report read_report(const fs::path& dir) {
-    audit::Report r;
-    std::string why;
-    INFO(why);
-    REQUIRE(audit::read_json((dir / "report.json").string(), &r, &why));
-    return r;
-}
-
 // A solver's rows as report.json writes them, without the timings (which differ run to run).
 std::map<std::string, std::string> rows_of(const audit::Report& r, const std::string& solver) {
     std::map<std::string, std::string> out;
@@ -320,8 +312,7 @@ TEST_CASE("worker: a library that answers as it declares grades with no mismatch
         if (key.solver == "nearest_at_zero" && key.family == "inside_start") inside.merge(row);
     CHECK(inside.cases > 100);
     CHECK(r.total("first_exit")
-              .unrepresented_why.count("first exit: the range does not start inside the solid") ==
-          1);
+              .not_asked.count("first exit: the range does not start inside the solid") == 1);
     CHECK(r.external.at("nearest_at_zero").inside == "a hit at 0");
     CHECK(r.external.at("contact_point").contact == "first point");
 }

@@ -56,6 +56,9 @@ audit::ExternalSolver bullet() {
     s.parametrisation = audit::Parametrisation::segment;
     s.surface = audit::Surface::closed;
     s.kinds = false, s.parts = false;
+    // Bullet's contract: its shapes are rounded by the collision margin (0.04, in scene units),
+    // and placed by a rotation rounded to a few ulps of the scene.
+    s.tolerance = {0.04, 0x1p-50};
     s.mapping =
         "btCollisionWorld::rayTestSingle(from, to) with a ClosestRayResultCallback; the "
         "answer is m_closestHitFraction and m_hitPointWorld. Cylinder: "

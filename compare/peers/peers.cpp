@@ -1,5 +1,8 @@
 #include "peers/peers.hpp"
 
+#include <unistd.h>
+
+#include <climits>
 #include <cmath>
 
 namespace linequad::peers {
@@ -22,6 +25,24 @@ const std::vector<audit::ExternalSolver>& solvers() {
         return v;
     }();
     return all;
+}
+
+std::vector<PluginPeer> plugin_peers() {
+    std::vector<PluginPeer> out;
+#ifdef LINEQUAD_PEER_VECGEOM
+    // Beside the program in the build tree; else where `cmake --install` puts it.
+    char self[PATH_MAX];
+    ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
+    std::string dir = n > 0 ? std::string(self, std::size_t(n)) : std::string();
+    dir = dir.substr(0, dir.rfind('/') + 1);
+    for (std::string path : {dir + LINEQUAD_PEER_VECGEOM,
+                             std::string(LINEQUAD_PEER_PLUGIN_DIR "/" LINEQUAD_PEER_VECGEOM)})
+        if (::access(path.c_str(), R_OK) == 0) {
+            out.push_back({path, {"vecgeom", "vecgeom_out"}});
+            break;
+        }
+#endif
+    return out;
 }
 
 Basis basis_along(Vec3 d) {

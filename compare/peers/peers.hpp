@@ -5,12 +5,21 @@
 
 #include "linequad/audit_solver.hpp"
 
+#include <string>
 #include <vector>
 
 namespace linequad::peers {
 
 // The peers this build has, in a fixed order: occt, embree, bullet, ode (those present).
 const std::vector<audit::ExternalSolver>& solvers();
+
+// The peers that run out of process, as plugins (VecGeom: some of its solids crash): the plugin's
+// path and the solvers it offers, for each one built (found beside this program, or installed).
+struct PluginPeer {
+    std::string path;
+    std::vector<std::string> solvers;
+};
+std::vector<PluginPeer> plugin_peers();
 
 // One per library, defined in its adapter's file when the library is built in.
 audit::ExternalSolver occt();

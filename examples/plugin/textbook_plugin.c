@@ -58,6 +58,8 @@ static const lq_solver solvers[] = {{
     "the school formula on a normalised axis; open finite cylinders only", solve, NULL,
     LQ_INSIDE_AS_ANSWERS,      /* a ray that starts inside finds the wall it leaves through */
     LQ_CONTACT_INTERVAL, NULL, /* no batch entry */
+    LQ_ON_SURFACE_AS_INSIDE, LQ_TANGENT_HIT, /* linequad's own semantics: a touch is a hit */
+    0, 0, 0, /* no surface tolerance declared; negative distances read as they are */
 }};
 
 int linequad_audit_plugin(int abi, const lq_solver** out) {

@@ -47,13 +47,15 @@ struct TimeHistogram {
 };
 
 enum Mismatch {
-    hit_count,         // a different number of hits (or an interval instead of hits)
-    tangent_missed,    // the oracle has a tangent hit, the solver does not
-    tangent_invented,  // the solver says tangent, the oracle does not
+    invented,          // more hits than the reference: a hit where there is none
+    missed,            // fewer hits than the reference: a hit not found
+    tangent_missed,    // the oracle has a tangent hit, the solver does not (a wrong kind)
+    tangent_invented,  // the solver says tangent, the oracle does not (a wrong kind)
     on_surface_missed, // the oracle says the line lies on the surface, the solver does not
     on_surface_invented,
     nonfinite,  // NaN or infinity returned where the oracle has finite values
     refused,    // the solver returned an error the oracle does not (or the reverse)
+    crashed,    // the call did not return: it crashed, exited or timed out (a library's own)
     part_wrong, // hits classified alike, but one (or the interval) on another part of the shape
     mismatch_kinds
 };
@@ -104,6 +106,12 @@ struct Row {
     // Cases the solver could not be posed or could not represent (an external library's shapes
     // and semantics): not graded, not in `cases`.
     std::uint64_t unrepresented = 0;
+    // Cases outside the solver's declared contract (a first exit asked of a start outside, a
+    // start inside where the solver leaves it undefined), by why: never asked, not in `cases`.
+    std::map<std::string, std::uint64_t> not_asked;
+    // Cases whose classification differs from the exact one but is right for a surface within
+    // the solver's declared tolerance: graded (in `cases`), not mismatched, no error measured.
+    std::uint64_t within_tolerance = 0;
     // Of those, the ones with a reason (the library's own words, or why a case cannot be posed
     // its way), by reason.
     std::map<std::string, std::uint64_t> unrepresented_why;
@@ -187,8 +195,10 @@ struct Report {
     // Solvers from outside linequad, by name: what they answer and how a case is handed over.
     struct External {
         std::string answers, parametrisation, surface, mapping, plugin;
-        std::string inside, contact;       // its conventions (empty: none)
-        bool batch = false;                // a plugin's batch entry answered it
+        std::string inside, contact; // its conventions (empty: none)
+        std::string conventions;     // all of its declared conventions, in words
+        double tolerance_absolute = 0, tolerance_relative = 0; // as declared
+        bool batch = false;                                    // a plugin's batch entry answered it
         std::string load_environment;      // how loading the plugin changed the environment
         std::string output;                // its first lines (stdout, stderr or message hooks)
         std::uint64_t output_bytes = 0;    // how much it wrote in all
@@ -220,6 +230,9 @@ struct Report {
     Row total(const std::string& solver) const; // all rows of one solver
 };
 
+// How many cases a row did not ask (Row::not_asked, summed).
+std::uint64_t not_asked_count(const Row& r);
+
 // A fresh run identity (Report::run): 16 hex digits.
 std::string new_run_id();
 
@@ -240,6 +253,9 @@ struct Answered {
     const Result& reference;
     Grading what = {};
     std::string_view reference_name = "exact";
+    // For a solver with a declared tolerance: whether an answer whose classification differs is
+    // right for some surface within it (asked only of such answers).
+    const std::function<bool(const Result&)>* tolerated = nullptr;
 };
 
 // Grades one answer into a row and a curve point (if given), in ulps of the case's precision

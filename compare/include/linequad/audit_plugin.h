@@ -3,9 +3,10 @@
  *     int linequad_audit_plugin(int abi, const lq_solver** solvers);
  *
  * is audited with `linequad audit --plugin libmine.so --solvers mine,...` without rebuilding
- * linequad. It is called with LQ_ABI (2) and, if it returns -1, with 1 (the first ABI, whose
- * solvers end at `self`: lq_solver_v1); it sets *solvers to an array of solvers that lives as
- * long as the library is loaded and returns their number, or returns -1 when it does not speak
+ * linequad. It is called with LQ_ABI (3) and, while it returns -1, with 2 and then 1 (the earlier
+ * ABIs, whose solvers are lq_solver_v2 and lq_solver_v1: what a plugin built against their
+ * headers returns, loaded and graded as it was); it sets *solvers to an array of solvers that lives
+ * as long as the library is loaded and returns their number, or returns -1 when it does not speak
  * that ABI. Plain C, so that any language with a C FFI can be audited; the doubles are exactly
  * those of the posed case (a binary32 solver gets floats held in doubles).
  *
@@ -24,7 +25,7 @@
 extern "C" {
 #endif
 
-#define LQ_ABI 2
+#define LQ_ABI 3
 
 /* Shapes, as in linequad/shapes.hpp. */
 enum lq_shape_kind {
@@ -91,8 +92,17 @@ enum lq_inside {
     LQ_INSIDE_AS_ANSWERS = 0, /* nothing special: the nearest hit, or the first entry */
     LQ_INSIDE_NO_HIT = 1,     /* no hit when the start is strictly inside */
     LQ_INSIDE_T0 = 2,         /* a hit at the range's start t0 (Geometric Tools' Ray3 queries) */
-    LQ_INSIDE_ZERO = 3        /* a hit at t = 0 (Jolt's fraction 0, PhysX's initial overlap) */
+    LQ_INSIDE_ZERO = 3,       /* a hit at t = 0 (Jolt's fraction 0, PhysX's initial overlap) */
+    LQ_INSIDE_UNDEFINED = 4   /* ABI 3: not defined (VecGeom's DistanceToIn): not asked */
 };
+/* ABI 3: what a start on the surface is answered as. */
+enum lq_start_on_surface {
+    LQ_ON_SURFACE_AS_INSIDE = 0,   /* as a start inside (the inside convention, unless no hit) */
+    LQ_ON_SURFACE_BY_DIRECTION = 1 /* by where the line goes: moving in, an entry at t0; moving
+                                      out, no entry (VecGeom, Geant4) */
+};
+/* ABI 3: whether a line that only touches the surface hits it. */
+enum lq_tangent { LQ_TANGENT_HIT = 0, LQ_TANGENT_NO_HIT = 1 };
 /* ABI 2: how a line lying on the surface over an interval is answered. */
 enum lq_contact {
     LQ_CONTACT_INTERVAL = 0,   /* LQ_ON_SURFACE with the interval */
@@ -117,7 +127,33 @@ typedef struct {
      * a time through solve, as they are when this call crashes or times out). */
     int (*solve_batch)(void* self, int n, const lq_shape* shapes, const lq_line* lines,
                        lq_answer* out);
+    /* ABI 3 from here: the library's own contract, graded as it means it (see
+     * docs/semantics.md). 0 in every field: linequad's exact semantics. */
+    int start_on_surface; /* lq_start_on_surface */
+    int tangent;          /* lq_tangent */
+    /* How far its surface may lie from the exact one (VecGeom's kTolerance), in scene units plus
+     * relative to the scene's magnitude: an answer right for some solid between the shape shrunk
+     * and grown by that much is counted within tolerance, not as a mismatch. Finite, >= 0. */
+    double tolerance_absolute, tolerance_relative;
+    /* A distance in [-negative_zero, 0) (scene units) reads as 0. Finite, >= 0. */
+    double negative_zero;
 } lq_solver;
+
+/* The solvers of ABI 2: lq_solver without the fields of ABI 3. */
+typedef struct {
+    const char* name;
+    int precision;
+    int answers, parametrisation, surface;
+    int carries;
+    unsigned shapes;
+    const char* mapping;
+    int (*solve)(void* self, const lq_shape* shape, const lq_line* line, lq_answer* out);
+    void* self;
+    int inside;
+    int contact;
+    int (*solve_batch)(void* self, int n, const lq_shape* shapes, const lq_line* lines,
+                       lq_answer* out);
+} lq_solver_v2;
 
 /* The solvers of ABI 1: lq_solver without the fields of ABI 2 (what a plugin built against the
  * first header returns when asked for ABI 1). */

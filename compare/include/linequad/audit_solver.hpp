@@ -43,6 +43,27 @@ enum class StartInside : std::uint8_t {
     no_hit,     // no hit when the start is strictly inside the solid
     at_t0,      // one hit at the range's start t0 (Geometric Tools' Ray3 queries)
     at_zero,    // one hit at t = 0 (Jolt's fraction 0, PhysX's initial overlap)
+    undefined,  // not defined (VecGeom's DistanceToIn from inside): such cases are not asked
+};
+
+// What a start on the surface is answered as: as a start inside (the inside convention applies,
+// unless it is no_hit), or by where the line goes (moving in: an entry at t0; moving out: no
+// entry; VecGeom's and Geant4's rule).
+enum class StartOnSurface : std::uint8_t { as_inside, by_direction };
+
+// Whether a tangent touch counts as a hit (linequad's, Embree's) or not (VecGeom's Tube,
+// EllipticalTube, Ellipsoid: a line that only touches does not enter).
+enum class TangentRule : std::uint8_t { hit, no_hit };
+
+// How far a library's surface may lie from the exact one by its own contract (VecGeom's
+// kTolerance): absolute, in scene units, plus relative to the scene's magnitude (the largest of
+// the shape's coordinates and sizes and of |L0|). A case whose answer is right for some solid S'
+// with S shrunk by delta inside S' inside S grown by delta is counted within tolerance, not as a
+// mismatch (docs/semantics.md says how that is proved).
+struct Tolerance {
+    double absolute = 0, relative = 0;
+    bool none() const { return absolute == 0 && relative == 0; }
+    double at(double magnitude) const { return absolute + relative * magnitude; }
 };
 
 // How the solver is handed the line, and what its t means.
@@ -128,6 +149,13 @@ struct ExternalSolver {
     // by one hit at the contact interval's first point in the range.
     StartInside inside = StartInside::as_answers;
     bool contact_as_point = false;
+    // What a start on the surface is, whether a tangent touch is a hit, how thick its surfaces
+    // are, and below how small a negative distance reads as 0 (in scene units: a t in
+    // [-negative_zero / |v|, 0) is graded as 0).
+    StartOnSurface on_surface = StartOnSurface::as_inside;
+    TangentRule tangent = TangentRule::hit;
+    Tolerance tolerance;
+    double negative_zero = 0;
     // What its answers carry: hit points, tangent-or-cross kinds, the part (lateral or a disc)
     // of each hit. What it does not carry is not graded.
     bool points = true, kinds = true, parts = true;
@@ -191,7 +219,10 @@ std::optional<Case> posed_for(const ExternalSolver& s, const Case& c, std::strin
 // a hit at the start of a range that starts inside, a contact interval as its first point.
 struct Reference {
     Result result;
-    std::string unrepresented; // the case is not asked of such a solver: why (not graded)
+    std::string unrepresented; // the case cannot be posed for such a solver: why (not graded)
+    // The case is outside the solver's contract (a first exit from a start outside, a start
+    // inside where it is undefined): not asked, counted, never charged. Why, if so.
+    std::string not_asked;
     // A hit the conventions make (a start inside, a contact's first point) has no kind, and no
     // part or (for a contact) no point to grade: what of the solver's answer is graded.
     bool kinds = true, parts = true, points = true;
@@ -203,6 +234,20 @@ Reference reference_for(const ExternalSolver& s, const Case& posed);
 std::string reference_label(const ExternalSolver& s);
 // The reference without conventions (kept for callers of the first API).
 Result reference_for(Answers a, const Case& posed);
+
+// Whether the conventions leave the oracle's answer as the reference (all hits, every case).
+bool answers_as_oracle(const ExternalSolver& s);
+
+// The answer as the solver's conventions read it: a negative t within negative_zero of 0 is 0.
+void read_conventions(const ExternalSolver& s, const Case& posed, Result& got);
+
+// The conventions of ABI 3 in words, for the report and the solver list (the start inside and
+// the contact have their own): "surfaces 5e-10 off at most; a tangent touch is no hit".
+std::string conventions_text(const ExternalSolver& s);
+
+// Refuses a solver whose declarations are out of range (a negative, NaN or infinite tolerance, a
+// convention its answers cannot have): the message names the solver and the field. Empty: none.
+std::string declaration_problem(const ExternalSolver& s);
 
 // What a solver from outside cannot be handed: a value that is not a float, for a binary32
 // solver (not_binary32, naming it); none otherwise.

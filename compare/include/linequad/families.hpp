@@ -43,10 +43,12 @@ enum class Family {
 constexpr int family_count = 18;
 
 // The frames shapes are built on: any (the elliptic shapes' frames oblique and sheared), circular
-// (a, b orthogonal to the axis and of one length: a circular cross-section) or axis (circular,
-// and the axis along a coordinate axis), because most libraries represent only those. The
-// cylinder and the frustum are circular in any case.
-enum class Frames { any, circular, axis };
+// (a, b orthogonal to the axis and of one length: a circular cross-section), axis (circular,
+// and the axis along a coordinate axis) or aligned (every vector along a coordinate axis, the
+// elliptic shapes' semi-axes of distinct lengths: VecGeom's and Geant4's elliptic solids),
+// because most libraries represent only those. The cylinder and the frustum are circular in
+// any case.
+enum class Frames { any, circular, axis, aligned };
 const char* frames_name(Frames f);
 bool parse_frames(std::string_view name, Frames* f);
 const char* family_name(Family f);

@@ -25,7 +25,7 @@ struct CapsuleFrame {
 };
 
 CapsuleFrame capsule_frame(Rng& r, bool exact, Frames frames) {
-    bool axis_aligned = frames == Frames::axis;
+    bool axis_aligned = frames == Frames::axis || frames == Frames::aligned;
     if (exact) {
         double radius = r.integer(1, 4), length = std::ldexp(1.0, r.integer(0, 2));
         Vec3 C = r.ivec(6);

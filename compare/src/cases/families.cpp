@@ -25,7 +25,7 @@ const char* const names[family_count] = {"generic",    "near_tangent", "axis_par
                                          "cap_plane",  "cap_axis",     "inside_start",
                                          "two_nappes", "far_origin",   "through_centre",
                                          "thin",       "seam",         "poles"};
-const char* const frame_names[3] = {"any", "circular", "axis"};
+const char* const frame_names[4] = {"any", "circular", "axis", "aligned"};
 
 // A frame: origin, a, b, c, and the shape's profile in it: points O + x a + y b + z c, the
 // extent z0 <= z <= z0 + 1, and the surface's radius at z, |rho0 + (rho1 - rho0)(z - z0)| (the
@@ -35,6 +35,7 @@ struct Frame {
     Vec3 O, a, b, c;
     double z0 = 0, rho0 = 1, rho1 = 1;
     bool round = false;
+    bool aligned = false; // a, b, c along coordinate axes (kept so by the families)
 };
 
 bool well_shaped(Vec3 a, Vec3 b, Vec3 c, double ratio) {
@@ -74,6 +75,27 @@ Frame integer_round_frame(Rng& r, bool axis_aligned) {
     IntegerRotation q = integer_rotation(r);
     len = std::copysign(r.integer(1, 3), len), radius = r.integer(1, 3);
     return {O, radius * q.col[0], radius * q.col[1], len * q.col[2], 0, 1, 1, true};
+}
+
+// A frame along the coordinate axes whose section is elliptic: semi-axes of distinct lengths
+// (integers in an integer frame, so that the constructions stay exact).
+Frame aligned_elliptic_frame(Rng& r, bool integer) {
+    int axis = r.integer(0, 2);
+    Vec3 e[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    double sign = r.coin() ? 1 : -1, ra, rb, len;
+    Vec3 O;
+    if (integer) {
+        ra = r.integer(1, 6), rb = r.integer(1, 5), len = sign * r.integer(1, 12);
+        if (rb >= ra) rb += 1; // distinct
+        O = r.ivec(6);
+    } else {
+        ra = r.real(0.25, 3), rb = ra * r.real(0.3, 0.8), len = sign * r.real(0.5, 4);
+        if (r.coin()) std::swap(ra, rb);
+        O = r.vec(4);
+    }
+    Frame f{O, ra * e[(axis + 1) % 3], rb * e[(axis + 2) % 3], len * e[axis], 0, 1, 1, false};
+    f.aligned = true;
+    return f;
 }
 
 // A round frame on the axis c with a, b of length `radius` (rounded).
@@ -187,8 +209,10 @@ struct Sampling<Frustum> {
 template <class S>
 Frame frame_for(Rng& r, bool integer, Frames frames, Profile want = Profile::any) {
     Frame f;
-    if (Sampling<S>::round || frames != Frames::any) {
-        bool axis_aligned = frames == Frames::axis;
+    if (frames == Frames::aligned && !Sampling<S>::round) {
+        f = aligned_elliptic_frame(r, integer);
+    } else if (Sampling<S>::round || frames != Frames::any) {
+        bool axis_aligned = frames == Frames::axis || frames == Frames::aligned;
         f = integer ? integer_round_frame(r, axis_aligned) : random_round_frame(r, axis_aligned);
     } else {
         f = integer ? integer_frame(r) : random_frame(r);
@@ -323,7 +347,8 @@ Case degenerate_frame(Rng& r, int k, Frames frames) {
     Frame f = frame_for<S>(r, false, frames);
     double e = std::ldexp(1.0, -k);
     int kind = r.integer(0, 3);
-    if (f.round) kind = kind % 2 + 2; // only thin and flat for a round section
+    // Only thin and flat for a round section, or one along the axes (what keeps it so).
+    if (f.round || f.aligned) kind = kind % 2 + 2;
     switch (kind) {
     case 0:
         f.c = f.a + f.b + (e / norm(f.a)) * cross(f.a, f.b);
@@ -743,7 +768,7 @@ const char* frames_name(Frames f) {
 }
 
 bool parse_frames(std::string_view name, Frames* f) {
-    for (int i = 0; i < 3; ++i)
+    for (int i = 0; i < 4; ++i)
         if (name == frame_names[i]) return *f = Frames(i), true;
     return false;
 }

@@ -48,7 +48,18 @@ inline Vec3 across_axis(Rng& r, int axis) {
 // The frames a shape is built on. round: a sphere's (three orthogonal axes of one length); exact:
 // integer coordinates, so that the constructions above stay exact.
 inline BallFrame ball_frame(Rng& r, bool round, bool exact, Frames frames) {
-    bool axis_aligned = frames == Frames::axis;
+    bool axis_aligned = frames == Frames::axis || frames == Frames::aligned;
+    if (frames == Frames::aligned && !round) {
+        // Semi-axes of three distinct lengths along the coordinate axes.
+        double x = exact ? r.integer(1, 6) : r.real(0.25, 3);
+        double y = exact ? r.integer(1, 5) : x * r.real(0.3, 0.8);
+        if (exact && y >= x) y += 1;
+        double z = exact ? r.integer(1, 7) : r.real(0.25, 3);
+        if (exact)
+            while (z == x || z == y)
+                z = r.integer(1, 7);
+        return {exact ? r.ivec(6) : r.vec(4), {x, 0, 0}, {0, y, 0}, {0, 0, z}};
+    }
     if (round || frames != Frames::any) {
         if (exact) {
             double radius = r.integer(1, 6);

@@ -80,12 +80,15 @@ void add_campaign_options(CLI::App* app, CampaignArgs& a) {
         ->check(names_in({"shape", "shapes"}, shape_names()));
     app->add_option("--frames", a.frames,
                     "the shapes' frames: any (oblique and sheared elliptic shapes), circular "
-                    "(circular cross-sections) or axis (circular, along a coordinate axis)")
-        ->type_name("any|circular|axis")
+                    "(circular cross-sections), axis (circular, along a coordinate axis) or "
+                    "aligned (along the coordinate axes, elliptic sections of distinct "
+                    "semi-axes: VecGeom's and Geant4's elliptic solids)")
+        ->type_name("any|circular|axis|aligned")
         ->check(CLI::Validator(
             [](const std::string& f) {
                 Frames x;
-                return parse_frames(f, &x) ? std::string() : "expected any, circular or axis";
+                return parse_frames(f, &x) ? std::string()
+                                           : "expected any, circular, axis or aligned";
             },
             ""))
         ->capture_default_str();
@@ -201,7 +204,8 @@ int check_claims(const audit::Report& r, std::uint64_t graded) {
 int run_audit(const CampaignArgs& a, const std::string& command) {
     audit::Options o = a.options();
     o.command = command;
-    std::vector<audit::ExternalSolver> ext = external_solvers(a.plugins, a.solver_timeout);
+    std::vector<audit::ExternalSolver> ext =
+        external_solvers(a.plugins, a.solver_timeout, o.solvers);
     for (const std::string& name : o.solvers)
         if (std::string why = solver_error(name, true, ext); !why.empty())
             return fail("--solvers: " + why);

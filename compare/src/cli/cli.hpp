@@ -86,9 +86,11 @@ void add_history_options(CLI::App* app, std::string& history, std::string& commi
 // ---- solvers from outside linequad
 
 // The peer libraries built in, then the solvers of the plugins given, loaded once (each plugin in
-// a worker process: this program in another mode).
+// a worker process: this program in another mode). The peers that run as plugins (VecGeom) are
+// loaded only when one of their solvers is among `wanted` ("*": all of them).
 std::vector<audit::ExternalSolver> external_solvers(const std::vector<std::string>& plugins,
-                                                    const std::string& timeout);
+                                                    const std::string& timeout,
+                                                    const std::vector<std::string>& wanted);
 const audit::ExternalSolver* find_external(const std::vector<audit::ExternalSolver>& ext,
                                            const std::string& name);
 // "" if a solver has this name (batch too, if batch_too), else why not.

@@ -8,6 +8,8 @@
 #include "io/jsonl.hpp"
 #include "peers/peers.hpp"
 
+#include <algorithm>
+
 #include <cstring>
 
 namespace linequad::cli {
@@ -42,10 +44,11 @@ std::string declared(const audit::ExternalSolver& e) {
         audit::parametrisation_name(e.parametrisation) + ", " + audit::surface_name(e.surface) +
         ", " + (e.precision == Precision::binary32 ? "binary32" : "binary64") +
         ", start inside: " + audit::start_inside_name(e.inside) +
-        (e.contact_as_point ? ", a contact as its first point" : "") + "; answers carry" +
-        (e.points ? " points" : "") + (e.kinds ? " kinds" : "") + (e.parts ? " parts" : "") +
-        (!e.points && !e.kinds && !e.parts ? " t alone" : "") + "; shapes " +
-        (shapes.empty() ? "none" : shapes);
+        (e.contact_as_point ? ", a contact as its first point" : "") +
+        (audit::conventions_text(e).empty() ? "" : ", " + audit::conventions_text(e)) +
+        "; answers carry" + (e.points ? " points" : "") + (e.kinds ? " kinds" : "") +
+        (e.parts ? " parts" : "") + (!e.points && !e.kinds && !e.parts ? " t alone" : "") +
+        "; shapes " + (shapes.empty() ? "none" : shapes);
     return e.mapping.empty() ? out : out + ": " + e.mapping;
 }
 
@@ -63,7 +66,8 @@ Command solvers_command(CLI::App& app) {
                    "plugins given, each with what it declares.");
     add_plugin_options(c, a->plugins, a->solver_timeout);
     auto run = [a](const std::string&) {
-        std::vector<audit::ExternalSolver> ext = external_solvers(a->plugins, a->solver_timeout);
+        std::vector<audit::ExternalSolver> ext =
+            external_solvers(a->plugins, a->solver_timeout, {"*"});
         jsonl::Output out;
         auto line = [&](std::string name, const std::string& summary) {
             out.line(name + std::string(name.size() < 9 ? 9 - name.size() : 0, ' ') + " " +
@@ -71,10 +75,17 @@ Command solvers_command(CLI::App& app) {
         };
         for (const Solver& s : all_solvers())
             line(std::string(s.name), std::string(s.summary));
+        std::vector<std::string> peer_plugins;
+        for (const peers::PluginPeer& p : peers::plugin_peers())
+            peer_plugins.push_back(p.path);
+        auto from = [&](const audit::ExternalSolver& e) {
+            if (e.plugin.empty()) return std::string("(peer library) ");
+            if (std::find(peer_plugins.begin(), peer_plugins.end(), e.plugin) != peer_plugins.end())
+                return "(peer library, out of process: " + escape::shell_word(e.plugin) + ") ";
+            return "(plugin " + escape::shell_word(e.plugin) + ") ";
+        };
         for (const audit::ExternalSolver& e : ext)
-            line(e.name, (e.plugin.empty() ? std::string("(peer library) ")
-                                           : "(plugin " + escape::shell_word(e.plugin) + ") ") +
-                             declared(e));
+            line(e.name, from(e) + declared(e));
         out.finish();
         return 0;
     };

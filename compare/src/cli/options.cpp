@@ -179,12 +179,25 @@ void add_history_options(CLI::App* app, std::string& history, std::string& commi
 }
 
 std::vector<audit::ExternalSolver> external_solvers(const std::vector<std::string>& plugins,
-                                                    const std::string& timeout) {
+                                                    const std::string& timeout,
+                                                    const std::vector<std::string>& wanted) {
     std::vector<audit::ExternalSolver> out = peers::solvers();
     audit::PluginOptions po;
     po.program = process::self(); // the worker is this program in another mode
     po.timeout_seconds = to_real(timeout);
+    std::vector<std::string> paths;
     for (const std::string& path : plugins)
+        paths.push_back(process::absolute(path));
+    auto asked = [&](const std::vector<std::string>& names) {
+        for (const std::string& w : wanted)
+            if (w == "*" || std::find(names.begin(), names.end(), w) != names.end()) return true;
+        return false;
+    };
+    // A peer's plugin given with --plugin as well (a report's replay command) is loaded once.
+    for (const peers::PluginPeer& p : peers::plugin_peers())
+        if (asked(p.solvers) && std::find(paths.begin(), paths.end(), p.path) == paths.end())
+            paths.insert(paths.begin(), p.path);
+    for (const std::string& path : paths)
         for (audit::ExternalSolver& e : audit::load_plugin(path, po)) {
             for (const audit::ExternalSolver& x : out)
                 if (x.name == e.name)

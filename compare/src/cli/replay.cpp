@@ -17,7 +17,8 @@ struct ReplayArgs {
 };
 
 int run_replay(const ReplayArgs& a) {
-    std::vector<audit::ExternalSolver> ext = external_solvers(a.plugins, a.solver_timeout);
+    std::vector<audit::ExternalSolver> ext =
+        external_solvers(a.plugins, a.solver_timeout, {a.solver});
     const Solver* own = find_solver(a.solver);
     const audit::ExternalSolver* theirs = find_external(ext, a.solver);
     if (a.solver.find(',') != std::string::npos)

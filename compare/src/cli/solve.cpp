@@ -278,9 +278,11 @@ void Records::take(const Record& rec) {
 }
 
 int run_solve(const SolveArgs& a) {
-    std::vector<audit::ExternalSolver> ext = external_solvers(a.plugins, a.solver_timeout);
-    std::vector<NamedSolver> solvers;
     bool every_solver = a.solvers == "all";
+    std::vector<audit::ExternalSolver> ext =
+        external_solvers(a.plugins, a.solver_timeout,
+                         every_solver ? std::vector<std::string>{"*"} : split_list(a.solvers));
+    std::vector<NamedSolver> solvers;
     if (every_solver) {
         for (const Solver& s : all_solvers())
             solvers.push_back({&s, nullptr});

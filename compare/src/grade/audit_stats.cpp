@@ -87,9 +87,11 @@ void TimeHistogram::merge(const TimeHistogram& o) {
 }
 
 const char* mismatch_name(int m) {
-    static const char* const names[mismatch_kinds] = {
-        "hit_count",           "tangent_missed", "tangent_invented", "on_surface_missed",
-        "on_surface_invented", "nonfinite",      "refused",          "part_wrong"};
+    static const char* const names[mismatch_kinds] = {"invented",          "missed",
+                                                      "tangent_missed",    "tangent_invented",
+                                                      "on_surface_missed", "on_surface_invented",
+                                                      "nonfinite",         "refused",
+                                                      "crashed",           "part_wrong"};
     return names[m];
 }
 
@@ -207,6 +209,9 @@ void Row::merge(const Row& o) {
     cases += o.cases, graded_roots += o.graded_roots, graded_coords += o.graded_coords;
     s_error.merge(o.s_error), s_max = std::max(s_max, o.s_max);
     unrepresented += o.unrepresented;
+    within_tolerance += o.within_tolerance;
+    for (const auto& [why, n] : o.not_asked)
+        not_asked[why] += n;
     for (const auto& [name, n] : o.unrepresented_why)
         unrepresented_why[name] += n;
     for (const auto& [name, n] : o.foreign)
@@ -240,11 +245,23 @@ int tangents(const Result& r) {
     return n;
 }
 
+// A library's call that never returned an answer (a crash, an exit, a hang), as the in-process
+// guard and the plugin worker name it.
+bool did_not_return(const Result& r) {
+    if (r.error_code != ErrorCode::foreign) return false;
+    std::string_view why = r.error_field;
+    for (std::string_view prefix : {"crashed", "exited", "timed out", "killed"})
+        if (why.substr(0, prefix.size()) == prefix) return true;
+    return false;
+}
+
 // How an answer is classified against its reference: each kind of mismatch it makes.
 using Flags = std::array<bool, mismatch_kinds>;
 Flags classify(const Result& got, const Result& want, const Grading& what) {
     Flags f{};
-    if (!want.ok() || !got.ok()) {
+    if (did_not_return(got)) {
+        f[crashed] = true;
+    } else if (!want.ok() || !got.ok()) {
         f[refused] = want.ok() != got.ok() || want.error_code != got.error_code;
     } else if (!finite_result(got) && finite_result(want)) {
         f[nonfinite] = true;
@@ -254,8 +271,8 @@ Flags classify(const Result& got, const Result& want, const Grading& what) {
         // A solver that does not tell tangents from crossings is graded on its count of hits.
         int tw = tangents(want), tg = what.kinds ? tangents(got) : tw;
         f[tangent_missed] = tw > tg, f[tangent_invented] = tg > tw;
-        f[hit_count] = want.count != got.count;
-        if (!f[hit_count] && !f[tangent_missed] && !f[tangent_invented]) {
+        f[invented] = got.count > want.count, f[missed] = got.count < want.count;
+        if (want.count == got.count && !f[tangent_missed] && !f[tangent_invented]) {
             bool parts = !want.on_surface || want.surface_part == got.surface_part;
             for (int i = 0; i < want.count; ++i)
                 parts = parts && want.hits[i].part == got.hits[i].part;
@@ -325,6 +342,13 @@ void grade(const Answered& a, Row& row, CurvePoint* curve) {
     if (got.ok() && got.rung != Rung::none) ++row.rungs[std::size_t(got.rung)];
     Flags flags = classify(got, a.reference, a.what);
     bool mismatch = std::find(flags.begin(), flags.end(), true) != flags.end();
+    // Wrong by the exact surface, right by one within the solver's declared tolerance: its own
+    // count, nothing measured (the roots it would compare are another surface's).
+    if (mismatch && !flags[crashed] && a.tolerated && (*a.tolerated)(got)) {
+        ++row.within_tolerance;
+        if (curve) ++curve->cases;
+        return;
+    }
     std::uint64_t case_max = mismatch ? 0 : grade_roots(a, row, curve);
     // A certified solver that says it is unsure is not wrong; one that is sure must be right.
     if (got.ok() && got.certainty == Certainty::uncertain) {
@@ -420,6 +444,13 @@ void Report::merge_statistics(const Report& o) {
         oracle_steps[i] += o.oracle_steps[i];
     oracle_by_intervals += o.oracle_by_intervals;
     oracle_by_filter += o.oracle_by_filter;
+}
+
+std::uint64_t not_asked_count(const Row& r) {
+    std::uint64_t n = 0;
+    for (const auto& [why, count] : r.not_asked)
+        n += count;
+    return n;
 }
 
 Row Report::total(const std::string& solver) const {

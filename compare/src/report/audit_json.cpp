@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace linequad::audit {
@@ -18,7 +19,7 @@ namespace {
 using jsonl::Json;
 using jsonl::OrderedJson;
 
-constexpr const char* format_name = "linequad-audit-2";
+constexpr const char* format_name = "linequad-audit-3";
 constexpr int max_shards = 1000000;
 
 // ---- writing
@@ -72,6 +73,8 @@ OrderedJson row_json(const RowKey& key, const Row& r) {
          {{"max", r.p_max}, {"p99", r.p_quantile(0.99)}, {"histogram", pairs(r.p_error.count)}}},
         {"scene_ulps",
          {{"max", r.s_max}, {"p99", r.s_quantile(0.99)}, {"histogram", pairs(r.s_error.count)}}},
+        {"within_tolerance", r.within_tolerance},
+        {"not_asked", r.not_asked},
         {"unrepresented", r.unrepresented},
         {"unrepresented_why", r.unrepresented_why},
         {"foreign_refusals", r.foreign},
@@ -281,13 +284,13 @@ Row read_row(const Node& n) {
     r.graded_coords = n.at("graded_points").count();
     r.cases_mismatched = at_most_cases("cases_mismatched");
     Node m = n.at("mismatches");
-    for (int k = 0; k < mismatch_kinds; ++k) {
-        // Reports from before shapes had parts have no part_wrong: none could be.
-        if (k == part_wrong && !m.find(mismatch_name(k))) continue;
+    for (int k = 0; k < mismatch_kinds; ++k)
         r.mismatches[k] = m.at(mismatch_name(k)).count(r.cases);
-    }
     read_errors(n, r);
-    if (n.find("unrepresented")) r.unrepresented = n.at("unrepresented").count();
+    r.within_tolerance = at_most_cases("within_tolerance");
+    if (r.within_tolerance + r.cases_mismatched > r.cases)
+        n.at("within_tolerance").fail("with the mismatched cases, more than the cases");
+    r.unrepresented = n.at("unrepresented").count();
     // Counts by name: each name once, no zero count, at most `most` in all.
     auto counts = [&](const char* field, std::map<std::string, std::uint64_t>& out,
                       std::uint64_t most) {
@@ -305,6 +308,7 @@ Row read_row(const Node& n) {
         if (total > most) f.fail("counts more than " + std::to_string(most));
     };
     counts("unrepresented_why", r.unrepresented_why, r.unrepresented);
+    counts("not_asked", r.not_asked, std::numeric_limits<std::uint64_t>::max());
     if (n.find("foreign_refusals")) {
         Node f = n.at("foreign_refusals");
         if (!f.v.is_object()) f.fail("expected an object of counts by name");
@@ -316,7 +320,8 @@ Row read_row(const Node& n) {
             r.foreign[it.key()] = k;
             total += k;
         }
-        if (total > r.mismatches[refused]) f.fail("counts more than the refused mismatches");
+        if (total > r.mismatches[refused] + r.mismatches[crashed])
+            f.fail("counts more than the refused and crashed mismatches");
     }
     counts("environment_changes", r.environment, r.cases + r.unrepresented);
     read_pairs(n.at("ns_per_solve").at("histogram"), r.ns.count);
@@ -354,6 +359,14 @@ void read_external(const Node& top, Report* r) {
             e.plugin = x.at("plugin").text();
             if (x.find("inside")) e.inside = x.at("inside").text();
             if (x.find("contact")) e.contact = x.at("contact").text();
+            if (x.find("conventions")) e.conventions = x.at("conventions").text();
+            auto length = [&](const char* field) {
+                double v = x.at(field).real();
+                if (!(v >= 0) || !std::isfinite(v)) x.at(field).fail("expected a finite length");
+                return v;
+            };
+            if (x.find("tolerance_absolute")) e.tolerance_absolute = length("tolerance_absolute");
+            if (x.find("tolerance_relative")) e.tolerance_relative = length("tolerance_relative");
             if (x.find("batch")) e.batch = x.at("batch").flag();
             if (x.find("load_environment")) e.load_environment = x.at("load_environment").text();
             if (x.find("output")) {
@@ -382,7 +395,8 @@ void read_campaign(const Node& top, Report* r) {
     if (top.find("frames")) {
         Frames x;
         r->frames = top.at("frames").text();
-        if (!parse_frames(r->frames, &x)) top.at("frames").fail("expected any, circular or axis");
+        if (!parse_frames(r->frames, &x))
+            top.at("frames").fail("expected any, circular, axis or aligned");
     }
     r->ranges = top.at("ranges").names([](const std::string& s) {
         return s == "line" || s == "ray" || s == "segment" ? "" : "line, ray or segment";
@@ -452,9 +466,10 @@ void read_report(const Json& root, Report* r) {
     Node top{root};
     if (!root.is_object()) throw Invalid("not a JSON object");
     std::string format = top.at("format").text();
-    if (format == "linequad-audit-1")
-        throw Invalid("format: linequad-audit-1 is an older report format; run the audit again "
-                      "with this linequad");
+    if (format == "linequad-audit-1" || format == "linequad-audit-2")
+        throw Invalid("format: " + format +
+                      " is an older report format (before mismatched hit counts were split into "
+                      "invented and missed); run the audit again with this linequad");
     if (format != format_name) top.at("format").fail("not a linequad audit report");
     *r = Report{};
     std::string status = top.at("status").text();
@@ -519,6 +534,9 @@ std::string to_json(const Report& r) {
             // What only some solvers have is written only where it is.
             if (!e.inside.empty()) x["inside"] = e.inside;
             if (!e.contact.empty()) x["contact"] = e.contact;
+            if (!e.conventions.empty()) x["conventions"] = e.conventions;
+            if (e.tolerance_absolute > 0) x["tolerance_absolute"] = e.tolerance_absolute;
+            if (e.tolerance_relative > 0) x["tolerance_relative"] = e.tolerance_relative;
             if (e.batch) x["batch"] = true;
             if (!e.load_environment.empty()) x["load_environment"] = e.load_environment;
             if (e.output_bytes) x["output"] = e.output, x["output_bytes"] = e.output_bytes;

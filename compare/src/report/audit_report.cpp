@@ -150,8 +150,9 @@ void write_by_family(std::ostream& md, const Report& r, const std::vector<std::s
                 md << " - |";
                 continue;
             }
-            md << " " << t.cases_mismatched << " of " << t.cases << ", p99 "
-               << fmt(t.t_quantile(0.99));
+            md << " " << t.cases_mismatched << " of " << t.cases;
+            if (t.within_tolerance) md << " (" << t.within_tolerance << " within tolerance)";
+            md << ", p99 " << fmt(t.t_quantile(0.99));
             if (scene) md << ", scene " << fmt(t.s_quantile(0.99));
             md << " |";
         }
@@ -234,8 +235,9 @@ void write_external(std::ostream& md, const Report& r) {
           "A plugin runs in a worker process of its own: its crashes, exits, exceptions and "
           "timeouts are refusals of its own (by kind, below), and nothing it does reaches "
           "linequad's answers.\n\n"
-          "| solver | answers | t | surfaces | start inside | contact | mapping |\n"
-          "|---|---|---|---|---|---|---|\n";
+          "| solver | answers | t | surfaces | start inside | contact | its conventions | "
+          "mapping |\n"
+          "|---|---|---|---|---|---|---|---|\n";
     for (const auto& [name, e] : r.external)
         md << "| " << markdown_text(name)
            << (e.plugin.empty() ? "" : " (" + markdown_text(e.plugin) + ")")
@@ -243,6 +245,7 @@ void write_external(std::ostream& md, const Report& r) {
            << markdown_text(e.parametrisation) << " | " << markdown_text(e.surface) << " | "
            << (e.inside.empty() ? "-" : markdown_text(e.inside)) << " | "
            << (e.contact.empty() ? "interval" : markdown_text(e.contact)) << " | "
+           << (e.conventions.empty() ? "-" : markdown_text(e.conventions)) << " | "
            << markdown_text(e.mapping) << " |\n";
     md << "\n";
     for (const auto& [name, e] : r.external) {
@@ -282,6 +285,8 @@ std::string notes_of(const Row& row) {
         add("'" + escape::markdown_text(name) + "' " + num(n));
     for (const auto& [why, n] : row.unrepresented_why)
         add("unrepresented, " + escape::markdown_text(why) + " " + num(n));
+    for (const auto& [why, n] : row.not_asked)
+        add("not asked, " + escape::markdown_text(why) + " " + num(n));
     for (const auto& [how, n] : row.environment)
         add("changed the floating-point environment (" + escape::markdown_text(how) + ") " +
             num(n));
@@ -321,8 +326,8 @@ void write_provenance(std::ostream& md, const Report& r) {
           "place (0: correctly rounded); bits = log2(1 + ulps) as Herbie counts them. Points: the "
           "largest coordinate error in ulps of the point's scale, max(|p|, |L0|, |t v|). A "
           "mismatch is a "
-          "different classification (hit count, tangent, on-surface), a NaN/infinity, or a "
-          "refusal; "
+          "different classification (a hit invented or missed, a tangent, on-surface or part "
+          "wrong), a NaN/infinity, a refusal or a call that crashed; "
           "errors are only measured on cases classified like the oracle. A certified solver may "
           "call a "
           "case uncertain (counted apart, not as a mismatch); each of its roots carries a bound, "
@@ -345,18 +350,24 @@ void write_headline(std::ostream& md, const Report& r) {
     md << "## Headline: every family\n\n";
     md << "Scene error: the t error as a distance, |t - t_oracle| |v|, in ulps of the scene's "
           "magnitude (the largest of |L0|, |t v| and the shape's coordinates), p99 / max. "
-          "Unrepresented: cases the solver could not take (not graded). A dash: not measured "
+          "Unrepresented: cases the solver could not take (not graded). Not asked: cases outside "
+          "the contract it declares (a first exit from outside, a start inside it leaves "
+          "undefined). Within tolerance: classified otherwise than the exact surface, but right "
+          "for a surface within the tolerance the solver declares (not mismatched). A dash: not "
+          "measured "
           "(no points in the answers, no time for answers read from a file).\n\n";
-    md << "| solver | precision | cases | unrepresented | mismatched | uncertain | bound "
+    md << "| solver | precision | cases | unrepresented | not asked | within tolerance | "
+          "mismatched | uncertain | bound "
           "violations | t max ulps | t p99 | t p50 | mean bits | scene error | point max ulps | "
           "ns/solve (generic) |\n";
-    md << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    md << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     bool timed = false;
     for (const std::string& s : r.solvers) {
         Row t = r.total(s), generic = family_total(r, "generic", s);
         timed = timed || generic.timed();
         md << "| " << markdown_text(s) << " | " << precision_of(t) << " | " << t.cases << " | "
-           << t.unrepresented << " | " << t.cases_mismatched << " | "
+           << t.unrepresented << " | " << not_asked_count(t) << " | " << t.within_tolerance << " | "
+           << t.cases_mismatched << " | "
            << (t.bounded_roots || t.uncertain ? num(t.uncertain) : "-") << " | "
            << (t.bounded_roots ? num(t.bound_violations) + " of " + num(t.bounded_roots) : "-")
            << " | " << fmt_ulps(t.t_max) << " | " << fmt(t.t_quantile(0.99)) << " | "
@@ -371,15 +382,19 @@ void write_headline(std::ostream& md, const Report& r) {
 void write_rows(std::ostream& md, const Report& r) {
     using escape::markdown_text;
     md << "## By family and shape\n\n";
-    md << "| family | shape | solver | cases | unrep. | mismatched | by kind | uncertain | "
+    md << "| family | shape | solver | cases | unrep. | not asked | within tol. | mismatched | "
+          "by kind | uncertain | "
           "bound viol. | bound/err p50 | t max | t p99 | t p99.9 | t mean | scene error | "
           "point max | ns/solve |\n";
-    md << "|---|---|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    md << "|---|---|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|-"
+          "--:|"
+          "\n";
     for (const auto& [key, row] : r.rows) {
         std::string kinds = notes_of(row);
         md << "| " << markdown_text(key.family) << " | " << markdown_text(key.shape) << " | "
            << markdown_text(key.solver) << " | " << row.cases << " | " << row.unrepresented << " | "
-           << row.cases_mismatched << " | " << kinds << " | "
+           << not_asked_count(row) << " | " << row.within_tolerance << " | " << row.cases_mismatched
+           << " | " << kinds << " | "
            << (row.bounded_roots || row.uncertain ? num(row.uncertain) : "-") << " | "
            << (row.bounded_roots ? num(row.bound_violations) : "-") << " | "
            << (row.bounded_roots ? fmt(row.tightness.quantile(0.5)) : "-") << " | "

@@ -62,6 +62,8 @@ const char* start_inside_name(StartInside s) {
         return "a hit at t0";
     case StartInside::at_zero:
         return "a hit at 0";
+    case StartInside::undefined:
+        return "undefined (not asked)";
     }
     return "?";
 }
@@ -392,13 +394,26 @@ Result hit_at(const Case& c, double t) {
     return r;
 }
 
-} // namespace
+// The hits without its tangent touches (a library for which a touch is no hit).
+Result without_tangents(Result r) {
+    int kept = 0;
+    for (int i = 0; i < r.count; ++i)
+        if (r.hits[i].kind != HitKind::tangent) r.hits[kept++] = r.hits[i];
+    r.count = kept;
+    return r;
+}
 
-Result reference_for(Answers a, const Case& posed) {
-    if (a == Answers::nearest)
+Result reference_under(Answers a, TangentRule tangent, const Case& posed) {
+    if (a == Answers::nearest && tangent == TangentRule::hit)
         return exact::intersect(posed.shape, posed.line, {Need::nearest, true}, posed.precision);
     Result all = exact::intersect(posed.shape, posed.line, {Need::all, true}, posed.precision);
-    if (a == Answers::all || !all.ok() || all.on_surface) return all;
+    if (!all.ok() || all.on_surface) return all;
+    if (tangent == TangentRule::no_hit) all = without_tangents(all);
+    if (a == Answers::all) return all;
+    if (a == Answers::nearest) {
+        all.count = std::min<std::uint8_t>(all.count, 1);
+        return all;
+    }
     bool inside = inside_before(posed);
     Result first = all;
     first.count = 0;
@@ -422,6 +437,12 @@ Result reference_for(Answers a, const Case& posed) {
     return first;
 }
 
+} // namespace
+
+Result reference_for(Answers a, const Case& posed) {
+    return reference_under(a, TangentRule::hit, posed);
+}
+
 Reference reference_for(const ExternalSolver& s, const Case& posed) {
     Reference ref;
     bool inside_convention = s.inside != StartInside::as_answers && solid(posed.shape);
@@ -431,13 +452,19 @@ Reference reference_for(const ExternalSolver& s, const Case& posed) {
             return ref;
         }
         if (start_of(posed) == Start::outside) {
-            ref.unrepresented = "first exit: the range does not start inside the solid";
+            ref.not_asked = "first exit: the range does not start inside the solid";
             return ref;
         }
     } else if (inside_convention) {
         Start start = start_of(posed);
         bool applies = start == Start::inside ||
-                       (start == Start::on_surface && s.inside != StartInside::no_hit);
+                       (start == Start::on_surface && s.inside != StartInside::no_hit &&
+                        s.on_surface == StartOnSurface::as_inside);
+        if (applies && s.inside == StartInside::undefined) {
+            ref.not_asked = start == Start::inside ? "the range starts inside the solid (undefined)"
+                                                   : "the range starts on the surface (undefined)";
+            return ref;
+        }
         if (applies) {
             ref.kinds = ref.parts = false; // a start inside is no point of the surface
             if (s.inside == StartInside::no_hit) ref.result = Result{};
@@ -446,7 +473,7 @@ Reference reference_for(const ExternalSolver& s, const Case& posed) {
             return ref;
         }
     }
-    ref.result = reference_for(s.answers, posed);
+    ref.result = reference_under(s.answers, s.tangent, posed);
     if (s.contact_as_point && ref.result.ok() && ref.result.on_surface) {
         const Result& r = ref.result;
         if (std::isinf(r.s0)) {
@@ -463,14 +490,83 @@ Reference reference_for(const ExternalSolver& s, const Case& posed) {
     return ref;
 }
 
+bool answers_as_oracle(const ExternalSolver& s) {
+    return s.answers == Answers::all && s.surface == Surface::as_posed &&
+           s.parametrisation == Parametrisation::line && s.inside == StartInside::as_answers &&
+           !s.contact_as_point && s.tangent == TangentRule::hit;
+}
+
 std::string reference_label(const ExternalSolver& s) {
-    if (s.answers == Answers::all && s.inside == StartInside::as_answers && !s.contact_as_point)
+    if (s.answers == Answers::all && s.inside == StartInside::as_answers && !s.contact_as_point &&
+        s.tangent == TangentRule::hit)
         return "exact";
     std::string label = std::string("exact, ") + answers_name(s.answers);
     if (s.inside != StartInside::as_answers)
         label += std::string(", start inside: ") + start_inside_name(s.inside);
+    if (s.inside != StartInside::as_answers && s.on_surface == StartOnSurface::by_direction)
+        label += ", start on surface: by direction";
     if (s.contact_as_point) label += ", contact: first point";
+    if (s.tangent == TangentRule::no_hit) label += ", tangent: no hit";
     return label;
+}
+
+void read_conventions(const ExternalSolver& s, const Case& posed, Result& got) {
+    if (!(s.negative_zero > 0) || !got.ok()) return;
+    double speed = std::hypot(std::hypot(posed.line.v.x, posed.line.v.y), posed.line.v.z);
+    if (!(speed > 0) || !std::isfinite(speed)) return;
+    // The distance of a t is |t| |v|: a t in [-negative_zero / |v|, 0) is a distance the library
+    // means as 0.
+    for (int i = 0; i < got.count; ++i)
+        if (got.hits[i].t < 0 && -got.hits[i].t * speed <= s.negative_zero) got.hits[i].t = 0;
+}
+
+std::string conventions_text(const ExternalSolver& s) {
+    std::vector<std::string> said;
+    auto number = [](double x) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3g", x);
+        return std::string(text);
+    };
+    if (!s.tolerance.none()) {
+        std::string t = "surfaces ";
+        if (s.tolerance.absolute > 0) t += number(s.tolerance.absolute);
+        if (s.tolerance.absolute > 0 && s.tolerance.relative > 0) t += " + ";
+        if (s.tolerance.relative > 0) t += number(s.tolerance.relative) + " × the scene's size";
+        said.push_back(t + " off at most");
+    }
+    if (s.tangent == TangentRule::no_hit) said.emplace_back("a tangent touch is no hit");
+    if (s.inside != StartInside::as_answers && s.on_surface == StartOnSurface::by_direction)
+        said.emplace_back(
+            "a start on the surface: an entry at the start moving in, none moving out");
+    if (s.negative_zero > 0)
+        said.push_back("a distance down to -" + number(s.negative_zero) + " reads as 0");
+    std::string out;
+    for (const std::string& x : said)
+        out += (out.empty() ? "" : "; ") + x;
+    return out;
+}
+
+std::string declaration_problem(const ExternalSolver& s) {
+    std::string which = "solver '" + s.name + "'";
+    auto length = [&](const char* field, double x) -> std::string {
+        if (std::isfinite(x) && x >= 0) return "";
+        char text[64];
+        std::snprintf(text, sizeof text, "%g", x);
+        return which + ": " + field + " must be finite and at least 0, not " + text;
+    };
+    for (auto [field, x] :
+         {std::pair<const char*, double>{"tolerance_absolute", s.tolerance.absolute},
+          {"tolerance_relative", s.tolerance.relative},
+          {"negative_zero", s.negative_zero}})
+        if (std::string p = length(field, x); !p.empty()) return p;
+    bool entry = s.answers == Answers::nearest || s.answers == Answers::first_entry;
+    if (s.inside != StartInside::as_answers && !entry)
+        return which + ": inside (" + start_inside_name(s.inside) +
+               ") is for nearest or first-entry answers";
+    if (s.on_surface != StartOnSurface::as_inside && s.inside == StartInside::as_answers)
+        return which + ": start_on_surface says how a start-inside convention meets the surface; "
+                       "it has none";
+    return "";
 }
 
 Error input_problem(const ExternalSolver& s, const Case& posed) {
@@ -504,10 +600,13 @@ std::vector<std::string> replay_lines(const std::string& name, const Solver* own
                            why.empty() ? "the solver cannot represent this case" : why)};
     };
     if (!e.takes(c.shape)) return unrepresented("the solver takes no such shape");
-    ExternalAnswer a = e.answer(c.shape, c.line);
-    if (!a.result) return unrepresented(a.unrepresented);
     Reference ref = reference_for(e, c);
     if (!ref.unrepresented.empty()) return unrepresented(ref.unrepresented);
+    if (!ref.not_asked.empty())
+        return {format_failure(c.id, name, "not_asked", ref.not_asked + ": not asked")};
+    ExternalAnswer a = e.answer(c.shape, c.line);
+    if (!a.result) return unrepresented(a.unrepresented);
+    read_conventions(e, c, *a.result);
     std::string label = reference_label(e);
     Carries what{e.points && ref.points, e.kinds && ref.kinds, e.parts && ref.parts};
     return {format_result(c.id, name, *a.result, what),
@@ -515,6 +614,24 @@ std::vector<std::string> replay_lines(const std::string& name, const Solver* own
 }
 
 // ---- plugins
+
+ExternalSolver declared_as_external(const DeclaredSolver& d) {
+    ExternalSolver e;
+    e.name = d.name;
+    e.precision = d.precision;
+    e.answers = d.answers;
+    e.parametrisation = d.parametrisation;
+    e.surface = d.surface;
+    e.inside = d.inside;
+    e.contact_as_point = d.contact_as_point;
+    e.on_surface = d.on_surface;
+    e.tangent = d.tangent;
+    e.tolerance = d.tolerance;
+    e.negative_zero = d.negative_zero;
+    e.points = d.points, e.kinds = d.kinds, e.parts = d.parts;
+    e.mapping = d.mapping;
+    return e;
+}
 
 std::vector<ExternalSolver> load_plugin(const std::string& path, const PluginOptions& o) {
     // Kept as an absolute path: the report's replay commands work from any directory.
@@ -525,16 +642,7 @@ std::vector<ExternalSolver> load_plugin(const std::string& path, const PluginOpt
     std::vector<ExternalSolver> out;
     for (std::size_t i = 0; i < worker->solvers().size(); ++i) {
         const DeclaredSolver& d = worker->solvers()[i];
-        ExternalSolver e;
-        e.name = d.name;
-        e.precision = d.precision;
-        e.answers = d.answers;
-        e.parametrisation = d.parametrisation;
-        e.surface = d.surface;
-        e.inside = d.inside;
-        e.contact_as_point = d.contact_as_point;
-        e.points = d.points, e.kinds = d.kinds, e.parts = d.parts;
-        e.mapping = d.mapping;
+        ExternalSolver e = declared_as_external(d);
         e.plugin = where;
         e.worker = worker;
         e.worker_index = int(i);

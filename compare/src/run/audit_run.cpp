@@ -9,6 +9,7 @@
 #include "linequad/exact.hpp"
 #include "linequad/registry.hpp"
 
+#include "grade/tolerance.hpp"
 #include "io/jsonl.hpp"
 #include "io/process.hpp"
 #include "run/ordered_pool.hpp"
@@ -219,6 +220,9 @@ Report::External describe(const ExternalSolver& e) {
     x.plugin = e.plugin;
     if (e.inside != StartInside::as_answers) x.inside = start_inside_name(e.inside);
     if (e.contact_as_point) x.contact = "first point";
+    x.conventions = conventions_text(e);
+    x.tolerance_absolute = e.tolerance.absolute;
+    x.tolerance_relative = e.tolerance.relative;
     return x;
 }
 
@@ -518,8 +522,8 @@ class ChunkGrader {
     }
 
   private:
-    // The library's cases are posed its way, and its reference solved for what it saw (under
-    // its declared conventions).
+    // The library's cases are posed its way, its reference solved for what it saw (under its
+    // declared conventions), and it is asked only what its contract defines.
     void grade_external(const ExternalSolver& e, const std::vector<Case>& cases,
                         const std::string& family, const std::string& shape, Report& out) {
         Row& row = out.rows[{family, shape, e.name}];
@@ -527,16 +531,33 @@ class ChunkGrader {
             ++row.unrepresented;
             if (!why.empty()) ++row.unrepresented_why[why];
         };
+        // The oracle's answer stands when the library saw the case as it is and answers all.
+        bool as_is = answers_as_oracle(e);
         posed_.clear();
         from_.clear();
+        references_.clear();
         std::string why;
-        for (std::size_t i = 0; i < cases.size(); ++i)
-            if (std::optional<Case> p = posed_for(e, cases[i], &why)) {
+        for (std::size_t i = 0; i < cases.size(); ++i) {
+            std::optional<Case> p = posed_for(e, cases[i], &why);
+            if (!p) {
+                unrepresented(why);
+                continue;
+            }
+            Reference ref;
+            if (as_is)
+                ref.result = oracle_[i];
+            else
+                ref = reference_for(e, *p);
+            if (!ref.unrepresented.empty()) {
+                unrepresented(ref.unrepresented);
+            } else if (!ref.not_asked.empty()) {
+                ++row.not_asked[ref.not_asked];
+            } else {
                 posed_.push_back(std::move(*p));
                 from_.push_back(i);
-            } else {
-                unrepresented(why);
+                references_.push_back(std::move(ref));
             }
+        }
         if (posed_.empty()) return;
         double ns = 0;
         {
@@ -548,31 +569,24 @@ class ChunkGrader {
             if (!e.answer_all(posed_, answers_, &ns)) return;
         }
         if (ns > 0) row.ns.add(ns / double(posed_.size()));
-        // The oracle's answer stands when the library saw the case as it is and answers all.
-        bool as_is = e.answers == Answers::all && e.surface == Surface::as_posed &&
-                     e.parametrisation == Parametrisation::line &&
-                     e.inside == StartInside::as_answers && !e.contact_as_point;
         std::string label = reference_label(e);
         auto& curve = out.curves[{family, e.name}];
         for (std::size_t j = 0; j < posed_.size(); ++j) {
-            const ExternalAnswer& a = answers_[j];
+            ExternalAnswer& a = answers_[j];
             if (*a.environment) ++row.environment[a.environment];
             if (!a.result) {
                 unrepresented(a.unrepresented);
                 continue;
             }
-            Reference ref;
-            if (as_is)
-                ref.result = oracle_[from_[j]];
-            else
-                ref = reference_for(e, posed_[j]);
-            if (!ref.unrepresented.empty()) {
-                unrepresented(ref.unrepresented);
-                continue;
-            }
+            read_conventions(e, posed_[j], *a.result);
+            const Reference& ref = references_[j];
             Grading what{e.points && ref.points, e.kinds && ref.kinds, e.parts && ref.parts};
-            grade({posed_[j], e.name, *a.result, ref.result, what, label}, row,
-                  &curve[posed_[j].k]);
+            std::function<bool(const Result&)> tolerated = [&](const Result& got) {
+                return within_tolerance(e, posed_[j], got);
+            };
+            grade({posed_[j], e.name, *a.result, ref.result, what, label,
+                   e.tolerance.none() ? nullptr : &tolerated},
+                  row, &curve[posed_[j].k]);
         }
     }
 
@@ -581,6 +595,7 @@ class ChunkGrader {
     std::vector<Result> oracle_, got_;
     std::vector<Case> posed_;
     std::vector<std::size_t> from_;
+    std::vector<Reference> references_;
     std::vector<ExternalAnswer> answers_;
 };
 
@@ -709,8 +724,10 @@ Report run(const Options& o, const std::vector<ExternalSolver>& external) {
     rep.solvers = solvers.names;
     bool batch = batch_wanted(o);
     if (batch) rep.solvers.emplace_back(batch_name);
-    for (const ExternalSolver* e : solvers.external)
+    for (const ExternalSolver* e : solvers.external) {
+        if (std::string p = declaration_problem(*e); !p.empty()) throw std::invalid_argument(p);
         rep.external[e->name] = describe(*e);
+    }
     if (!o.cases_file.empty()) return solve_cases_file(o, solvers, rep);
     for (Family f : families_of(o))
         rep.families.emplace_back(family_name(f));

@@ -176,7 +176,17 @@ struct Offered {
     void* self;
     int inside = 0, contact = 0;
     int (*solve_batch)(void*, int, const lq_shape*, const lq_line*, lq_answer*) = nullptr;
+    int on_surface = 0, tangent = 0;
+    double tolerance_absolute = 0, tolerance_relative = 0, negative_zero = 0;
 };
+
+// A double for the hello line exactly, NaN and infinities included (JSON numbers hold neither):
+// the parent checks the value.
+std::string exact_text(double x) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%a", x);
+    return text;
+}
 
 jsonl::Json state_json(FpState s) {
     return {{"simd", s.simd}, {"x87", s.x87}};
@@ -220,14 +230,15 @@ Loaded load(const std::string& path) {
     const lq_solver* array = nullptr;
     int n = -1;
     try {
-        n = entry(LQ_ABI, &array);
-        if (n < 0) out.abi = 1, n = entry(1, &array);
+        // Each ABI from the newest: a plugin answers -1 to one it was not built for.
+        for (out.abi = LQ_ABI; out.abi >= 1; --out.abi)
+            if ((n = entry(out.abi, &array)) >= 0) break;
     } catch (const std::exception& e) {
         refuse_to_load(std::string("its linequad_audit_plugin threw: ") + e.what());
     } catch (...) {
         refuse_to_load("its linequad_audit_plugin threw");
     }
-    if (n < 0) refuse_to_load("does not speak the plugin ABI 2 or 1");
+    if (n < 0) refuse_to_load("does not speak the plugin ABI 3, 2 or 1");
     if (n == 0 || !array) refuse_to_load("offers no solver");
     if (n > 256) refuse_to_load("offers " + std::to_string(n) + " solvers (at most 256)");
     out.after = numeric::fp_state();
@@ -236,11 +247,17 @@ Loaded load(const std::string& path) {
             const lq_solver_v1& s = reinterpret_cast<const lq_solver_v1*>(array)[i];
             out.offered.push_back({s.name, s.precision, s.answers, s.parametrisation, s.surface,
                                    s.carries, s.shapes, s.mapping, s.solve, s.self});
+        } else if (out.abi == 2) {
+            const lq_solver_v2& s = reinterpret_cast<const lq_solver_v2*>(array)[i];
+            out.offered.push_back({s.name, s.precision, s.answers, s.parametrisation, s.surface,
+                                   s.carries, s.shapes, s.mapping, s.solve, s.self, s.inside,
+                                   s.contact, s.solve_batch});
         } else {
             const lq_solver& s = array[i];
             out.offered.push_back({s.name, s.precision, s.answers, s.parametrisation, s.surface,
                                    s.carries, s.shapes, s.mapping, s.solve, s.self, s.inside,
-                                   s.contact, s.solve_batch});
+                                   s.contact, s.solve_batch, s.start_on_surface, s.tangent,
+                                   s.tolerance_absolute, s.tolerance_relative, s.negative_zero});
         }
     }
     return out;
@@ -262,6 +279,11 @@ jsonl::Json hello(const Loaded& l) {
                            {"solve", o.solve != nullptr},
                            {"inside", o.inside},
                            {"contact", o.contact},
+                           {"start_on_surface", o.on_surface},
+                           {"tangent", o.tangent},
+                           {"tolerance_absolute", exact_text(o.tolerance_absolute)},
+                           {"tolerance_relative", exact_text(o.tolerance_relative)},
+                           {"negative_zero", exact_text(o.negative_zero)},
                            {"batch", o.solve_batch != nullptr}});
     return {{"ok", true},
             {"abi", l.abi},
@@ -769,15 +791,33 @@ struct PluginWorker::Impl {
                     return which + ": surface out of range";
                 d.surface = Surface(surface);
                 int inside = s.at("inside").get<int>(), contact = s.at("contact").get<int>();
-                if (inside < LQ_INSIDE_AS_ANSWERS || inside > LQ_INSIDE_ZERO)
-                    return which + ": inside out of range";
-                if (inside != LQ_INSIDE_AS_ANSWERS && d.answers != Answers::nearest &&
-                    d.answers != Answers::first_entry)
-                    return which + ": an inside convention is for nearest or first-entry answers";
+                if (inside < LQ_INSIDE_AS_ANSWERS || inside > LQ_INSIDE_UNDEFINED ||
+                    (inside == LQ_INSIDE_UNDEFINED && abi < 3))
+                    return which + ": inside out of range (" + std::to_string(inside) + ")";
                 if (contact != LQ_CONTACT_INTERVAL && contact != LQ_CONTACT_FIRST_POINT)
-                    return which + ": contact out of range";
+                    return which + ": contact out of range (" + std::to_string(contact) + ")";
                 d.inside = StartInside(inside);
                 d.contact_as_point = contact == LQ_CONTACT_FIRST_POINT;
+                int on_surface = s.at("start_on_surface").get<int>();
+                if (on_surface != LQ_ON_SURFACE_AS_INSIDE &&
+                    on_surface != LQ_ON_SURFACE_BY_DIRECTION)
+                    return which + ": start_on_surface out of range (" +
+                           std::to_string(on_surface) + ")";
+                d.on_surface = StartOnSurface(on_surface);
+                int tangent = s.at("tangent").get<int>();
+                if (tangent != LQ_TANGENT_HIT && tangent != LQ_TANGENT_NO_HIT)
+                    return which + ": tangent out of range (" + std::to_string(tangent) + ")";
+                d.tangent = TangentRule(tangent);
+                // Read back exactly as the worker wrote them (a hex float, "nan", "inf"); text
+                // that is not all one number reads as NaN, refused below naming the field.
+                auto real = [&](const char* field) {
+                    std::string text = s.at(field).get<std::string>();
+                    char* end = nullptr;
+                    double x = std::strtod(text.c_str(), &end);
+                    return !text.empty() && end == text.c_str() + text.size() ? x : NAN;
+                };
+                d.tolerance = {real("tolerance_absolute"), real("tolerance_relative")};
+                d.negative_zero = real("negative_zero");
                 if (!s.at("solve").get<bool>()) return which + " has no solve function";
                 unsigned shapes = s.at("shapes").get<unsigned>();
                 unsigned every = (1u << shape_count) - 1;
@@ -788,6 +828,8 @@ struct PluginWorker::Impl {
                 d.parts = carries & LQ_PARTS;
                 d.mapping = s.at("mapping").get<std::string>();
                 d.batch = s.at("batch").get<bool>();
+                if (std::string p = declaration_problem(declared_as_external(d)); !p.empty())
+                    return p;
                 for (const DeclaredSolver& other : solvers)
                     if (other.name == d.name) return which + " is declared twice";
                 solvers.push_back(d);

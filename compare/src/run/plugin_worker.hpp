@@ -31,10 +31,17 @@ struct DeclaredSolver {
     Surface surface = Surface::as_posed;
     StartInside inside = StartInside::as_answers;
     bool contact_as_point = false;
+    StartOnSurface on_surface = StartOnSurface::as_inside;
+    TangentRule tangent = TangentRule::hit;
+    Tolerance tolerance;
+    double negative_zero = 0;
     bool points = false, kinds = false, parts = false;
     unsigned shapes = 0; // bit k: the shape kind k of the ABI (the index in linequad::Shape)
     bool batch = false;  // it has the ABI's batch entry
 };
+
+// The ExternalSolver a declaration makes (without its worker).
+ExternalSolver declared_as_external(const DeclaredSolver& d);
 
 class PluginWorker {
   public:
