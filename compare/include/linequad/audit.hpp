@@ -112,6 +112,9 @@ struct Row {
     // Cases whose classification differs from the exact one but is right for a surface within
     // the solver's declared tolerance: graded (in `cases`), not mismatched, no error measured.
     std::uint64_t within_tolerance = 0;
+    // Roots of the wrong sign, or 0 where the exact root is not (or the reverse): counted here,
+    // not as an ulp distance (which would read near 2^63 for a sign flip near 0).
+    std::uint64_t t_sign_wrong = 0;
     // Of those, the ones with a reason (the library's own words, or why a case cannot be posed
     // its way), by reason.
     std::map<std::string, std::uint64_t> unrepresented_why;
@@ -325,6 +328,48 @@ void for_each_case(const Options& o, const std::function<void(const Case&)>& f);
 // is described in one line. Empty: every claim holds.
 std::vector<std::string> broken_claims(const Report& r);
 
+// A solver's verdict, as the report's first screen and the audit's closing summary say it: of the
+// cases it was asked, the share classified as the exact oracle does; the families where it
+// misclassifies most, each with the difficulty k from which it breaks (at least 1 % misclassified
+// at that k; -1 when no k reaches it); its t error in bits, log2(1 + ulps) (Herbie's measure).
+struct FamilyShare {
+    std::string family;
+    std::uint64_t misclassified = 0, cases = 0;
+    int breaks_at = -1;
+};
+struct Verdict {
+    std::string solver;
+    std::uint64_t cases = 0, misclassified = 0, within_tolerance = 0, not_asked = 0,
+                  unrepresented = 0, sign_wrong = 0;
+    std::vector<FamilyShare> worst_families; // at most three, the largest share first
+    bool errors = false;                     // any root graded
+    double t_max_ulps = 0, t_p99_ulps = 0;
+    double t_max_bits() const;
+    double t_p99_bits() const;
+};
+std::vector<Verdict> verdicts(const Report& r);
+// One solver's rows of one family, merged.
+Row family_total(const Report& r, const std::string& family, const std::string& solver);
+// The smallest difficulty k at which the solver misclassifies at least 1 % of the family's cases
+// (its curve's point), or -1.
+int breaks_at(const Report& r, const std::string& family, const std::string& solver);
+// Text for people: "0.12 %", "< 0.01 %", "100 %"; "-" of nothing.
+std::string percent_of(std::uint64_t part, std::uint64_t whole);
+// The verdict in one line of words (the audit's closing summary).
+std::string verdict_line(const Verdict& v);
+
+// A gate on a solver: `SOLVER:METRIC<=VALUE`, with METRIC misclassified (% of the cases graded),
+// t_bits_max or t_bits_p99, held in every family the solver graded.
+struct Expectation {
+    std::string solver, metric;
+    double at_most = 0;
+};
+// Reads one; false with *why naming what is wrong.
+bool parse_expectation(std::string_view text, Expectation* e, std::string* why);
+// Every family and metric that breaks an expectation, in words (a solver that graded nothing
+// breaks every expectation on it); empty when all hold.
+std::vector<std::string> unmet(const Report& r, const std::vector<Expectation>& expectations);
+
 // What changed from one report to another, family by family and solver by solver (each
 // solver's rows of a family merged over shapes and ranges), and whether it got worse beyond the
 // thresholds: a regression gate for CI that asks "not made worse", not a fixed tolerance.
@@ -364,6 +409,9 @@ bool from_json(std::string_view text, Report* r, std::string* why);
 bool read_json(const std::string& path, Report* r, std::string* why); // why names the file too
 void write_json(const Report& r, const std::string& path);            // atomic; throws
 std::string markdown(const Report& r);
+// The command that replays one of a row's worst cases of solver `solver`, every word quoted for
+// the shell: `echo '<case>' | linequad replay [--plugin '<path>'] --solver '<name>'`.
+std::string replay_command(const Report& r, const Worst& w, const std::string& solver);
 // The figures beside the report, as SVG: pareto.svg, difficulty_<family>.svg (the family's name
 // made a file name: difficulty_figure) and distance.svg. Returns whether it drew; throws if it
 // cannot write its files.

@@ -28,7 +28,8 @@ struct CampaignArgs {
     std::vector<std::string> plugins;
     std::string solver_timeout = "5";
     bool no_plots = false, check = false;
-    std::string history, commit; // the history database to append to, and under which commit
+    std::string history, commit;     // the history database to append to, and under which commit
+    std::vector<std::string> expect; // gates on solvers: SOLVER:METRIC<=VALUE
 
     audit::Options options() const;
 };
@@ -137,13 +138,9 @@ void show_progress(audit::Options& o) {
 // were graded.
 std::uint64_t print_summary(const audit::Report& r) {
     std::uint64_t graded = 0;
-    for (const std::string& s : r.solvers) {
-        audit::Row t = r.total(s);
-        graded += t.cases;
-        std::printf("%-10s cases %8llu  mismatched %6llu  t max %12s ulps  p99 %8.3g\n", s.c_str(),
-                    (unsigned long long)t.cases, (unsigned long long)t.cases_mismatched,
-                    t.t_max == UINT64_MAX ? "inf" : std::to_string(t.t_max).c_str(),
-                    t.t_quantile(0.99));
+    for (const audit::Verdict& v : audit::verdicts(r)) {
+        graded += v.cases;
+        std::printf("%s\n", audit::verdict_line(v).c_str());
     }
     if (std::fflush(stdout) != 0)
         throw std::runtime_error(std::string("cannot write standard output: ") +
@@ -209,6 +206,17 @@ int run_audit(const CampaignArgs& a, const std::string& command) {
     for (const std::string& name : o.solvers)
         if (std::string why = solver_error(name, true, ext); !why.empty())
             return fail("--solvers: " + why);
+    // A gate on a solver the run will not grade is refused before the run, not after it.
+    for (const std::string& text : a.expect) {
+        audit::Expectation e;
+        std::string why;
+        audit::parse_expectation(text, &e, &why);
+        if (std::string no = solver_error(e.solver, true, ext); !no.empty())
+            return fail("--expect: " + no);
+        if (!o.solvers.empty() &&
+            std::find(o.solvers.begin(), o.solvers.end(), e.solver) == o.solvers.end())
+            return fail("--expect: '" + e.solver + "' is not among --solvers");
+    }
     // Without --solvers: linequad's own and the plugins' (the peer libraries when named).
     if (o.solvers.empty() && !a.plugins.empty()) {
         for (const Solver& s : fast_solvers())
@@ -237,6 +245,20 @@ int run_audit(const CampaignArgs& a, const std::string& command) {
         std::fprintf(stderr, "audit: %s%s\n", a.check ? "" : "warning: ", why.c_str());
     if (a.check && !idle.empty()) return 1;
     if (a.check && check_claims(r, graded) != 0) return 1;
+    if (!a.expect.empty() && r.status != audit::Status::stopped) {
+        std::vector<audit::Expectation> gates;
+        for (const std::string& text : a.expect) {
+            audit::Expectation e;
+            std::string why;
+            audit::parse_expectation(text, &e, &why); // checked when the options were read
+            gates.push_back(e);
+        }
+        std::vector<std::string> broken = audit::unmet(r, gates);
+        for (const std::string& b : broken)
+            std::fprintf(stderr, "audit --expect: %s\n", b.c_str());
+        if (!broken.empty()) return 1;
+        std::fprintf(stderr, "audit --expect: %zu held in every family\n", gates.size());
+    }
     return r.status == audit::Status::stopped ? 130 : 0;
 }
 
@@ -266,6 +288,18 @@ Command audit_command(CLI::App& app) {
     c->add_flag("--no-plots", a->no_plots, "no figures");
     add_history_options(c, a->history, a->commit);
     c->add_flag("--check", a->check, "exit 1 if a solver breaks a claim the README makes for it");
+    c->add_option("--expect", a->expect,
+                  "a gate on a solver, held in every family it grades (repeatable): exit 1 "
+                  "naming each family that breaks it. METRIC: misclassified (% of the cases "
+                  "graded), t_bits_max or t_bits_p99 (log2(1 + ulps))")
+        ->type_name("SOLVER:METRIC<=VALUE")
+        ->check(CLI::Validator(
+            [](const std::string& text) {
+                audit::Expectation e;
+                std::string why;
+                return audit::parse_expectation(text, &e, &why) ? std::string() : why;
+            },
+            ""));
     CLI::Option* cases_file =
         c->add_option("--cases-file", a->cases_file,
                       "cases (JSON Lines) instead of the families: solved by the solvers, or "

@@ -83,6 +83,14 @@ CLI::Validator names_in(const Kind& kind, std::vector<std::string> known);
 void add_plugin_options(CLI::App* app, std::vector<std::string>& plugins, std::string& timeout);
 void add_history_options(CLI::App* app, std::string& history, std::string& commit);
 
+// ---- markdown on the standard output
+
+// --format for a command that prints its markdown (diff, history): md, text, or auto (the
+// default: plain text on a terminal, markdown into a pipe or a file).
+void add_format_option(CLI::App* c, std::string& format);
+// The markdown as the standard output should get it under that choice.
+std::string for_standard_output(const std::string& md, const std::string& format);
+
 // ---- solvers from outside linequad
 
 // The peer libraries built in, then the solvers of the plugins given, loaded once (each plugin in

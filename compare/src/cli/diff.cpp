@@ -10,7 +10,7 @@ namespace linequad::cli {
 namespace {
 
 struct DiffArgs {
-    std::string old_report, new_report, markdown_file = "-", junit_file;
+    std::string old_report, new_report, markdown_file = "-", junit_file, format = "auto";
     std::string max_growth = "0", p99_growth = "0", time_growth;
     bool any_campaign = false;
 };
@@ -28,7 +28,7 @@ int run_diff(const DiffArgs& a) {
     std::string md = audit::diff_markdown(d, a.old_report, a.new_report);
     if (a.markdown_file == "-") {
         jsonl::Output out;
-        out.text(md);
+        out.text(for_standard_output(md, a.format));
         out.finish();
     } else {
         jsonl::write_file(a.markdown_file, md);
@@ -84,6 +84,7 @@ Command diff_command(CLI::App& app) {
         ->type_name("FILE")
         ->capture_default_str();
     d->add_option("--junit", a->junit_file, "also write JUnit XML here")->type_name("FILE");
+    add_format_option(d, a->format);
     return {d, [a](const std::string&) { return run_diff(*a); }, {}};
 }
 

@@ -11,7 +11,7 @@ namespace linequad::cli {
 namespace {
 
 struct HistoryArgs {
-    std::string db, add, commit, solvers, family = "*", shape = "*", plot;
+    std::string db, add, commit, solvers, family = "*", shape = "*", plot, format = "auto";
 };
 
 int run_history(const HistoryArgs& h) {
@@ -34,7 +34,8 @@ int run_history(const HistoryArgs& h) {
     jsonl::Output out;
     for (const std::string& s : solvers) {
         std::vector<audit::HistoryPoint> points = history.trend(s, h.family, h.shape);
-        out.line(audit::trend_markdown(points, s, h.family, h.shape));
+        out.line(
+            for_standard_output(audit::trend_markdown(points, s, h.family, h.shape), h.format));
         if (!h.plot.empty()) {
             if (points.empty()) return fail("history: no run of " + s + " to plot");
             std::string title = s + ": " + (h.family == "*" ? "every family" : h.family) + ", " +
@@ -68,6 +69,7 @@ Command history_command(CLI::App& app) {
     c->add_option("--shape", h->shape, "one shape (default: every shape)")->type_name("SHAPE");
     c->add_option("--plot", h->plot, "draw the trend (one solver) as an SVG file")
         ->type_name("FILE.svg");
+    add_format_option(c, h->format);
     return {c, [h](const std::string&) { return run_history(*h); }, {}};
 }
 

@@ -4,10 +4,13 @@
 #include "linequad/families.hpp"
 #include "linequad/registry.hpp"
 
+#include "io/escape.hpp"
 #include "io/jsonl.hpp"
 #include "io/process.hpp"
 #include "peers/peers.hpp"
 #include "run/plugin_worker.hpp"
+
+#include <unistd.h>
 
 #include <algorithm>
 #include <charconv>
@@ -176,6 +179,20 @@ void add_history_options(CLI::App* app, std::string& history, std::string& commi
                     "names it): your solver's commit when you audit your solver")
         ->type_name("ID")
         ->needs(db);
+}
+
+void add_format_option(CLI::App* c, std::string& format) {
+    c->add_option("--format", format,
+                  "the standard output's form: md (markdown), text, or auto (text on a terminal, "
+                  "markdown otherwise)")
+        ->type_name("auto|md|text")
+        ->check(CLI::IsMember({"auto", "md", "text"}))
+        ->capture_default_str();
+}
+
+std::string for_standard_output(const std::string& md, const std::string& format) {
+    bool text = format == "text" || (format == "auto" && ::isatty(STDOUT_FILENO));
+    return text ? escape::markdown_as_text(md) : md;
 }
 
 std::vector<audit::ExternalSolver> external_solvers(const std::vector<std::string>& plugins,

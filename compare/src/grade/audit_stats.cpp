@@ -210,6 +210,7 @@ void Row::merge(const Row& o) {
     s_error.merge(o.s_error), s_max = std::max(s_max, o.s_max);
     unrepresented += o.unrepresented;
     within_tolerance += o.within_tolerance;
+    t_sign_wrong += o.t_sign_wrong;
     for (const auto& [why, n] : o.not_asked)
         not_asked[why] += n;
     for (const auto& [name, n] : o.unrepresented_why)
@@ -302,6 +303,18 @@ std::uint64_t grade_roots(const Answered& a, Row& row, CurvePoint* curve) {
                                                                  : UINT64_MAX);
     };
     auto add_t = [&](double g, double o) {
+        // A root of the wrong sign, or 0 against a nonzero one: counted as what it is (its ulp
+        // distance, through every float between them, would read near 2^63). Its scene error
+        // still says how far the hit is; the case ranks first among its row's worst.
+        bool sign_wrong = (g == 0) != (o == 0) || (g != 0 && std::signbit(g) != std::signbit(o));
+        if (sign_wrong && std::isfinite(g) && std::isfinite(o)) {
+            ++row.t_sign_wrong;
+            case_max = UINT64_MAX;
+            std::uint64_t su = scene_ulps(c, g, o);
+            row.s_error.add(su);
+            row.s_max = std::max(row.s_max, su);
+            return;
+        }
         std::uint64_t u = ulps_between(g, o, c.precision);
         row.t_error.add(u);
         if (curve) curve->t_error.add(u);
@@ -363,7 +376,7 @@ void grade(const Answered& a, Row& row, CurvePoint* curve) {
     if (curve) {
         ++curve->cases;
         curve->mismatched += mismatch;
-        curve->t_max = std::max(curve->t_max, case_max);
+        if (case_max != UINT64_MAX) curve->t_max = std::max(curve->t_max, case_max);
     }
     if (qualifies(row.worst, mismatch, case_max)) {
         Worst w(a.c, a.solver, got, a.reference, a.what, a.reference_name);

@@ -31,4 +31,14 @@ std::string markdown_block(const std::vector<std::string>& lines, std::string_vi
 // characters, cut and ended with a hash of the whole.
 std::string file_name(std::string_view s);
 
+// A heading's anchor in report.html, from its text as a person reads it: lowercase letters and
+// digits kept, every run of anything else one '-', none at either end ("Solver: seed32" is
+// "solver-seed32"). The report's contents link to it; report.html gives its sections that id.
+std::string anchor(std::string_view s);
+
+// linequad's own markdown (a diff, a trend) as plain text for a terminal: backslash escapes,
+// bold marks and code-span backticks dropped, tables as columns padded to their widest cell, the
+// header's rule a line of dashes.
+std::string markdown_as_text(std::string_view md);
+
 } // namespace linequad::escape

@@ -74,6 +74,7 @@ OrderedJson row_json(const RowKey& key, const Row& r) {
         {"scene_ulps",
          {{"max", r.s_max}, {"p99", r.s_quantile(0.99)}, {"histogram", pairs(r.s_error.count)}}},
         {"within_tolerance", r.within_tolerance},
+        {"t_sign_wrong", r.t_sign_wrong},
         {"not_asked", r.not_asked},
         {"unrepresented", r.unrepresented},
         {"unrepresented_why", r.unrepresented_why},
@@ -245,15 +246,17 @@ void read_errors(const Node& n, Row& r) {
     check_max(p.at("max"), r.p_max, r.p_error, r.graded_coords);
     // Reports from before scene-relative errors and external solvers have neither.
     // A row merged from such a report and a newer one holds scene errors for only some of its
-    // roots, so the scene histogram holds at most graded_roots values, not exactly that many.
+    // roots, so the scene histogram holds at most graded_roots values, not exactly that many;
+    // roots of the wrong sign have a scene error (and no ulps of t) too.
     if (n.find("scene_ulps")) {
         Node sc = n.at("scene_ulps");
         r.s_max = sc.at("max").count();
         std::uint64_t scene = read_pairs(sc.at("histogram"), r.s_error.count);
-        if (scene > r.graded_roots)
+        if (scene > r.graded_roots + r.t_sign_wrong)
             sc.at("histogram")
-                .fail("holds " + std::to_string(scene) + " values, more than graded_roots (" +
-                      std::to_string(r.graded_roots) + ")");
+                .fail("holds " + std::to_string(scene) +
+                      " values, more than graded_roots and t_sign_wrong (" +
+                      std::to_string(r.graded_roots + r.t_sign_wrong) + ")");
         check_max(sc.at("max"), r.s_max, r.s_error, scene);
     }
 }
@@ -263,7 +266,7 @@ void read_certified_and_rungs(const Node& n, Row& r) {
     Node c = n.at("certified");
     r.uncertain = c.at("uncertain").count(r.cases);
     r.certain_wrong = c.at("certain_wrong").count(r.cases);
-    r.bounded_roots = c.at("bounded_roots").count(r.graded_roots);
+    r.bounded_roots = c.at("bounded_roots").count(r.graded_roots + r.t_sign_wrong);
     r.bound_violations = c.at("bound_violations").count(r.bounded_roots);
     r.bound_below_half_ulp = c.at("bound_below_half_ulp").count(r.bounded_roots);
     check_total(c.at("tightness"), read_pairs(c.at("tightness"), r.tightness.count),
@@ -286,6 +289,7 @@ Row read_row(const Node& n) {
     Node m = n.at("mismatches");
     for (int k = 0; k < mismatch_kinds; ++k)
         r.mismatches[k] = m.at(mismatch_name(k)).count(r.cases);
+    r.t_sign_wrong = n.at("t_sign_wrong").count();
     read_errors(n, r);
     r.within_tolerance = at_most_cases("within_tolerance");
     if (r.within_tolerance + r.cases_mismatched > r.cases)

@@ -2,12 +2,16 @@
 // report.json.
 #include "linequad/audit.hpp"
 
+#include "linequad/case_io.hpp"
+
 #include "io/escape.hpp"
 #include "io/jsonl.hpp"
 #include "report/svg_plot.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -19,6 +23,17 @@
 #include <unistd.h>
 
 namespace linequad::audit {
+
+// The command that replays a worst case: the case as the solver saw it (for a solver from
+// outside, the posed case: replay does not pose it again), its answer and the reference its grade
+// used, as `linequad replay` prints them. Every word is quoted for the shell.
+std::string replay_command(const Report& r, const Worst& w, const std::string& solver) {
+    std::string plugin;
+    if (auto it = r.external.find(solver); it != r.external.end() && !it->second.plugin.empty())
+        plugin = " --plugin " + escape::shell_word(it->second.plugin);
+    return "echo " + escape::shell_word(w.case_line()) + " | linequad replay" + plugin +
+           " --solver " + escape::shell_word(solver);
+}
 
 namespace {
 
@@ -37,8 +52,29 @@ std::string fmt(double x) {
         std::snprintf(b, sizeof b, "%.2e", x);
     return b;
 }
+// An ulp count; one past what 64 bits hold (an infinite point, a scene error beyond the
+// format's range) says so.
 std::string fmt_ulps(std::uint64_t u) {
-    return u == UINT64_MAX ? "inf" : fmt(double(u));
+    return u == UINT64_MAX ? "beyond 2^64" : fmt(double(u));
+}
+// A count with its share of the cases graded: "1234 (0.57 %)".
+std::string with_share(std::uint64_t n, std::uint64_t cases) {
+    return n ? std::to_string(n) + " (" + percent_of(n, cases) + ")" : "0";
+}
+// A count as people read it: 21,600,000.
+std::string grouped(std::uint64_t n) {
+    std::string digits = std::to_string(n), out;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i && (digits.size() - i) % 3 == 0) out += ',';
+        out += digits[i];
+    }
+    return out;
+}
+std::string in_bits(double ulps) {
+    if (ulps == 0) return "0";
+    char b[32];
+    std::snprintf(b, sizeof b, "%.1f", std::log2(1 + ulps));
+    return b;
 }
 
 // A library's output as a person reads it: a line repeated in a run (ODE repeats its internal
@@ -70,17 +106,6 @@ std::vector<std::string> runs_counted(const std::string& text, bool cut) {
     return out;
 }
 
-// The command that replays a worst case: the case as the solver saw it (for a solver from
-// outside, the posed case: replay does not pose it again), its answer and the reference its grade
-// used, as `linequad replay` prints them. Every word is quoted for the shell.
-std::string replay(const Report& r, const Worst& w, const std::string& solver) {
-    std::string plugin;
-    if (auto it = r.external.find(solver); it != r.external.end() && !it->second.plugin.empty())
-        plugin = " --plugin " + escape::shell_word(it->second.plugin);
-    return "echo " + escape::shell_word(w.case_line()) + " | linequad replay" + plugin +
-           " --solver " + escape::shell_word(solver);
-}
-
 // A point error where the answers carry points; a time where one was measured.
 std::string point_max(const Row& row) {
     return row.graded_coords ? fmt_ulps(row.p_max) : "-";
@@ -92,13 +117,6 @@ std::string scene_error(const Row& row) {
     return row.graded_roots ? fmt(row.s_quantile(0.99)) + " / " + fmt_ulps(row.s_max) : "-";
 }
 
-// One solver's rows of one family, merged.
-Row family_total(const Report& r, const std::string& family, const std::string& solver) {
-    Row t;
-    for (const auto& [key, row] : r.rows)
-        if (key.family == family && key.solver == solver) t.merge(row);
-    return t;
-}
 
 std::string status_line(const Report& r) {
     std::string shards;
@@ -192,13 +210,19 @@ void write_rungs(std::ostream& md, const Report& r) {
            << " certified roots.\n";
 }
 
-// Each double solver beside its float counterpart (stable beside stable32, ...), family by
-// family: cases misclassified, and the t error, each in its own precision's ulps.
-void write_float_beside_double(std::ostream& md, const Report& r) {
+// The double solvers whose float counterpart (stable32 for stable) the report holds too.
+std::vector<std::string> float_pairs(const Report& r) {
     std::vector<std::string> pairs;
     for (const std::string& s : r.solvers)
         if (std::find(r.solvers.begin(), r.solvers.end(), s + "32") != r.solvers.end())
             pairs.push_back(s);
+    return pairs;
+}
+
+// Each double solver beside its float counterpart (stable beside stable32, ...), family by
+// family: cases misclassified, and the t error, each in its own precision's ulps.
+void write_float_beside_double(std::ostream& md, const Report& r) {
+    std::vector<std::string> pairs = float_pairs(r);
     if (pairs.empty()) return;
     std::vector<std::string> columns;
     for (const std::string& s : pairs)
@@ -296,9 +320,9 @@ std::string notes_of(const Row& row) {
 
 namespace {
 
-// What was run, where, how: the report's first table, and how to read the rest.
+// What was run, where, how (at the end: the verdict comes first), and how to read the tables.
 void write_provenance(std::ostream& md, const Report& r) {
-    md << "# linequad accuracy audit\n\n";
+    md << "## Provenance\n\n";
     md << "| | |\n|---|---|\n";
     using escape::markdown_text;
     if (!r.run.empty()) md << "| run | " << markdown_text(r.run) << " |\n";
@@ -393,8 +417,8 @@ void write_rows(std::ostream& md, const Report& r) {
         std::string kinds = notes_of(row);
         md << "| " << markdown_text(key.family) << " | " << markdown_text(key.shape) << " | "
            << markdown_text(key.solver) << " | " << row.cases << " | " << row.unrepresented << " | "
-           << not_asked_count(row) << " | " << row.within_tolerance << " | " << row.cases_mismatched
-           << " | " << kinds << " | "
+           << not_asked_count(row) << " | " << with_share(row.within_tolerance, row.cases) << " | "
+           << with_share(row.cases_mismatched, row.cases) << " | " << kinds << " | "
            << (row.bounded_roots || row.uncertain ? num(row.uncertain) : "-") << " | "
            << (row.bounded_roots ? num(row.bound_violations) : "-") << " | "
            << (row.bounded_roots ? fmt(row.tightness.quantile(0.5)) : "-") << " | "
@@ -423,24 +447,224 @@ void write_difficulty(std::ostream& md, const Report& r) {
               "![distance](distance.svg)\n\n";
 }
 
-// Each row's worst cases, with the command that replays each.
-void write_worst(std::ostream& md, const Report& r) {
+// What the verdict is of: the run, whether it is whole, its cases, and where the rest is.
+void write_run_line(std::ostream& md, const Report& r) {
+    md << "Run " << escape::markdown_text(r.run.empty() ? "-" : r.run)
+       << ", complete: " << status_line(r) << ". ";
+    if (r.from_cases_file())
+        md << grouped(r.cases_count) << " cases from " << escape::markdown_text(r.cases_file);
+    else
+        md << grouped(r.cases_per_group) << " cases per family, shape and range (seed " << r.seed
+           << ")";
+    md << ", " << r.solvers.size() << " solvers, " << escape::markdown_text(r.date)
+       << ". How it was run: [Provenance](#provenance).\n\n";
+}
+
+
+// The verdict: per solver, the share of its cases classified right, where it breaks and its t
+// error in bits; then every family's share misclassified, solver by solver.
+void write_verdict(std::ostream& md, const Report& r) {
     using escape::markdown_text;
-    md << "## Worst cases\n\nEach replays with the command under it: the case as the solver saw "
-          "it, its answer and the reference its grade used, as above. The commands run the "
-          "`linequad` on your `PATH` (`cmake --install` puts it there; in a clone, "
-          "`export PATH=\"$PWD/build/compare:$PATH\"` first).\n\n";
-    for (const auto& [key, row] : r.rows) {
-        if (row.worst.empty()) continue;
-        md << "### " << markdown_text(key.name()) << "\n\n";
-        for (const Worst& w : row.worst) {
-            md << (w.mismatch ? "- **mismatch**" : "- t error " + fmt_ulps(w.ulps) + " ulps")
-               << "\n\n";
-            md << escape::markdown_block({w.case_line(), w.solver_line(), w.oracle_line()}, "  ")
-               << "\n";
-            md << "  " << escape::markdown_code(replay(r, w, key.solver)) << "\n\n";
+    md << "## Verdict\n\n";
+    md << "Right: classified as the exact oracle classifies it (a hit invented or missed, a wrong "
+          "kind or part, a refusal or a crash is not), of the cases each solver was asked; the "
+          "families it misclassifies most, with the difficulty k from which it misses 1 % of "
+          "them. Errors in bits, log2(1 + ulps): 0 is correctly rounded, 52 every bit of a "
+          "double wrong.\n\n";
+    md << "| solver | right | within its tolerance | not asked | misclassifies most (from k) | "
+          "t error, worst | t error, p99 |\n";
+    md << "|---|---:|---:|---:|---|---:|---:|\n";
+    for (const Verdict& v : verdicts(r)) {
+        md << "| [" << markdown_text(v.solver) << "](#" << escape::anchor("Solver: " + v.solver)
+           << ") | ";
+        if (v.cases == 0) {
+            md << "graded no case | - | " << (v.not_asked ? grouped(v.not_asked) : "-")
+               << " | - | - | - |\n";
+            continue;
         }
+        md << percent_of(v.cases - v.misclassified - v.within_tolerance, v.cases) << " of "
+           << grouped(v.cases) << " | "
+           << (v.within_tolerance ? percent_of(v.within_tolerance, v.cases) : "-") << " | "
+           << (v.not_asked ? grouped(v.not_asked) : "-") << " | ";
+        std::string most;
+        for (std::size_t i = 0; i < v.worst_families.size() && i < 2; ++i) {
+            const FamilyShare& f = v.worst_families[i];
+            most += (i ? ", " : "") + markdown_text(f.family) + " " +
+                    percent_of(f.misclassified, f.cases) +
+                    (f.breaks_at >= 0 ? " (" + std::to_string(f.breaks_at) + ")" : "");
+        }
+        md << (most.empty() ? "-" : most) << " | ";
+        if (v.errors)
+            md << in_bits(v.t_max_ulps) << " bits (" << fmt(v.t_max_ulps) << " ulps) | "
+               << in_bits(v.t_p99_ulps) << " bits |\n";
+        else
+            md << "- | - |\n";
     }
+    md << "\n### Misclassified, by family (% of the cases graded)\n\n";
+    md << "| family |";
+    for (const std::string& s : r.solvers)
+        md << " " << markdown_text(s) << " |";
+    md << "\n|---|";
+    for (std::size_t i = 0; i < r.solvers.size(); ++i)
+        md << "---:|";
+    md << "\n";
+    for (const std::string& family : r.families) {
+        md << "| " << markdown_text(family) << " |";
+        for (const std::string& s : r.solvers) {
+            Row t = family_total(r, family, s);
+            md << " " << percent_of(t.cases_mismatched, t.cases) << " |";
+        }
+        md << "\n";
+    }
+    md << "\n";
+    write_run_line(md, r);
+}
+
+// Links to each solver's section and to every section after them.
+void write_contents(std::ostream& md, const Report& r, const std::vector<std::string>& sections) {
+    md << "## Contents\n\n";
+    md << "Each solver: ";
+    for (std::size_t i = 0; i < r.solvers.size(); ++i)
+        md << (i ? " · " : "") << "[" << escape::markdown_text(r.solvers[i]) << "](#"
+           << escape::anchor("Solver: " + r.solvers[i]) << ")";
+    md << ". Then: ";
+    for (std::size_t i = 0; i < sections.size(); ++i)
+        md << (i ? " · " : "") << "[" << escape::markdown_text(sections[i]) << "](#"
+           << escape::anchor(sections[i]) << ")";
+    md << ".\n\n";
+}
+
+// A worst case as a person compares it: the solver's answer beside the reference's, field by
+// field, in decimal and hex, the fields that differ in bold; then the command that replays it.
+void write_worst_case(std::ostream& md, const Report& r, const RowKey& key, const Worst& w) {
+    using escape::markdown_text;
+    Case c;
+    ParsedResult got, want;
+    std::string why;
+    bool parsed = parse_case(w.case_line(), &c, &why) &&
+                  parse_result(w.solver_line(), &got, &why) &&
+                  parse_result(w.oracle_line(), &want, &why);
+    md << "**" << markdown_text(key.family) << ", " << markdown_text(key.shape);
+    if (parsed) md << ", k = " << c.k;
+    md << "**: ";
+    if (w.mismatch)
+        md << "misclassified";
+    else if (w.ulps == UINT64_MAX)
+        md << "a root of the wrong sign (or 0 against a nonzero root)";
+    else
+        md << "t error " << in_bits(double(w.ulps)) << " bits (" << fmt_ulps(w.ulps) << " ulps)";
+    md << "\n\n";
+    if (parsed) {
+        auto answer = [](const ParsedResult& p) -> std::string {
+            if (!p.error_code.empty()) return "refused: " + escape::markdown_text(p.error_code);
+            if (p.result.on_surface) return "on the surface";
+            return std::to_string(p.result.count) + (p.result.count == 1 ? " hit" : " hits");
+        };
+        auto value = [](double x) {
+            char b[40];
+            std::snprintf(b, sizeof b, "%.17g", x);
+            return std::string(b) + " `" + hex(x) + "`";
+        };
+        auto kind = [](const Result& x, int i) -> std::string {
+            if (i >= x.count) return "-";
+            return x.hits[i].kind == HitKind::tangent ? "tangent" : "cross";
+        };
+        std::vector<std::array<std::string, 3>> fields = {{"answer", answer(got), answer(want)}};
+        const Result &g = got.result, &o = want.result;
+        if (got.error_code.empty() && want.error_code.empty()) {
+            if (g.on_surface || o.on_surface) {
+                fields.push_back({"on the surface from", g.on_surface ? value(g.s0) : "-",
+                                  o.on_surface ? value(o.s0) : "-"});
+                fields.push_back(
+                    {"to", g.on_surface ? value(g.s1) : "-", o.on_surface ? value(o.s1) : "-"});
+            }
+            for (int i = 0; i < std::max(g.count, o.count); ++i) {
+                std::string n = std::to_string(i + 1);
+                fields.push_back({"t of hit " + n, i < g.count ? value(g.hits[i].t) : "-",
+                                  i < o.count ? value(o.hits[i].t) : "-"});
+                if (got.has_kinds && want.has_kinds)
+                    fields.push_back({"kind of hit " + n, kind(g, i), kind(o, i)});
+            }
+        }
+        md << "| | " << markdown_text(key.solver) << " | " << markdown_text(want.solver)
+           << " |\n|---|---|---|\n";
+        for (const auto& [field, mine, exact] : fields) {
+            bool differs = mine != exact;
+            md << "| " << field << " | " << (differs ? "**" + mine + "**" : mine) << " | " << exact
+               << " |\n";
+        }
+        md << "\n";
+    }
+    md << escape::markdown_code(replay_command(r, w, key.solver)) << "\n\n";
+}
+
+// How many worst cases a solver's section shows (every row's are in report.json).
+constexpr std::size_t worst_shown = 5;
+
+// One solver: what it is, its families, and its worst cases with their replays.
+void write_solver(std::ostream& md, const Report& r, const std::string& solver) {
+    using escape::markdown_text;
+    md << "## " << markdown_text("Solver: " + solver) << "\n\n";
+    Row t = r.total(solver);
+    md << "Precision " << precision_of(t) << "; " << grouped(t.cases) << " cases graded";
+    if (t.unrepresented) md << ", " << grouped(t.unrepresented) << " it could not represent";
+    if (not_asked_count(t)) md << ", " << grouped(not_asked_count(t)) << " not asked";
+    md << ". Misclassified: " << with_share(t.cases_mismatched, t.cases);
+    std::string kinds;
+    for (int m = 0; m < mismatch_kinds; ++m)
+        if (t.mismatches[m])
+            kinds += (kinds.empty() ? "" : ", ") + std::string(mismatch_name(m)) + " " +
+                     grouped(t.mismatches[m]);
+    if (!kinds.empty()) md << " (" << markdown_text(kinds) << ")";
+    md << ".";
+    if (t.t_sign_wrong) md << " Roots of the wrong sign: " << grouped(t.t_sign_wrong) << ".";
+    if (auto it = r.external.find(solver); it != r.external.end()) {
+        const Report::External& e = it->second;
+        md << " From outside linequad: " << markdown_text(e.answers) << ", "
+           << markdown_text(e.parametrisation) << ", " << markdown_text(e.surface);
+        if (!e.conventions.empty()) md << "; " << markdown_text(e.conventions);
+        md << ".";
+    }
+    md << "\n\n";
+    md << "| family | graded | misclassified | by kind | within its tolerance | from k | t bits "
+          "p99 | t bits worst | scene p99 (ulps) |\n";
+    md << "|---|---:|---:|---|---:|---:|---:|---:|---:|\n";
+    for (const std::string& family : r.families) {
+        Row f = family_total(r, family, solver);
+        if (f.cases == 0) continue;
+        std::string by_kind;
+        for (int m = 0; m < mismatch_kinds; ++m)
+            if (f.mismatches[m])
+                by_kind += (by_kind.empty() ? "" : ", ") + std::string(mismatch_name(m)) + " " +
+                           num(f.mismatches[m]);
+        int k = breaks_at(r, family, solver);
+        md << "| " << markdown_text(family) << " | " << f.cases << " | "
+           << with_share(f.cases_mismatched, f.cases) << " | "
+           << (by_kind.empty() ? "-" : markdown_text(by_kind)) << " | "
+           << (f.within_tolerance ? with_share(f.within_tolerance, f.cases) : "-") << " | "
+           << (k >= 0 ? std::to_string(k) : "-") << " | "
+           << (f.graded_roots ? in_bits(f.t_quantile(0.99)) : "-") << " | "
+           << (f.graded_roots ? in_bits(double(f.t_max)) : "-") << " | "
+           << (f.graded_roots ? fmt(f.s_quantile(0.99)) : "-") << " |\n";
+    }
+    md << "\n";
+    // Its worst cases over all its rows, the worst of each row, mismatches first.
+    std::vector<std::pair<const RowKey*, const Worst*>> worst;
+    for (const auto& [key, row] : r.rows)
+        if (key.solver == solver && !row.worst.empty()) worst.emplace_back(&key, &row.worst[0]);
+    std::stable_sort(worst.begin(), worst.end(), [](const auto& a, const auto& b) {
+        if (a.second->mismatch != b.second->mismatch) return a.second->mismatch;
+        return a.second->ulps > b.second->ulps;
+    });
+    if (worst.size() > worst_shown) worst.resize(worst_shown);
+    if (worst.empty()) return;
+    md << "### Its worst cases\n\n"
+          "Each replays with the command under it: the case as the solver saw it, its answer "
+          "and the reference its grade used, as above (the `linequad` on your `PATH`; in a "
+          "clone, `export PATH=\"$PWD/build/compare:$PATH\"` first). Every row's worst cases are "
+          "in report.json.\n\n";
+    for (const auto& [key, w] : worst)
+        write_worst_case(md, r, *key, *w);
 }
 
 // How the oracle rounded its answers.
@@ -458,15 +682,29 @@ void write_oracle_rounding(std::ostream& md, const Report& r) {
 
 std::string markdown(const Report& r) {
     std::ostringstream md;
-    write_provenance(md, r);
+    md << "# linequad accuracy audit\n\n";
+    write_verdict(md, r);
+    std::vector<std::string> sections = {"Headline: every family"};
+    if (!r.external.empty())
+        sections.insert(sections.end(),
+                        {"Solvers from outside linequad", "Every solver by family"});
+    sections.insert(sections.end(), {"Error against difficulty", "By family and shape"});
+    if (float_pairs(r).size()) sections.push_back("Float beside double");
+    if (r.total("correct").cases || r.total("correct32").cases)
+        sections.push_back("The correct solvers' rungs");
+    sections.insert(sections.end(), {"Provenance", "Oracle rounding"});
+    write_contents(md, r, sections);
+    for (const std::string& s : r.solvers)
+        write_solver(md, r, s);
     write_headline(md, r);
     write_external(md, r);
-    write_rows(md, r);
     write_external_by_family(md, r);
+    write_difficulty(md, r);
+    write_rows(md, r);
     write_float_beside_double(md, r);
     write_rungs(md, r);
-    write_difficulty(md, r);
-    write_worst(md, r);
+    md << "\n";
+    write_provenance(md, r);
     write_oracle_rounding(md, r);
     return md.str();
 }
@@ -484,9 +722,8 @@ plot::Chart difficulty_chart(const Report& r, const std::string& family, const s
     plot::Chart c;
     c.title = family + ": error and misclassification against k";
     c.x_label = x;
-    c.y_label = "1 + max t error (ulps)";
+    c.y_label = "max t error, bits (log2(1 + ulps))";
     c.y2_label = "fraction of cases misclassified";
-    c.log_y = true;
     int color = 0;
     for (const auto& [key, points] : r.curves) {
         if (key.family != family) continue;
@@ -494,8 +731,13 @@ plot::Chart difficulty_chart(const Report& r, const std::string& family, const s
         error.name = key.solver + " max error", wrong.name = key.solver + " misclassified";
         wrong.right = wrong.dashed = true, wrong.markers = false;
         error.color = wrong.color = color++;
+        int last = INT32_MIN;
         for (const auto& [k, p] : points) {
-            error.points.emplace_back(k, 1 + double(p.t_max));
+            // No line across difficulties without cases: a gap there.
+            if (last != INT32_MIN && k > last + 1)
+                error.points.emplace_back(last + 1, NAN), wrong.points.emplace_back(last + 1, NAN);
+            last = k;
+            error.points.emplace_back(k, std::log2(1 + double(p.t_max)));
             wrong.points.emplace_back(k, p.cases ? double(p.mismatched) / double(p.cases) : 0);
         }
         c.series.push_back(error);
@@ -512,19 +754,29 @@ bool write_plots(const Report& r, const std::string& dir) {
     plot::Chart pareto;
     pareto.title = "run time against error (every family)";
     pareto.x_label = "ns per solve, median, generic cases";
-    pareto.y_label = "1 + t error in ulps of its precision (the *32 solvers: float)";
-    pareto.log_y = true;
+    pareto.y_label = "t error, bits of its precision (log2(1 + ulps); the *32 solvers: float)";
     plot::Series max, p99;
     max.name = "max", p99.name = "p99";
     max.lines = p99.lines = false;
     p99.square = true;
+    double widest = 0;
+    for (const std::string& s : r.solvers)
+        if (family_total(r, "generic", s).timed())
+            widest = std::max(widest, family_total(r, "generic", s).ns.median());
     for (const std::string& s : r.solvers) {
         Row t = r.total(s), generic = family_total(r, "generic", s);
         if (!generic.timed()) continue;
-        double ns = generic.ns.median();
-        max.points.emplace_back(ns, 1 + double(t.t_max));
-        p99.points.emplace_back(ns, 1 + t.t_quantile(0.99));
-        pareto.labels.push_back({ns, 1 + double(t.t_max), s});
+        double ns = generic.ns.median(), bits = std::log2(1 + double(t.t_max));
+        max.points.emplace_back(ns, bits);
+        p99.points.emplace_back(ns, std::log2(1 + t.t_quantile(0.99)));
+        // Solvers at nearly one point share one label ("stable, batch"), so no two labels pile up.
+        auto near = std::find_if(pareto.labels.begin(), pareto.labels.end(), [&](const auto& l) {
+            return std::fabs(l.x - ns) < 0.06 * widest && std::fabs(l.y - bits) < 3;
+        });
+        if (near != pareto.labels.end())
+            near->text += ", " + s;
+        else
+            pareto.labels.push_back({ns, bits, s});
     }
     pareto.series = {max, p99};
     if (!max.points.empty()) jsonl::write_file(dir + "/pareto.svg", plot::svg({pareto}));

@@ -2,11 +2,13 @@
 // its table extension), the figures inlined as data: URIs.
 #include "report/report_html.hpp"
 
+#include "io/escape.hpp"
 #include "io/jsonl.hpp"
 
 #include <cmark-gfm-core-extensions.h>
 #include <cmark-gfm.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -60,6 +62,73 @@ const char* media_type(const std::string& name) {
     return ends(".svg") ? "image/svg+xml" : nullptr;
 }
 
+// A link to an anchor of the page itself: '#' and an anchor's characters (escape::anchor).
+bool within_page(const std::string& url) {
+    if (url.size() < 2 || url[0] != '#') return false;
+    for (std::size_t i = 1; i < url.size(); ++i)
+        if (!(std::islower(static_cast<unsigned char>(url[i])) ||
+              std::isdigit(static_cast<unsigned char>(url[i])) || url[i] == '-'))
+            return false;
+    return true;
+}
+
+// The text a person reads in a rendered heading: tags dropped, cmark's four entities decoded.
+std::string heading_text(const std::string& html) {
+    std::string text;
+    bool in_tag = false;
+    for (char c : html) {
+        if (c == '<') in_tag = true;
+        if (!in_tag) text += c;
+        if (c == '>') in_tag = false;
+    }
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        static const std::pair<const char*, char> entities[] = {
+            {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'}};
+        bool decoded = false;
+        for (const auto& [name, c] : entities)
+            if (text.compare(i, std::strlen(name), name) == 0) {
+                out += c, i += std::strlen(name) - 1, decoded = true;
+                break;
+            }
+        if (!decoded) out += text[i];
+    }
+    return out;
+}
+
+// The sections of the page, each from its h2 to the next, given the heading's anchor as id (what
+// the contents link to): the verdict is <section id="verdict">. The full tables a person rarely
+// needs first are <details>, closed. cmark's output holds no raw HTML of the report's (it was
+// made text), so every "<h2>" in it is a heading.
+std::string sectioned(const std::string& body) {
+    static const char* const collapsed[] = {"by-family-and-shape", "float-beside-double",
+                                            "the-correct-solvers-rungs", "oracle-rounding"};
+    std::string out;
+    std::size_t at = body.find("<h2>");
+    out += body.substr(0, at);
+    while (at != std::string::npos) {
+        std::size_t close = body.find("</h2>", at);
+        if (close == std::string::npos) {
+            out += body.substr(at); // never from cmark; kept whole all the same
+            break;
+        }
+        std::size_t next = body.find("<h2>", close);
+        std::string heading = body.substr(at, close + 5 - at);
+        std::string id = escape::anchor(heading_text(heading.substr(4, heading.size() - 9)));
+        std::string rest = body.substr(close + 5, next == std::string::npos ? std::string::npos
+                                                                            : next - close - 5);
+        bool folded =
+            std::find(std::begin(collapsed), std::end(collapsed), id) != std::end(collapsed);
+        if (folded)
+            out += "<details id=\"" + id + "\"><summary>" + heading + "</summary>" + rest +
+                   "</details>\n";
+        else
+            out += "<section id=\"" + id + "\">" + heading + rest + "</section>\n";
+        at = next;
+    }
+    return out;
+}
+
 struct Document {
     cmark_parser* parser = nullptr;
     cmark_node* root = nullptr;
@@ -96,6 +165,14 @@ img { max-width: 100%; height: auto; }
 .replay code { background: #f6f6f6; padding: 0.2em 0.4em; word-break: break-all; flex: 1; }
 .replay button { flex: none; }
 .figure-missing { color: #8a4b00; font-style: italic; }
+#verdict table { font-size: 12.5px; }
+#verdict th, #verdict td { padding: 0.12em 0.45em; }
+#verdict .table-wrap { margin: 0.5em 0; }
+#verdict h2 { margin: 0.4em 0 0.3em; }
+#verdict h3 { margin: 0.8em 0 0.2em; font-family: inherit; }
+#verdict p { margin: 0.4em 0; }
+details > summary { cursor: pointer; }
+details > summary h2 { display: inline; }
 </style>
 </head>
 <body>
@@ -167,6 +244,26 @@ document.querySelectorAll("table").forEach(table => {
   wrap.appendChild(table);
   makeSortable(table);
 });
+// The verdict's family table as a heat map: green where a solver misclassifies nothing, through
+// yellow, to red from 10 % (a log scale from 0.01 %).
+document.querySelectorAll("#verdict h3").forEach(h => {
+  if (!h.textContent.startsWith("Misclassified")) return;
+  const wrap = h.nextElementSibling;
+  const table = wrap && wrap.querySelector("table");
+  if (!table) return;
+  table.querySelectorAll("tbody td").forEach(td => {
+    const t = td.textContent.trim();
+    let p = null;
+    if (t === "0 %") p = 0;
+    else if (t.startsWith("< 0.01")) p = 0.005;
+    else if (t.startsWith("> 99.99")) p = 99.995;
+    else { const m = t.match(/^(\d+(\.\d+)?) %$/); if (m) p = parseFloat(m[1]); }
+    if (p === null) return;
+    const x = p === 0 ? 0 : Math.min(1, Math.max(0.05, (Math.log10(p) + 2) / 3));
+    const hue = Math.round(120 - 120 * x), light = p === 0 ? 93 : 78;
+    td.style.background = `hsl(${hue} 70% ${light}%`.concat(String.fromCharCode(41));
+  });
+});
 document.querySelectorAll("p > code").forEach(code => {
   if (/^echo '.*' \| linequad replay /.test(code.textContent)) addCopyButton(code);
 });
@@ -203,7 +300,10 @@ report_html(const std::string& markdown,
             const char* raw = cmark_node_get_literal(node);
             cmark_node_set_literal(node, jsonl::markup_text(raw ? raw : "").c_str());
         } else if (type == CMARK_NODE_LINK && ev == CMARK_EVENT_ENTER) {
-            cmark_node_set_url(node, ""); // a report links nowhere; a javascript: URL would run
+            // A report links nowhere but into itself (its contents, to a section's anchor); a
+            // javascript: URL would run.
+            const char* url = cmark_node_get_url(node);
+            cmark_node_set_url(node, within_page(url ? url : "") ? url : "");
         } else if (type == CMARK_NODE_IMAGE && ev == CMARK_EVENT_ENTER) {
             const char* url = cmark_node_get_url(node);
             std::string name = url ? url : "";
@@ -236,7 +336,7 @@ report_html(const std::string& markdown,
                                    cmark_parser_get_syntax_extensions(doc.parser));
     if (!body) throw std::bad_alloc();
     std::string page = head;
-    page += body;
+    page += sectioned(body);
     page += tail;
     cmark_get_default_mem_allocator()->free(body);
     return page;

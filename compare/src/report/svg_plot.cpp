@@ -90,7 +90,7 @@ Frame frame_of(const Chart& c, double x0, int width, int height) {
     // The legend below the plot: entries of 190 px, as many rows as they need.
     f.per_row = std::max(1, int((width - 40) / 190));
     f.rows = int((c.series.size() + std::size_t(f.per_row) - 1) / std::size_t(f.per_row));
-    f.bottom = height - 55 - 18 * f.rows;
+    f.bottom = height - 72 - 18 * f.rows; // the x label clear of the legend
     double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
     for (const Series& s : c.series)
         for (auto [x, y] : s.points) {
