@@ -93,10 +93,23 @@ shift 2
 case "$n" in
 '' | *[!0-9]* | 0) echo "campaign.sh: N must be a whole number of shards >= 1, not '$n'" >&2; exit 2 ;;
 esac
+# What a shard cannot take is refused here, before any shard runs (each would fail alone).
 for a in "$@"; do
   case "$a" in
   --shard | --shard=* | --out | --out=*)
     echo "campaign.sh: the campaign sets $a itself" >&2
+    exit 2
+    ;;
+  --threads | --threads=*)
+    echo "campaign.sh: each shard runs on one thread (--threads 1); JOBS sets how many shards run at a time" >&2
+    exit 2
+    ;;
+  --cases-file | --cases-file=* | --results | --results=*)
+    echo "campaign.sh: $a grades a file, not a campaign of shards" >&2
+    exit 2
+    ;;
+  --history | --history=* | --commit | --commit=*)
+    echo "campaign.sh: the merge records the campaign's history (HISTORY=DB COMMIT=ID), not $a in each shard" >&2
     exit 2
     ;;
   esac

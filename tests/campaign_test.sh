@@ -56,6 +56,18 @@ if LINEQUAD="$work/flaky" bash "$source_dir/scripts/campaign.sh" "$work/c" 4 --c
 fi
 grep -q "holds another campaign" "$work/other.log" || fail "the refusal did not say why"
 
+# Options a shard cannot take are refused up front, before any shard runs (--threads was accepted
+# and then every shard failed).
+for option in "--threads 4" "--cases-file x.jsonl" "--history h.db"; do
+  # shellcheck disable=SC2086 # the option and its value, two words
+  if LINEQUAD="$work/flaky" bash "$source_dir/scripts/campaign.sh" "$work/refused" 2 $option \
+    >"$work/refused.log" 2>&1; then
+    fail "campaign.sh accepted $option"
+  fi
+  grep -q "campaign.sh: " "$work/refused.log" || fail "the refusal of $option did not say why"
+  [ ! -e "$work/refused/joblog" ] || fail "a shard ran with $option"
+done
+
 # A directory named to break things: a leading dash, braces (GNU parallel's replacement string),
 # quotes, a command substitution. Everything lands inside it, nothing runs.
 odd="-{} it's \"odd\" \$(touch PWNED)"

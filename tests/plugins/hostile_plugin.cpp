@@ -1,7 +1,8 @@
-// A plugin that misbehaves, one solver per way, to show that nothing it does reaches linequad's
-// own answers or loses the report (tests/test_worker.cpp). Each solver answers a textbook
-// nearest hit of an open finite cylinder, and on a tenth of the cases (chosen by the bits of L0,
-// so the same cases every run) does what its name says.
+// A plugin that misbehaves, one solver per way (a crash, an exit, a hang, an exception, output, a
+// changed rounding mode, a helper process left behind), to show that nothing it does reaches
+// linequad's own answers or loses the report (tests/test_worker.cpp). Each solver answers a
+// textbook nearest hit of an open finite cylinder, and on a tenth of the cases (chosen by the bits
+// of L0, so the same cases every run) does what its name says.
 #include "linequad/audit_plugin.h"
 
 #include <cfenv>
@@ -10,8 +11,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdexcept>
+#include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -95,6 +99,21 @@ int solve(void*, const lq_shape* s, const lq_line* l, lq_answer* out) {
     case 7:
         if (now) std::abort();
         break;
+    case 8: // starts a helper that keeps every descriptor it inherited, then aborts
+        if (now) {
+            pid_t helper = ::fork();
+            if (helper == 0) {
+                ::sleep(60);
+                ::_exit(0);
+            }
+            if (const char* list = std::getenv("LQ_TEST_HELPER_PIDS")) {
+                int fd = ::open(list, O_WRONLY | O_APPEND | O_CREAT, 0644);
+                std::string line = std::to_string(helper) + "\n";
+                if (fd >= 0) (void)!::write(fd, line.data(), line.size()), ::close(fd);
+            }
+            std::abort();
+        }
+        break;
     }
     textbook(s, l, out);
     return 0;
@@ -117,6 +136,8 @@ const lq_solver solvers[] = {
      nullptr},
     {"aborts", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, 0, 1u, "abort()", solve<7>, nullptr, 0, 0,
      nullptr},
+    {"forks_then_aborts", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, 0, 1u, "fork(), abort()", solve<8>,
+     nullptr, 0, 0, nullptr},
 };
 
 } // namespace

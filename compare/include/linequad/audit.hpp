@@ -12,6 +12,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -312,6 +313,12 @@ struct Options {
     // refused, an early stop) go to these, which the linequad program draws; empty ones drop them.
     std::function<void(const Progress&)> progress;
     std::function<void(const std::string&)> notice;
+};
+
+// A stop request (SIGINT, SIGTERM) that came before any case was graded (while a cases file was
+// read): there is no report to keep. The linequad program exits 130 with its message.
+struct Stopped : std::runtime_error {
+    using std::runtime_error::runtime_error;
 };
 
 // Runs the campaign (or grades a results file) and writes the report; returns it. The output

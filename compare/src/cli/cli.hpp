@@ -83,6 +83,12 @@ CLI::Validator names_in(const Kind& kind, std::vector<std::string> known);
 void add_plugin_options(CLI::App* app, std::vector<std::string>& plugins, std::string& timeout);
 void add_history_options(CLI::App* app, std::string& history, std::string& commit);
 
+// ---- outputs
+
+// Why `output` must not be written: it is one of `inputs` (the same file, by device and inode),
+// which writing it would destroy. Empty when it is not (or does not exist yet).
+std::string output_is_input(const std::string& output, const std::vector<std::string>& inputs);
+
 // ---- markdown on the standard output
 
 // --format for a command that prints its markdown (diff, history): md, text, or auto (the

@@ -18,6 +18,9 @@ struct DiffArgs {
 int run_diff(const DiffArgs& a) {
     audit::Report old_report, new_report;
     std::string why;
+    for (const std::string& out : {a.markdown_file, a.junit_file})
+        if (std::string no = output_is_input(out, {a.old_report, a.new_report}); !no.empty())
+            return fail("diff: " + no);
     if (!audit::read_json(a.old_report, &old_report, &why)) return fail(why);
     if (!audit::read_json(a.new_report, &new_report, &why)) return fail(why);
     audit::DiffThresholds t;

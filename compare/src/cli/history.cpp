@@ -16,6 +16,8 @@ struct HistoryArgs {
 
 int run_history(const HistoryArgs& h) {
     if (!h.commit.empty() && h.add.empty()) return fail("history: --commit goes with --add");
+    if (std::string no = output_is_input(h.plot, {h.db, h.add}); !no.empty())
+        return fail("history: --plot: " + no);
     // Reading a trend needs no write access: a shared, read-only history can be read.
     audit::History history(h.db, h.add.empty() ? audit::History::Access::read_only
                                                : audit::History::Access::read_write);

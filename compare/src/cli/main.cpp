@@ -1,6 +1,7 @@
 // linequad: solve cases with any solver; audit solvers against the exact oracle. Each subcommand
 // is in a file of its own (cli/cli.hpp).
 #include "cli/cli.hpp"
+#include "linequad/audit.hpp"
 
 #include "io/jsonl.hpp"
 
@@ -61,8 +62,15 @@ int main(int argc, char** argv) {
     // A file-size limit makes a write fail (EFBIG, named like any write error, its temporary
     // file removed) instead of killing the process with nothing said.
     std::signal(SIGXFSZ, SIG_IGN);
+    // A reader that goes away (`linequad audit 2>&1 | head -1`) makes a write fail (EPIPE) instead
+    // of killing the process mid-run: the audit's progress is then dropped, its report finished,
+    // and a failed write to the standard output is a named error.
+    std::signal(SIGPIPE, SIG_IGN);
     try {
         return main_checked(argc, argv);
+    } catch (const audit::Stopped& e) {
+        cli::fail(e.what());
+        return 130;
     } catch (const std::bad_alloc&) {
         return cli::fail("out of memory");
     } catch (const std::exception& e) {

@@ -10,6 +10,7 @@
 #include "peers/peers.hpp"
 #include "run/plugin_worker.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -179,6 +180,17 @@ void add_history_options(CLI::App* app, std::string& history, std::string& commi
                     "names it): your solver's commit when you audit your solver")
         ->type_name("ID")
         ->needs(db);
+}
+
+std::string output_is_input(const std::string& output, const std::vector<std::string>& inputs) {
+    struct stat out {};
+    if (output == "-" || ::stat(output.c_str(), &out) != 0) return "";
+    for (const std::string& in : inputs) {
+        struct stat st {};
+        if (::stat(in.c_str(), &st) == 0 && st.st_dev == out.st_dev && st.st_ino == out.st_ino)
+            return output + " is the input " + in + ": writing it would destroy it";
+    }
+    return "";
 }
 
 void add_format_option(CLI::App* c, std::string& format) {

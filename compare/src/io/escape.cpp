@@ -37,6 +37,25 @@ std::string one_line(std::string_view s) {
 } // namespace
 
 std::string shell_word(std::string_view s) {
+    // A control character (a newline in a path) cannot stand in single quotes where the command
+    // is shown (a markdown code span makes a line break a space, another file): the word is then
+    // ANSI-C quoted, $'...', every such byte as \xHH, which bash and zsh read as the byte.
+    bool plain = std::none_of(s.begin(), s.end(),
+                              [](char c) { return control(static_cast<unsigned char>(c)); });
+    if (!plain) {
+        std::string out = "$'";
+        for (char c : s) {
+            auto u = static_cast<unsigned char>(c);
+            if (control(u) || c == '\'' || c == '\\') {
+                char hex[5];
+                std::snprintf(hex, sizeof hex, "\\x%02x", u);
+                out += hex;
+            } else {
+                out += c;
+            }
+        }
+        return out + "'";
+    }
     std::string out = "'";
     for (char c : s) {
         if (c == '\'')

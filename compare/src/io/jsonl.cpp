@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iterator>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
 
@@ -140,6 +141,12 @@ class StrictBuilder : public nlohmann::json_sax<Json> {
 
 bool parse(std::string_view text, Json* out, std::string* why) {
     *out = Json();
+    // nlohmann's lexer takes a NUL for the end of its input: the rest of the line would be
+    // dropped without a word. A NUL is no JSON text anywhere.
+    if (std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+        *why = "a NUL byte at byte " + std::to_string(nul + 1) + " (JSON holds none)";
+        return false;
+    }
     const char* begin = text.data();
     const char* reached = begin;
     StrictBuilder builder(out, begin, &reached);
@@ -176,6 +183,10 @@ LineReader::~LineReader() {
 }
 
 int LineReader::get() {
+    if (stop_ && stop_->load(std::memory_order_relaxed)) {
+        error_ = "stopped while reading '" + name_ + "'";
+        return EOF;
+    }
     int c = getc_unlocked(file_); // one reader per file: no locking needed
     if (c == EOF && std::ferror(file_))
         error_ = "cannot read '" + name_ + "': " + std::strerror(errno);
@@ -391,6 +402,17 @@ void write_file(const std::string& path, std::string_view content) {
     auto failed = [&](const std::string& what, int err) {
         return std::runtime_error("cannot write " + what + ": " + std::strerror(err));
     };
+    // Written through a temporary file and rename(), which replaces whatever the path names: only
+    // where a regular file is or will be. A FIFO, a device, a socket or a link (to the standard
+    // output, to another file) is refused, named, rather than replaced by a file.
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+        throw std::runtime_error(
+            "cannot write " + path + ": " +
+            (S_ISLNK(st.st_mode)    ? "a symbolic link (linequad replaces no link)"
+             : S_ISFIFO(st.st_mode) ? "a FIFO (linequad writes its files whole, not to a pipe)"
+             : S_ISDIR(st.st_mode)  ? "a directory"
+                                    : "not a regular file (a device or a socket)"));
     std::string tmp = path + ".tmp." + std::to_string(::getpid());
     int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) throw failed(path, errno);

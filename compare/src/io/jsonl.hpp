@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <cstddef>
 #include <cstdio>
 #include <string>
@@ -51,6 +52,9 @@ class LineReader {
     // line: *out holds the line (no newline). too_long: the line was skipped (the next call
     // reads the one after it). end: no more input. error: a read failed; error() says why.
     Status next(std::string* out);
+    // A flag that, once set (a stop request), ends reading as an error ("stopped"), even inside
+    // an endless line.
+    void stop_when(const std::atomic<bool>* flag) { stop_ = flag; }
     long number() const { return number_; } // of the line last returned, from 1
     const std::string& error() const { return error_; }
     const std::string& name() const { return name_; } // the path, or "standard input"
@@ -62,6 +66,7 @@ class LineReader {
     std::string name_, error_;
     std::size_t max_;
     long number_ = 0;
+    const std::atomic<bool>* stop_ = nullptr;
 };
 
 // A line of spaces and tabs only: JSON Lines readers skip it.

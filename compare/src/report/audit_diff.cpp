@@ -161,6 +161,7 @@ Diff diff(const Report& old_report, const Report& new_report, const DiffThreshol
         if (!s.empty()) d.incomplete += (d.incomplete.empty() ? "" : "; ") + s;
     std::map<Pair, Row> old_rows = by_family_and_solver(old_report),
                         new_rows = by_family_and_solver(new_report);
+    bool same_campaign = d.campaigns.empty();
     for (const auto& [pair, o] : old_rows) {
         d.compared.push_back(pair);
         Comparer c(d, pair);
@@ -170,6 +171,17 @@ Diff diff(const Report& old_report, const Report& new_report, const DiffThreshol
             continue;
         }
         const Row& n = it->second;
+        // Of one campaign, a solver grades the same cases in both unless it took fewer (declared
+        // more of them unrepresented, or answered them "not asked"): then its rates are of other
+        // cases, and the gate says so instead of "better".
+        if (same_campaign && o.cases != n.cases) {
+            std::string what = pair.second + " in " + pair.first + " graded " +
+                               std::to_string(n.cases) + " cases, " + std::to_string(o.cases) +
+                               " before";
+            d.campaigns += (d.campaigns.empty() ? "" : "; ") + what;
+            c.add("graded", std::to_string(o.cases) + " cases", std::to_string(n.cases) + " cases",
+                  n.cases < o.cases ? Change::worse : Change::changed);
+        }
         c.rate("mismatched", o.cases_mismatched, o.cases, n.cases_mismatched, n.cases);
         c.rate("certain but wrong", o.certain_wrong, o.cases, n.certain_wrong, n.cases);
         c.rate("bound violations", o.bound_violations, o.bounded_roots, n.bound_violations,

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <stdexcept>
 
 namespace linequad::audit {
@@ -585,13 +586,16 @@ bool from_json(std::string_view text, Report* r, std::string* why) {
 }
 
 bool read_json(const std::string& path, Report* r, std::string* why) {
-    std::string text;
+    // Memory runs out on an endless or enormous input (a FIFO fed forever, /dev/zero): said with
+    // the file it was reading, not as a bare "out of memory".
     try {
-        text = jsonl::read_file(path);
+        std::string text = jsonl::read_file(path);
+        if (!from_json(text, r, why)) return *why = path + ": " + *why, false;
+    } catch (const std::bad_alloc&) {
+        return *why = path + ": out of memory while reading it (is it a report.json?)", false;
     } catch (const std::runtime_error& e) {
         return *why = e.what(), false;
     }
-    if (!from_json(text, r, why)) return *why = path + ": " + *why, false;
     return true;
 }
 

@@ -274,9 +274,34 @@ document.querySelectorAll("p > code").forEach(code => {
 
 } // namespace
 
+namespace {
+
+// Debian's cmark-gfm takes time quadratic in a table's width (seconds for a line of tens of
+// thousands of cells): a report.md is bounded before it reaches it. linequad writes tables of
+// under 30 columns; a line with more than 256 cell separators is no report of linequad's.
+constexpr std::size_t most_cells = 256;
+void check_table_widths(const std::string& markdown) {
+    std::size_t line = 1, cells = 0;
+    for (std::size_t i = 0; i < markdown.size(); ++i) {
+        char c = markdown[i];
+        if (c == '\n') {
+            ++line, cells = 0;
+        } else if (c == '\\') {
+            ++i; // an escaped character is no separator
+        } else if (c == '|' && ++cells > most_cells) {
+            throw std::runtime_error("report.md line " + std::to_string(line) +
+                                     ": a table row of more than " + std::to_string(most_cells) +
+                                     " cells (linequad writes none; refused rather than rendered)");
+        }
+    }
+}
+
+} // namespace
+
 std::string
 report_html(const std::string& markdown,
             const std::function<std::optional<std::string>(const std::string&)>& figure) {
+    check_table_widths(markdown);
     cmark_gfm_core_extensions_ensure_registered();
     Document doc;
     doc.parser = cmark_parser_new(CMARK_OPT_DEFAULT);

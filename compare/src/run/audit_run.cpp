@@ -25,6 +25,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <new>
 #include <optional>
 #include <random>
 #include <thread>
@@ -60,22 +61,29 @@ extern "C" void on_signal(int) {
     stop_flag = true;
 }
 
-// SIGINT and SIGTERM end the campaign early (with its report saved) while it runs.
+// SIGINT and SIGTERM end the campaign early (with its report saved) while it runs. Without
+// SA_RESTART: a call blocked on input (opening a FIFO no one writes, reading an endless file)
+// returns EINTR, so that a stop is honoured there too; every loop on a system call retries on
+// EINTR where it must.
 class StopOnSignal {
   public:
     StopOnSignal() {
         stop_flag = false;
-        old_int_ = std::signal(SIGINT, on_signal);
-        old_term_ = std::signal(SIGTERM, on_signal);
+        struct sigaction sa {};
+        sa.sa_handler = on_signal;
+        sigemptyset(&sa.sa_mask);
+        sa.sa_flags = 0;
+        sigaction(SIGINT, &sa, &old_int_);
+        sigaction(SIGTERM, &sa, &old_term_);
     }
     ~StopOnSignal() {
-        std::signal(SIGINT, old_int_);
-        std::signal(SIGTERM, old_term_);
+        sigaction(SIGINT, &old_int_, nullptr);
+        sigaction(SIGTERM, &old_term_, nullptr);
     }
 
   private:
-    void (*old_int_)(int);
-    void (*old_term_)(int);
+    struct sigaction old_int_ {
+    }, old_term_{};
 };
 
 // What git prints of the working tree, or "" (no git, not a repository).
@@ -310,8 +318,20 @@ class Saver {
 };
 
 // The cases of a cases file by id, in file order; duplicate ids and malformed lines refused.
+std::vector<Case> read_cases_of(const Options& o);
+
+// The cases of a cases file; running out of memory there is said with the file.
 std::vector<Case> read_cases(const Options& o) {
+    try {
+        return read_cases_of(o);
+    } catch (const std::bad_alloc&) {
+        throw std::runtime_error(o.cases_file + ": out of memory while reading its cases");
+    }
+}
+
+std::vector<Case> read_cases_of(const Options& o) {
     jsonl::LineReader in(o.cases_file, o.max_line_bytes);
+    in.stop_when(&stop_flag);
     std::vector<Case> cases;
     std::unordered_map<std::string, long> line_of;
     std::string line, why;
@@ -319,10 +339,18 @@ std::vector<Case> read_cases(const Options& o) {
         return std::runtime_error(o.cases_file + ": line " + std::to_string(in.number()) + ": " +
                                   what);
     };
+    auto stopped = [&] {
+        return Stopped(o.cases_file + ": stopped (SIGINT or SIGTERM) while it was read, at line " +
+                       std::to_string(in.number()) + "; nothing was graded yet");
+    };
     for (;;) {
+        if (stop_requested()) throw stopped();
         auto status = in.next(&line);
         if (status == jsonl::LineReader::Status::end) break;
-        if (status == jsonl::LineReader::Status::error) throw std::runtime_error(in.error());
+        if (status == jsonl::LineReader::Status::error) {
+            if (stop_requested()) throw stopped();
+            throw std::runtime_error(in.error());
+        }
         if (status == jsonl::LineReader::Status::too_long)
             throw std::runtime_error(o.cases_file + ": " +
                                      jsonl::too_long_message(in.number(), o.max_line_bytes));
@@ -458,11 +486,14 @@ void check_shard(const Options& o) {
 
 void for_each_case(const Options& o, const std::function<void(const Case&)>& f) {
     check_shard(o);
-    std::uint64_t g = 0;
-    for (const Group& grp : groups_of(o))
-        for (std::uint64_t i = 0; i < o.cases_per_group; ++i, ++g)
-            if (g % std::uint64_t(o.shards) == std::uint64_t(o.shard))
-                f(make_case(grp.family, grp.shape, grp.range, o.seed, i, o.frames, o.precision));
+    // Case i of group g is the shard's when (g N + i) mod shards is: walked as i = offset + j
+    // shards, so that a shard costs its own cases only.
+    std::uint64_t k = std::uint64_t(o.shards), r = std::uint64_t(o.shard), first = 0;
+    for (const Group& grp : groups_of(o)) {
+        for (std::uint64_t i = (r + k - first % k) % k; i < o.cases_per_group; i += k)
+            f(make_case(grp.family, grp.shape, grp.range, o.seed, i, o.frames, o.precision));
+        first += o.cases_per_group;
+    }
 }
 
 namespace {
@@ -599,8 +630,9 @@ class ChunkGrader {
     std::vector<ExternalAnswer> answers_;
 };
 
-// A chunk of a run: cases [begin, end) of one source of cases (a campaign's group, a cases
-// file's group), posed in one precision. The cases are made by the worker that grades it.
+// A chunk of a run: cases [begin, end) of one source of cases (a campaign group's cases of this
+// shard, a cases file's group), posed in one precision. The cases are made by the worker that
+// grades it.
 struct Chunk {
     std::size_t source;
     std::uint64_t begin, end;
@@ -736,34 +768,36 @@ Report run(const Options& o, const std::vector<ExternalSolver>& external) {
     // batch) binary64 cases, the float solvers binary32 cases, each graded in its own ulps.
     ChunkGrader probe(solvers, batch);
     std::vector<Group> groups = groups_of(o);
-    auto shard_share = [&](std::uint64_t first, std::uint64_t begin, std::uint64_t end) {
-        // i in [begin, end) with (first + i) mod shards = shard
-        auto upto = [&](std::uint64_t n) { // i in [0, n)
-            std::uint64_t k = std::uint64_t(o.shards), r = std::uint64_t(o.shard);
-            std::uint64_t offset = (r + k - first % k) % k; // the first such i
-            return n > offset ? (n - offset + k - 1) / k : 0;
-        };
-        return upto(end) - upto(begin);
+    // Case i of group g belongs to shard (g N + i) mod shards. A shard lays out its own cases
+    // only, as j = 0, 1, ... for i = offset + j shards: its time and memory are its cases', not
+    // the campaign's (a shard of a 10^9-case campaign walks no index it does not grade).
+    std::uint64_t k = std::uint64_t(o.shards), r = std::uint64_t(o.shard);
+    auto offset_of = [&](std::size_t g) { // the group's first index of this shard
+        std::uint64_t first = std::uint64_t(g) * o.cases_per_group;
+        return (r + k - first % k) % k;
     };
     std::vector<Chunk> chunks;
     std::uint64_t total = 0;
-    for (std::size_t g = 0; g < groups.size(); ++g)
-        for (std::uint64_t begin = 0; begin < o.cases_per_group; begin += chunk_size)
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        std::uint64_t offset = offset_of(g);
+        std::uint64_t count =
+            o.cases_per_group > offset ? (o.cases_per_group - offset + k - 1) / k : 0;
+        for (std::uint64_t begin = 0; begin < count; begin += chunk_size)
             for (Precision precision : {Precision::binary64, Precision::binary32}) {
                 if (!probe.wanted(precision)) continue;
-                std::uint64_t end = std::min(o.cases_per_group, begin + chunk_size);
-                total += shard_share(g * o.cases_per_group, begin, end);
+                std::uint64_t end = std::min(count, begin + chunk_size);
+                total += end - begin;
                 chunks.push_back({g, begin, end, precision});
             }
+    }
     ChunkSource source{[&](const Chunk& c) {
                            const Group& grp = groups[c.source];
-                           std::uint64_t first = c.source * o.cases_per_group;
+                           std::uint64_t offset = offset_of(c.source);
                            std::vector<Case> out;
                            out.reserve(c.end - c.begin);
-                           for (std::uint64_t i = c.begin; i < c.end; ++i)
-                               if ((first + i) % std::uint64_t(o.shards) == std::uint64_t(o.shard))
-                                   out.push_back(make_case(grp.family, grp.shape, grp.range, o.seed,
-                                                           i, o.frames, c.precision));
+                           for (std::uint64_t j = c.begin; j < c.end; ++j)
+                               out.push_back(make_case(grp.family, grp.shape, grp.range, o.seed,
+                                                       offset + j * k, o.frames, c.precision));
                            return out;
                        },
                        [&](std::size_t g) {

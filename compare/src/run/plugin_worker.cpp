@@ -578,15 +578,27 @@ struct PluginWorker::Impl {
             if (*fd >= 0) ::close(*fd), *fd = -1;
     }
 
-    // Ends the worker (if it runs) and returns how it ended.
+    // Ends the worker (if it runs) and everything it started: it leads a process group of its
+    // own, so a helper a plugin forked (which would hold the worker's socket open and outlive the
+    // audit) ends with it. Returns how the worker ended.
     int stop_worker() {
         int status = 0;
         if (pid > 0) {
+            ::kill(-pid, SIGKILL);
             ::kill(pid, SIGKILL);
             while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
             }
             pid = -1;
         }
+        drain_output();
+        close_pipes();
+        return status;
+    }
+
+    // The worker has ended (reaped with this status): its group's other processes are ended too.
+    int ended(int status) {
+        ::kill(-pid, SIGKILL);
+        pid = -1;
         drain_output();
         close_pipes();
         return status;
@@ -598,12 +610,7 @@ struct PluginWorker::Impl {
         int status = 0;
         for (int i = 0; i < 100; ++i) {
             pid_t got = ::waitpid(pid, &status, WNOHANG);
-            if (got == pid) {
-                pid = -1;
-                drain_output();
-                close_pipes();
-                return status;
-            }
+            if (got == pid) return ended(status);
             std::this_thread::sleep_for(std::chrono::milliseconds(2));
         }
         return stop_worker();
@@ -907,6 +914,16 @@ struct PluginWorker::Impl {
             if (stop_requested()) {
                 stop_worker();
                 return {Waited::stopped, {}, ""};
+            }
+            // A crash is told from a hang by the worker's own end, not by its socket closing: a
+            // helper the plugin forked may hold the socket open after the worker died.
+            int status = 0;
+            if (pid > 0 && ::waitpid(pid, &status, WNOHANG) == pid) {
+                if (finished()) {
+                    ended(status);
+                    return reply();
+                }
+                return {Waited::ended, {}, process::describe_status(ended(status))};
             }
             std::uint32_t done = h->done.load(std::memory_order_acquire);
             auto now = Clock::now();
