@@ -274,3 +274,29 @@ TEST_CASE("memory: running out while reading an input names the input", "[hostil
         CHECK(err.find("/dev/zero") != std::string::npos);
     }
 }
+
+TEST_CASE("merge: a shard's report copied and relabelled as another shard is refused",
+          "[hostile][cli]") {
+    fs::path dir = scratch("relabelled");
+    for (int k : {0, 1})
+        REQUIRE(program("audit --cases 20 --solvers seed --families generic --shapes sphere "
+                        "--no-plots --shard " +
+                            std::to_string(k) + "/2 --out s" + std::to_string(k),
+                        dir)
+                    .status == 0);
+    REQUIRE(program("merge --out m s0/report.json s1/report.json", dir).status == 0);
+    // Shard 0's report, its label changed to shard 1 (and its mark with it, as a copy keeps it).
+    std::string text = slurp(dir / "s0" / "report.json");
+    auto relabel = [&](std::string from, std::string to) {
+        std::size_t at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        text.replace(at, from.size(), to);
+    };
+    relabel("\"shards_included\":[0]", "\"shards_included\":[1]");
+    relabel("\"shard_marks\":[[0,", "\"shard_marks\":[[1,");
+    fs::create_directories(dir / "fake");
+    std::ofstream(dir / "fake" / "report.json") << text;
+    Ran ran = program("merge --out m2 s0/report.json fake/report.json", dir);
+    CHECK(ran.status != 0);
+    CHECK(ran.err.find("fake/report.json: its cases are not shard 1's") != std::string::npos);
+}

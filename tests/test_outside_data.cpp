@@ -103,6 +103,16 @@ TEST_CASE("outside data: a name from a cases file or a report runs nothing and b
         if (c["solver"] == "correct")
             c["family"] = "near_tangent", c["solver"] = hostile_name, curves.push_back(c);
     j["rows"] = rows, j["curves"] = curves, j["solvers"] = {hostile_name};
+    {
+        // As a campaign's report, it carries the mark of its shard's cases (merge checks it).
+        audit::Report as_campaign;
+        std::string why;
+        REQUIRE(audit::from_json(j.dump(), &as_campaign, &why));
+        char mark[24];
+        std::snprintf(mark, sizeof mark, "%016llx",
+                      (unsigned long long)audit::shard_mark(as_campaign, 0));
+        j["shard_marks"] = {{0, mark}};
+    }
     fs::create_directories(dir / "edited");
     std::ofstream(dir / "edited" / "report.json") << j.dump();
     Ran merged = program("merge --out merged edited/report.json", dir);

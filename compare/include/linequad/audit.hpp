@@ -192,6 +192,9 @@ struct Report {
     std::string frames = "any"; // the frames the shapes were built on (families.hpp)
     int shards = 1;
     std::vector<int> shards_included{0}; // the shards whose cases this report holds, ascending
+    // For each shard included, a mark of its own cases (shard_mark): what merge checks, so that a
+    // report copied and relabelled as another shard is refused.
+    std::map<int, std::uint64_t> shard_marks;
     // Set instead when the report grades a results file, or runs solvers on a cases file (not a
     // campaign: it does not merge); cases_count is then the file's number of cases.
     std::string cases_file, results_file;
@@ -327,6 +330,17 @@ struct Stopped : std::runtime_error {
 // what it has, marked stopped. Throws std::runtime_error on input it must refuse (a malformed
 // cases file, duplicate ids) and on output it cannot write.
 Report run(const Options& o);
+
+// A mark of one campaign shard's cases (o.shard of o.shards): a hash of the id of each group's
+// first case in that shard. The shard's cases are a function of the campaign and the shard, so a
+// report of another shard's cases, relabelled, carries another mark.
+std::uint64_t shard_mark(const Options& o);
+// The mark of shard k of the campaign a report describes (0 if the report names a family, shape
+// or frames linequad does not know).
+std::uint64_t shard_mark(const Report& r, int k);
+// Why a campaign report's cases are not those of the shards it names (its marks differ from the
+// marks of its campaign's shards, or it has none); empty when they are (or it grades a file).
+std::string shard_problem(const Report& r);
 
 // Every case of a campaign, in order (the shard's share only).
 void for_each_case(const Options& o, const std::function<void(const Case&)>& f);

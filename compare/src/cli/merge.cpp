@@ -57,15 +57,23 @@ int run_merge(const MergeArgs& a, const std::string& command) {
         audit::Report r;
         std::string why;
         if (!audit::read_json(a.inputs[i], &r, &why)) return fail(why);
+        // Its cases must be the shards' it names (checked after what it differs in, which says
+        // more): a copy relabelled as another shard is not.
+        auto shards_own = [&]() -> std::string {
+            std::string no = audit::shard_problem(r);
+            return no.empty() ? "" : a.inputs[i] + ": " + no;
+        };
         if (i == 0) {
             if (r.from_cases_file())
                 return fail(a.inputs[i] +
                             ": it grades a cases file; merge combines the shards of one campaign");
+            if (std::string no = shards_own(); !no.empty()) return fail(no);
             merged = std::move(r);
             continue;
         }
         if (std::string why = audit::unmergeable(merged, r); !why.empty())
             return fail(a.inputs[i] + ": " + why + " (merging into " + a.inputs[0] + ")");
+        if (std::string no = shards_own(); !no.empty()) return fail(no);
         merged.merge(r);
     }
     merged.command = command;

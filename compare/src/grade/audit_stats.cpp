@@ -440,6 +440,7 @@ void Report::merge(const Report& o) {
     seconds += o.seconds;
     shards_included.insert(shards_included.end(), o.shards_included.begin(),
                            o.shards_included.end());
+    shard_marks.insert(o.shard_marks.begin(), o.shard_marks.end());
     std::sort(shards_included.begin(), shards_included.end());
 }
 

@@ -417,6 +417,23 @@ void read_campaign(const Node& top, Report* r) {
         r->shards_included.push_back(k);
     }
     if (r->shards_included.empty()) included.fail("names no shard");
+    if (top.find("shard_marks")) {
+        Node marks = top.at("shard_marks");
+        for (std::size_t i = 0, n = marks.size(); i < n; ++i) {
+            Node pair = marks.item(i);
+            if (!pair.v.is_array() || pair.v.size() != 2) pair.fail("expected [shard, mark]");
+            int k = int(pair.item(0).count(std::uint64_t(r->shards - 1)));
+            std::string text = pair.item(1).text();
+            char* end = nullptr;
+            std::uint64_t mark = std::strtoull(text.c_str(), &end, 16);
+            if (text.size() != 16 || end != text.c_str() + 16)
+                pair.item(1).fail("expected 16 hex digits");
+            if (std::find(r->shards_included.begin(), r->shards_included.end(), k) ==
+                r->shards_included.end())
+                pair.item(0).fail("a mark of a shard the report does not include");
+            r->shard_marks[k] = mark;
+        }
+    }
     Node steps = top.at("oracle_rounding_steps");
     if (steps.size() != r->oracle_steps.size()) steps.fail("expected 8 counts");
     for (std::size_t i = 0; i < r->oracle_steps.size(); ++i)
@@ -521,6 +538,15 @@ std::string to_json(const Report& r) {
                         {"solvers", r.solvers},
                         {"shards", r.shards},
                         {"shards_included", r.shards_included}};
+    if (!r.shard_marks.empty()) {
+        OrderedJson marks = OrderedJson::array();
+        for (const auto& [k, mark] : r.shard_marks) {
+            char hex[24];
+            std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)mark);
+            marks.push_back({k, hex});
+        }
+        head["shard_marks"] = marks;
+    }
     if (!r.run.empty()) head["run"] = r.run;
     if (r.from_cases_file()) {
         head["cases_file"] = r.cases_file;

@@ -484,6 +484,51 @@ void check_shard(const Options& o) {
 
 } // namespace
 
+std::uint64_t shard_mark(const Options& o) {
+    check_shard(o);
+    std::uint64_t k = std::uint64_t(o.shards), r = std::uint64_t(o.shard), first = 0;
+    std::uint64_t mark = 0xcbf29ce484222325ull; // FNV-1a over the ids, each ended by a newline
+    for (const Group& grp : groups_of(o)) {
+        std::uint64_t i = (r + k - first % k) % k;
+        first += o.cases_per_group;
+        if (i >= o.cases_per_group) continue;
+        Case c = make_case(grp.family, grp.shape, grp.range, o.seed, i, o.frames);
+        for (char ch : c.id + "\n")
+            mark = (mark ^ static_cast<unsigned char>(ch)) * 0x100000001b3ull;
+    }
+    return mark;
+}
+
+std::uint64_t shard_mark(const Report& r, int k) {
+    Options o;
+    o.seed = r.seed, o.cases_per_group = r.cases_per_group, o.shards = r.shards, o.shard = k;
+    for (const std::string& name : r.families) {
+        Family f;
+        if (!parse_family(name, &f)) return 0;
+        o.families.push_back(f);
+    }
+    for (const std::string& name : r.shapes) {
+        int shape = shape_named(name);
+        if (shape < 0) return 0;
+        o.shapes.push_back(shape);
+    }
+    if (!parse_frames(r.frames, &o.frames)) return 0;
+    return shard_mark(o);
+}
+
+std::string shard_problem(const Report& r) {
+    if (r.from_cases_file() || r.grades_results()) return "";
+    for (int k : r.shards_included) {
+        auto mark = r.shard_marks.find(k);
+        if (mark == r.shard_marks.end())
+            return "holds no mark of shard " + std::to_string(k) + "'s cases";
+        if (mark->second != shard_mark(r, k))
+            return "its cases are not shard " + std::to_string(k) +
+                   "'s (a report copied from another shard and relabelled?)";
+    }
+    return "";
+}
+
 void for_each_case(const Options& o, const std::function<void(const Case&)>& f) {
     check_shard(o);
     // Case i of group g is the shard's when (g N + i) mod shards is: walked as i = offset + j
@@ -763,6 +808,7 @@ Report run(const Options& o, const std::vector<ExternalSolver>& external) {
     if (!o.cases_file.empty()) return solve_cases_file(o, solvers, rep);
     for (Family f : families_of(o))
         rep.families.emplace_back(family_name(f));
+    rep.shard_marks[o.shard] = shard_mark(o);
 
     // Each solver answers the family's cases posed in its own precision: the double solvers (and
     // batch) binary64 cases, the float solvers binary32 cases, each graded in its own ulps.
