@@ -300,3 +300,16 @@ TEST_CASE("merge: a shard's report copied and relabelled as another shard is ref
     CHECK(ran.status != 0);
     CHECK(ran.err.find("fake/report.json: its cases are not shard 1's") != std::string::npos);
 }
+
+TEST_CASE("memory: threads that cannot be had are done without", "[hostile][cli]") {
+    // 64 workers' stacks (8 MB each) do not fit in 400 MB of address space: the audit runs on
+    // the threads it could start (it ended in std::terminate, its report left running).
+    fs::path dir = scratch("few_threads");
+    int status = shell("ulimit -v 400000; " + bin() +
+                           " audit --cases 50 --families generic --threads 64 --no-plots --out r "
+                           "2> err.txt",
+                       dir);
+    INFO(slurp(dir / "err.txt"));
+    CHECK(status == 0);
+    CHECK(read_report(dir / "r").status == audit::Status::complete);
+}

@@ -6,6 +6,7 @@
 #include "io/jsonl.hpp"
 
 #include <csignal>
+#include <cstdlib>
 #include <iostream>
 #include <new>
 
@@ -55,10 +56,29 @@ int main_checked(int argc, char** argv) {
     return 2;
 }
 
+// Memory kept back for the end of a run that exhausts the rest: the first failed allocation frees
+// it and fails, so that what unwinds after it (destroying a large JSON value allocates, and
+// nlohmann's destructors may not throw), saving the report marked stopped and naming the error
+// have room; a later failure is an ordinary bad_alloc.
+char* memory_reserve = nullptr;
+constexpr std::size_t memory_reserve_bytes = std::size_t(16) << 20;
+
+void on_out_of_memory() {
+    if (memory_reserve) {
+        std::free(memory_reserve);
+        memory_reserve = nullptr;
+    } else {
+        std::set_new_handler(nullptr);
+    }
+    throw std::bad_alloc();
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     jsonl::guard_standard_descriptors();
+    memory_reserve = static_cast<char*>(std::malloc(memory_reserve_bytes));
+    std::set_new_handler(on_out_of_memory);
     // A file-size limit makes a write fail (EFBIG, named like any write error, its temporary
     // file removed) instead of killing the process with nothing said.
     std::signal(SIGXFSZ, SIG_IGN);

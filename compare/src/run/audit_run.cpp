@@ -712,25 +712,36 @@ void grade_chunks(const Options& o, const Solvers& solvers, bool batch,
         std::lock_guard<std::mutex> lock(graders_lock);
         return graders.try_emplace(std::this_thread::get_id(), solvers, batch).first->second;
     };
-    in_order<Graded>(
-        chunks.size(), threads_for(o.threads),
-        [&](std::size_t i) {
-            const Chunk& c = chunks[i];
-            std::vector<Case> cases = source.cases(c);
-            Graded g;
-            g.cases = cases.size();
-            if (!cases.empty()) {
-                auto [family, shape] = source.names(c.source);
-                g.stats = grader().grade_chunk(cases, c.precision, family, shape);
-            }
-            return g;
-        },
-        [&](std::size_t, Graded&& g) {
-            rep.merge_statistics(g.stats);
-            progress.advance(g.cases);
-            saver.maybe_save(rep, start);
-        },
-        [] { return stop_requested(); });
+    // Memory that runs out while grading ends the run with what it measured, saved and marked
+    // stopped, and a named error: never a report left saying "running".
+    try {
+        in_order<Graded>(
+            chunks.size(), threads_for(o.threads),
+            [&](std::size_t i) {
+                const Chunk& c = chunks[i];
+                std::vector<Case> cases = source.cases(c);
+                Graded g;
+                g.cases = cases.size();
+                if (!cases.empty()) {
+                    auto [family, shape] = source.names(c.source);
+                    g.stats = grader().grade_chunk(cases, c.precision, family, shape);
+                }
+                return g;
+            },
+            [&](std::size_t, Graded&& g) {
+                rep.merge_statistics(g.stats);
+                progress.advance(g.cases);
+                saver.maybe_save(rep, start);
+            },
+            [] { return stop_requested(); });
+    } catch (const std::bad_alloc&) {
+        graders.clear(); // their scratch space, for the save
+        rep.status = Status::stopped;
+        saver.end(rep, o, start);
+        throw std::runtime_error("out of memory while grading: the report in " +
+                                 (o.out_dir.empty() ? std::string("memory") : o.out_dir) +
+                                 " holds what was measured, marked stopped");
+    }
     for (const ExternalSolver* e : solvers.external)
         note_worker(rep.external[e->name], *e);
     rep.status = stop_requested() ? Status::stopped : Status::complete;

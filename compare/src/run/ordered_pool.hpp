@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -34,7 +35,7 @@ void in_order(std::size_t n, int threads, const std::function<Result(std::size_t
     std::condition_variable changed;
     std::map<std::size_t, Result> done; // finished, not yet consumed
     std::size_t next_start = 0, next_consume = 0;
-    int running = threads;
+    int running = 0; // workers started and not yet finished
     bool failed = false;
     std::exception_ptr error;
     auto fail = [&](std::exception_ptr e) { // m held
@@ -65,9 +66,28 @@ void in_order(std::size_t n, int threads, const std::function<Result(std::size_t
         --running;
         changed.notify_all();
     };
+    // Threads that cannot be had (an address-space or process limit: std::system_error) are done
+    // without: the run goes on with those it has, or on this thread alone. (A joinable thread
+    // destroyed by the exception's unwinding would end the process in std::terminate.)
     std::vector<std::thread> workers;
-    for (int t = 0; t < threads; ++t)
-        workers.emplace_back(work);
+    for (int t = 0; t < threads; ++t) {
+        {
+            std::lock_guard<std::mutex> lock(m);
+            ++running;
+        }
+        try {
+            workers.emplace_back(work);
+        } catch (const std::system_error&) {
+            std::lock_guard<std::mutex> lock(m);
+            --running;
+            break;
+        }
+    }
+    if (workers.empty()) {
+        for (std::size_t i = 0; i < n && !stopping(); ++i)
+            consume(i, make(i));
+        return;
+    }
     {
         std::unique_lock<std::mutex> lock(m);
         while (next_consume < n && !failed) {
