@@ -70,12 +70,6 @@ std::string grouped(std::uint64_t n) {
     }
     return out;
 }
-std::string in_bits(double ulps) {
-    if (ulps == 0) return "0";
-    char b[32];
-    std::snprintf(b, sizeof b, "%.1f", std::log2(1 + ulps));
-    return b;
-}
 
 // A library's output as a person reads it: a line repeated in a run (ODE repeats its internal
 // error once per crash) shown once, with how many times it came; a last line cut off where the
@@ -116,7 +110,6 @@ std::string median_ns(const Row& row) {
 std::string scene_error(const Row& row) {
     return row.graded_roots ? fmt(row.s_quantile(0.99)) + " / " + fmt_ulps(row.s_max) : "-";
 }
-
 
 std::string status_line(const Report& r) {
     std::string shards;
@@ -460,7 +453,6 @@ void write_run_line(std::ostream& md, const Report& r) {
        << ". How it was run: [Provenance](#provenance).\n\n";
 }
 
-
 // The verdict: per solver, the share of its cases classified right, where it breaks and its t
 // error in bits; then every family's share misclassified, solver by solver.
 void write_verdict(std::ostream& md, const Report& r) {
@@ -495,8 +487,8 @@ void write_verdict(std::ostream& md, const Report& r) {
         }
         md << (most.empty() ? "-" : most) << " | ";
         if (v.errors)
-            md << in_bits(v.t_max_ulps) << " bits (" << fmt(v.t_max_ulps) << " ulps) | "
-               << in_bits(v.t_p99_ulps) << " bits |\n";
+            md << bits_text(v.t_max_ulps) << " bits (" << fmt(v.t_max_ulps) << " ulps) | "
+               << bits_text(v.t_p99_ulps) << " bits |\n";
         else
             md << "- | - |\n";
     }
@@ -552,7 +544,7 @@ void write_worst_case(std::ostream& md, const Report& r, const RowKey& key, cons
     else if (w.ulps == UINT64_MAX)
         md << "a root of the wrong sign (or 0 against a nonzero root)";
     else
-        md << "t error " << in_bits(double(w.ulps)) << " bits (" << fmt_ulps(w.ulps) << " ulps)";
+        md << "t error " << bits_text(double(w.ulps)) << " bits (" << fmt_ulps(w.ulps) << " ulps)";
     md << "\n\n";
     if (parsed) {
         auto answer = [](const ParsedResult& p) -> std::string {
@@ -643,8 +635,8 @@ void write_solver(std::ostream& md, const Report& r, const std::string& solver) 
            << (by_kind.empty() ? "-" : markdown_text(by_kind)) << " | "
            << (f.within_tolerance ? with_share(f.within_tolerance, f.cases) : "-") << " | "
            << (k >= 0 ? std::to_string(k) : "-") << " | "
-           << (f.graded_roots ? in_bits(f.t_quantile(0.99)) : "-") << " | "
-           << (f.graded_roots ? in_bits(double(f.t_max)) : "-") << " | "
+           << (f.graded_roots ? bits_text(f.t_quantile(0.99)) : "-") << " | "
+           << (f.graded_roots ? bits_text(double(f.t_max)) : "-") << " | "
            << (f.graded_roots ? fmt(f.s_quantile(0.99)) : "-") << " |\n";
     }
     md << "\n";

@@ -259,8 +259,10 @@ document.querySelectorAll("#verdict h3").forEach(h => {
     else if (t.startsWith("> 99.99")) p = 99.995;
     else { const m = t.match(/^(\d+(\.\d+)?) %$/); if (m) p = parseFloat(m[1]); }
     if (p === null) return;
-    const x = p === 0 ? 0 : Math.min(1, Math.max(0.05, (Math.log10(p) + 2) / 3));
-    const hue = Math.round(120 - 120 * x), light = p === 0 ? 93 : 78;
+    // Any share above 0 leaves the pale green of 0 for yellow-green and beyond: a tiny share must
+    // not read greener than none.
+    const x = p === 0 ? 0 : Math.min(1, Math.max(0.15, (Math.log10(p) + 2) / 3));
+    const hue = Math.round(120 - 120 * x), light = p === 0 ? 93 : 80;
     td.style.background = `hsl(${hue} 70% ${light}%`.concat(String.fromCharCode(41));
   });
 });

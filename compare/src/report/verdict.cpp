@@ -77,6 +77,10 @@ std::vector<Verdict> verdicts(const Report& r) {
     return out;
 }
 
+std::string bits_text(double ulps) {
+    return ulps == 0 ? "0" : number(bits(ulps), "%.1f");
+}
+
 std::string percent_of(std::uint64_t part, std::uint64_t whole) {
     if (whole == 0) return "-";
     if (part == 0) return "0 %";
@@ -100,10 +104,9 @@ std::string verdict_line(const Verdict& v) {
                 percent_of(w.misclassified, w.cases) +
                 (w.breaks_at >= 0 ? ", from k = " + std::to_string(w.breaks_at) : "") + ")";
     }
-    auto in_bits = [](double b) { return b == 0 ? std::string("0") : number(b, "%.1f"); };
     if (v.errors)
-        line += "; t error " + in_bits(v.t_max_bits()) + " bits at worst, " +
-                in_bits(v.t_p99_bits()) + " at p99";
+        line += "; t error " + bits_text(v.t_max_ulps) + " bits at worst, " +
+                bits_text(v.t_p99_ulps) + " at p99";
     if (v.sign_wrong) line += "; " + std::to_string(v.sign_wrong) + " roots of the wrong sign";
     return line;
 }

@@ -595,22 +595,20 @@ struct PluginWorker::Impl {
         return status;
     }
 
-    // The worker has ended (reaped with this status): its group's other processes are ended too.
-    int ended(int status) {
-        ::kill(-pid, SIGKILL);
-        pid = -1;
-        drain_output();
-        close_pipes();
-        return status;
+    // Whether the worker has ended, left unreaped: while it is a zombie its process group's id
+    // cannot be taken by another process, so stop_worker() ends the group (helpers it forked)
+    // safely before reaping it, and returns how it ended.
+    bool has_ended() const {
+        siginfo_t info{};
+        return pid > 0 && ::waitid(P_PID, id_t(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+               info.si_pid == pid;
     }
 
     // The worker's status once its reply pipe closed: reaped if it ended (waiting a little for
     // it), killed if it lives on without it.
     int reap() {
-        int status = 0;
         for (int i = 0; i < 100; ++i) {
-            pid_t got = ::waitpid(pid, &status, WNOHANG);
-            if (got == pid) return ended(status);
+            if (has_ended()) return stop_worker();
             std::this_thread::sleep_for(std::chrono::milliseconds(2));
         }
         return stop_worker();
@@ -917,13 +915,10 @@ struct PluginWorker::Impl {
             }
             // A crash is told from a hang by the worker's own end, not by its socket closing: a
             // helper the plugin forked may hold the socket open after the worker died.
-            int status = 0;
-            if (pid > 0 && ::waitpid(pid, &status, WNOHANG) == pid) {
-                if (finished()) {
-                    ended(status);
-                    return reply();
-                }
-                return {Waited::ended, {}, process::describe_status(ended(status))};
+            if (has_ended()) {
+                int status = stop_worker();
+                if (finished()) return reply();
+                return {Waited::ended, {}, process::describe_status(status)};
             }
             std::uint32_t done = h->done.load(std::memory_order_acquire);
             auto now = Clock::now();
