@@ -1,6 +1,6 @@
 // Hostile conditions, third round: a reader that goes away, a NUL inside a line, outputs that are
-// not plain files or are the inputs, a path that holds a newline in a replay command, and a diff
-// of solvers that graded other cases.
+// not plain files or are the inputs, plugins that fork or close the worker's descriptors, a path
+// that holds a newline in a replay command, and a diff of solvers that graded other cases.
 #include "io/escape.hpp"
 #include "linequad/audit.hpp"
 
@@ -162,6 +162,29 @@ TEST_CASE("diff: a solver that graded other cases is not 'better'", "[hostile][r
     CHECK(d.worse());
 }
 
+TEST_CASE("plugins: a call that closes the worker's descriptors is charged, not a later case",
+          "[hostile][worker][cli]") {
+    fs::path dir = scratch("closes_descriptors");
+    // Both solvers misbehave on the same cases (picked by the bits of L0) and answer the same
+    // textbook hit on the others: charged on the same cases, their rows are equal.
+    Ran ran = program("audit --plugin '" + std::string(LINEQUAD_HOSTILE_PLUGIN) +
+                          "' --solvers aborts,closes_descriptors --families generic "
+                          "--shapes cylinder --cases 60 --no-plots --out r",
+                      dir);
+    REQUIRE(ran.status == 0);
+    audit::Report r = read_report(dir / "r");
+    audit::Row closes = r.total("closes_descriptors"), aborts = r.total("aborts");
+    const std::string charged = "crashed the worker: closed or replaced its descriptors";
+    REQUIRE(aborts.foreign.count("crashed (SIGABRT)") == 1);
+    CHECK(closes.foreign.size() == 1);
+    CHECK(closes.foreign[charged] == aborts.foreign["crashed (SIGABRT)"]);
+    CHECK(closes.cases == aborts.cases);
+    CHECK(closes.mismatches == aborts.mismatches);
+    CHECK(closes.cases_mismatched == aborts.cases_mismatched);
+    CHECK(closes.t_max == aborts.t_max);
+    CHECK(closes.t_sum == aborts.t_sum);
+}
+
 TEST_CASE("plugins: a helper a plugin forks neither hides its crash nor outlives the audit",
           "[hostile][worker][cli]") {
     fs::path dir = scratch("forks");
@@ -272,6 +295,66 @@ TEST_CASE("memory: running out while reading an input names the input", "[hostil
         CHECK(status != 0);
         CHECK(status < 128); // an error, not a death by signal
         CHECK(err.find("/dev/zero") != std::string::npos);
+    }
+}
+
+TEST_CASE("memory: a line whose JSON does not fit is named, not a std::terminate",
+          "[hostile][cli]") {
+    fs::path dir = scratch("memory_line");
+    // 40 MB of one flat array: 20 million values, 16 bytes each in the DOM (and as much again
+    // while its vector grows), more than a 400 MB address space holds beside the line itself.
+    // nlohmann's destructor allocates a stack as large as the array, so the partly built value
+    // could not be destroyed after the std::bad_alloc: the run ended in std::terminate.
+    {
+        std::ofstream out(dir / "big.jsonl");
+        out << "{\"id\":\"x\",\"shape\":\"sphere\",\"pad\":[";
+        for (int i = 0; i < 20000000; ++i)
+            out << "0,";
+        out << "0]}\n";
+    }
+    int status = shell("ulimit -v 400000; " + bin() +
+                           " audit --cases-file big.jsonl --max-line-bytes 100000000 --solvers "
+                           "correct --no-plots --out r 2> err.txt",
+                       dir);
+    std::string err = slurp(dir / "err.txt");
+    INFO(err);
+    CHECK(status == 2);
+    CHECK(err.find("big.jsonl: line 1: out of memory while reading it") != std::string::npos);
+}
+
+TEST_CASE("memory: an audit out of memory at any point leaves its report marked, never running",
+          "[hostile][cli]") {
+    fs::path dir = scratch("memory_audit");
+    // Few cases and every family: grading takes little, the report (a million JSON values) much,
+    // so that the limits below run out while starting, grading, checking the report's JSON and
+    // rendering it (which phase depends on the machine's libraries; each is covered by some).
+    for (int megabytes : {80, 100, 120, 140, 200, 400}) {
+        INFO(megabytes << " MB");
+        fs::path out = dir / ("r" + std::to_string(megabytes));
+        int status = shell("ulimit -v " + std::to_string(megabytes * 1000) + "; " + bin() +
+                               " audit --cases 200 --no-plots --out " + out.filename().string() +
+                               " > /dev/null 2> err.txt",
+                           dir);
+        std::string err = slurp(dir / "err.txt");
+        INFO(err);
+        CHECK(status < 128);         // never a death by signal (std::terminate is SIGABRT)
+        if (status == 127) continue; // the program could not even be loaded in this much
+        if (status == 0) {
+            CHECK(read_report(out).status == audit::Status::complete);
+            CHECK(fs::exists(out / "report.md"));
+            continue;
+        }
+        CHECK(status == 2);
+        CHECK(err.find("out of memory while") != std::string::npos);
+        if (!fs::exists(out / "report.json")) { // out of memory before the first save
+            CHECK(err.find("out of memory while grading") == std::string::npos);
+            continue;
+        }
+        audit::Report r = read_report(out);
+        CHECK(r.status != audit::Status::running);
+        // A report.md beside it is this report's, not an earlier checkpoint's.
+        if (fs::exists(out / "report.md"))
+            CHECK(slurp(out / "report.md").find("no: running") == std::string::npos);
     }
 }
 

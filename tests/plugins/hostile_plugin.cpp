@@ -1,8 +1,8 @@
 // A plugin that misbehaves, one solver per way (a crash, an exit, a hang, an exception, output, a
-// changed rounding mode, a helper process left behind), to show that nothing it does reaches
-// linequad's own answers or loses the report (tests/test_worker.cpp). Each solver answers a
-// textbook nearest hit of an open finite cylinder, and on a tenth of the cases (chosen by the bits
-// of L0, so the same cases every run) does what its name says.
+// changed rounding mode, a helper process left behind, its descriptors closed), to show that
+// nothing it does reaches linequad's own answers or loses the report (tests/test_worker.cpp). Each
+// solver answers a textbook nearest hit of an open finite cylinder, and on a tenth of the cases
+// (chosen by the bits of L0, so the same cases every run) does what its name says.
 #include "linequad/audit_plugin.h"
 
 #include <cfenv>
@@ -114,6 +114,14 @@ int solve(void*, const lq_shape* s, const lq_line* l, lq_answer* out) {
             std::abort();
         }
         break;
+    case 9: // closes every descriptor it did not open, as a daemon does, and opens others there
+        if (now) {
+            for (int fd = 3; fd < 1024; ++fd)
+                ::close(fd);
+            for (int i = 0; i < 3; ++i)
+                (void)::open("/dev/null", O_RDONLY);
+        }
+        break;
     }
     textbook(s, l, out);
     return 0;
@@ -137,6 +145,8 @@ const lq_solver solvers[] = {
     {"aborts", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, 0, 1u, "abort()", solve<7>, nullptr, 0, 0,
      nullptr},
     {"forks_then_aborts", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, 0, 1u, "fork(), abort()", solve<8>,
+     nullptr, 0, 0, nullptr},
+    {"closes_descriptors", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, 0, 1u, "close(3..1023)", solve<9>,
      nullptr, 0, 0, nullptr},
 };
 

@@ -318,6 +318,14 @@ struct Options {
     std::function<void(const std::string&)> notice;
 };
 
+// Memory runs low (a program's reserve was just given up to the allocation that failed): the
+// running audit stops as a stop request would, at its next chunk, and ends in a
+// std::runtime_error saying so, its report saved and marked stopped. Stopping between chunks
+// rather than by a std::bad_alloc in the middle of one matters: CGAL's Mpzf, which the exact
+// oracle computes in, does not survive one thrown inside it (seen: a SIGSEGV in Mpzf::clear and
+// glibc's "munmap_chunk(): invalid pointer" under an address-space limit).
+void stop_for_memory() noexcept;
+
 // A stop request (SIGINT, SIGTERM) that came before any case was graded (while a cases file was
 // read): there is no report to keep. The linequad program exits 130 with its message.
 struct Stopped : std::runtime_error {
@@ -456,11 +464,13 @@ class OutputDirectory {
     void checkpoint(const Report& r);
     // The end of a run: the report checked by reading its JSON back, then the figures (when
     // `plots`), report.md, whatever `also` writes from them (report.html), and report.json last.
+    // Memory that runs out there is a std::runtime_error saying what report.json then holds.
     void finish(const Report& r, bool plots,
                 const std::function<void(const std::string& dir)>& also = {});
     const std::string& path() const { return dir_; }
 
   private:
+    std::string saved_out_of_memory(const std::string& json_text, Status status);
     std::string dir_;
     int lock_fd_ = -1;
 };

@@ -8,7 +8,9 @@
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <malloc.h>
 #include <new>
+#include <sys/resource.h>
 
 using namespace linequad;
 
@@ -56,10 +58,11 @@ int main_checked(int argc, char** argv) {
     return 2;
 }
 
-// Memory kept back for the end of a run that exhausts the rest: the first failed allocation frees
-// it and fails, so that what unwinds after it (destroying a large JSON value allocates, and
-// nlohmann's destructors may not throw), saving the report marked stopped and naming the error
-// have room; a later failure is an ordinary bad_alloc.
+// Memory kept back for a run that exhausts the rest. The first failed allocation gives it up and
+// is tried again in its room, and a running audit stops at its next chunk (audit::stop_for_memory)
+// with its report saved and marked stopped: a std::bad_alloc thrown into the exact oracle's number
+// type (CGAL's Mpzf) corrupts the heap. A later failure is an ordinary std::bad_alloc, which every
+// reader names with its input.
 char* memory_reserve = nullptr;
 constexpr std::size_t memory_reserve_bytes = std::size_t(16) << 20;
 
@@ -67,9 +70,10 @@ void on_out_of_memory() {
     if (memory_reserve) {
         std::free(memory_reserve);
         memory_reserve = nullptr;
-    } else {
-        std::set_new_handler(nullptr);
+        audit::stop_for_memory();
+        return;
     }
+    std::set_new_handler(nullptr);
     throw std::bad_alloc();
 }
 
@@ -77,6 +81,11 @@ void on_out_of_memory() {
 
 int main(int argc, char** argv) {
     jsonl::guard_standard_descriptors();
+    // Under an address-space limit, one malloc arena for every thread: each thread's own arena
+    // reserves 64 MB of address space, and once none can be had glibc maps every allocation on
+    // its own pages (an audit under 200 MB ran 80 times slower and then out of memory).
+    if (rlimit space{}; ::getrlimit(RLIMIT_AS, &space) == 0 && space.rlim_cur != RLIM_INFINITY)
+        ::mallopt(M_ARENA_MAX, 1);
     memory_reserve = static_cast<char*>(std::malloc(memory_reserve_bytes));
     std::set_new_handler(on_out_of_memory);
     // A file-size limit makes a write fail (EFBIG, named like any write error, its temporary

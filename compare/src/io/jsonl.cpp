@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <iterator>
+#include <new>
 #include <stdexcept>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -151,12 +152,32 @@ bool parse(std::string_view text, Json* out, std::string* why) {
     const char* reached = begin;
     StrictBuilder builder(out, begin, &reached);
     TrackedIterator first{begin, &reached}, last{begin + text.size(), &reached};
-    bool ok = Json::sax_parse(first, last, &builder);
+    bool ok = false;
+    try {
+        ok = Json::sax_parse(first, last, &builder);
+    } catch (const std::bad_alloc&) {
+        release(*out); // then its reader names what it was reading
+        throw;
+    }
     if (!ok) {
         *out = Json();
         *why = builder.why.empty() ? "not valid JSON" : builder.why;
     }
     return ok;
+}
+
+void release(Json& v) noexcept {
+    if (v.is_array()) {
+        auto& items = v.get_ref<Json::array_t&>();
+        for (Json& item : items)
+            release(item);
+        items.clear();
+    } else if (v.is_object()) {
+        auto& members = v.get_ref<Json::object_t&>();
+        for (auto& member : members)
+            release(member.second);
+        members.clear();
+    }
 }
 
 std::string dump(const Json& v) {

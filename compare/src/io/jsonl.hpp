@@ -13,6 +13,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdio>
+#include <exception>
 #include <string>
 #include <string_view>
 
@@ -32,6 +33,27 @@ bool parse(std::string_view text, Json* out, std::string* why);
 // every digit (2^64 + 1 is not read as a double), a string its escapes. Empty when `text` is not
 // an object or has no such member. What ids are kept as: echoed back as they came.
 std::string member_text(std::string_view text, std::string_view key);
+
+// Empties a value from its leaves up without allocating. nlohmann's destructor flattens an array
+// or object into a stack it allocates (as large as the container): a value destroyed while a
+// std::bad_alloc unwinds needs memory there is none of, and std::terminate ends the process.
+// Recursion is bounded by max_depth for what parse() built.
+void release(Json& v) noexcept;
+
+// Releases a value when an exception leaves its scope (declared after it, so destroyed first).
+class ReleaseOnUnwind {
+  public:
+    explicit ReleaseOnUnwind(Json& v) : v_(v), unwinding_(std::uncaught_exceptions()) {}
+    ~ReleaseOnUnwind() {
+        if (std::uncaught_exceptions() > unwinding_) release(v_);
+    }
+    ReleaseOnUnwind(const ReleaseOnUnwind&) = delete;
+    ReleaseOnUnwind& operator=(const ReleaseOnUnwind&) = delete;
+
+  private:
+    Json& v_;
+    int unwinding_;
+};
 
 // Compact JSON text of a value; bytes that are not UTF-8 (which only our own messages can carry:
 // the parser refuses them in input) become U+FFFD, so the output is always JSON.

@@ -600,6 +600,7 @@ std::string to_json(const Report& r) {
 
 bool from_json(std::string_view text, Report* r, std::string* why) {
     Json root;
+    jsonl::ReleaseOnUnwind release(root); // a report's million values, out of memory
     std::string err;
     if (!jsonl::parse(text, &root, &err)) return *why = "not valid JSON: " + err, false;
     try {

@@ -854,15 +854,54 @@ void OutputDirectory::checkpoint(const Report& r) {
 
 void OutputDirectory::finish(const Report& r, bool plots,
                              const std::function<void(const std::string&)>& also) {
-    std::string text = to_json(r);
-    Report saved;
-    std::string why;
-    if (!from_json(text, &saved, &why))
-        throw std::logic_error("the report written does not read back: " + why);
-    if (plots) write_plots(saved, dir_);
-    jsonl::write_file(dir_ + "/report.md", markdown(saved));
-    if (also) also(dir_);
+    std::string text;
+    try {
+        text = to_json(r);
+        Report saved;
+        std::string why;
+        if (!from_json(text, &saved, &why))
+            throw std::logic_error("the report written does not read back: " + why);
+        if (plots) write_plots(saved, dir_);
+        jsonl::write_file(dir_ + "/report.md", markdown(saved));
+        if (also) also(dir_);
+    } catch (const std::bad_alloc&) {
+        throw std::runtime_error(saved_out_of_memory(text, r.status));
+    }
     jsonl::write_file(dir_ + "/report.json", text);
+}
+
+// What is left when the memory runs out at the end of a run: report.json with every result when
+// its text was made (else the last checkpoint's, marked stopped: never "running"), and no
+// report.md or report.html of an earlier checkpoint that would contradict it. Says which.
+std::string OutputDirectory::saved_out_of_memory(const std::string& text, Status status) {
+    const std::string json = dir_ + "/report.json";
+    std::error_code ec;
+    for (const char* stale : {"/report.md", "/report.html"})
+        std::filesystem::remove(dir_ + stale, ec);
+    std::string rendered = "; render report.md and report.html with `linequad merge --out "
+                           "ANOTHER_DIR " +
+                           json + "` where there is more memory";
+    if (!text.empty()) {
+        jsonl::write_file(json, text);
+        return "out of memory while writing the report in " + dir_ + ": report.json holds " +
+               (status == Status::complete
+                    ? "every result"
+                    : "what was measured, marked " + std::string(status_name(status))) +
+               rendered;
+    }
+    // The checkpoint's status is its second field (after the format's name), in words of the
+    // same length: changed in place, with the memory the reading took.
+    std::string saved = jsonl::read_file(json);
+    const std::string running = "\"status\":\"running\"";
+    std::size_t at = saved.find(running);
+    if (at == std::string::npos || at > 40)
+        return "out of memory while writing the report in " + dir_ +
+               ": its report.json is not a checkpoint of this run";
+    saved.replace(at + running.size() - 8, 7, status_name(Status::stopped));
+    jsonl::write_file(json, saved);
+    return "out of memory while writing the report in " + dir_ +
+           ": report.json holds its last checkpoint (saved every few seconds), marked stopped" +
+           rendered;
 }
 
 } // namespace linequad::audit

@@ -35,11 +35,16 @@
 namespace linequad::audit {
 
 namespace {
-std::atomic<bool> stop_flag{false};
+std::atomic<bool> stop_flag{false}, memory_low{false};
 } // namespace
 
 bool stop_requested() {
     return stop_flag.load(std::memory_order_relaxed);
+}
+
+void stop_for_memory() noexcept {
+    memory_low = true;
+    stop_flag = true;
 }
 
 std::string new_run_id() {
@@ -68,7 +73,7 @@ extern "C" void on_signal(int) {
 class StopOnSignal {
   public:
     StopOnSignal() {
-        stop_flag = false;
+        stop_flag = false, memory_low = false;
         struct sigaction sa {};
         sa.sa_handler = on_signal;
         sigemptyset(&sa.sa_mask);
@@ -317,8 +322,26 @@ class Saver {
     std::chrono::steady_clock::time_point last_;
 };
 
+std::runtime_error out_of_memory_grading(const Options& o) {
+    return std::runtime_error("out of memory while grading: the report in " +
+                              (o.out_dir.empty() ? std::string("memory") : o.out_dir) +
+                              " holds what was measured, marked stopped");
+}
+
 // The cases of a cases file by id, in file order; duplicate ids and malformed lines refused.
 std::vector<Case> read_cases_of(const Options& o);
+
+// Parses one line (parse() returns whether it could), running out of memory there said with the
+// file and the line (the parser has let go of what it built).
+template <class Parse>
+bool parse_line(Parse&& parse, const std::string& file, long line) {
+    try {
+        return parse();
+    } catch (const std::bad_alloc&) {
+        throw std::runtime_error(file + ": line " + std::to_string(line) +
+                                 ": out of memory while reading it");
+    }
+}
 
 // The cases of a cases file; running out of memory there is said with the file.
 std::vector<Case> read_cases(const Options& o) {
@@ -339,16 +362,17 @@ std::vector<Case> read_cases_of(const Options& o) {
         return std::runtime_error(o.cases_file + ": line " + std::to_string(in.number()) + ": " +
                                   what);
     };
-    auto stopped = [&] {
-        return Stopped(o.cases_file + ": stopped (SIGINT or SIGTERM) while it was read, at line " +
-                       std::to_string(in.number()) + "; nothing was graded yet");
+    auto throw_stopped = [&] {
+        if (memory_low) throw fail("out of memory while reading it; nothing was graded yet");
+        throw Stopped(o.cases_file + ": stopped (SIGINT or SIGTERM) while it was read, at line " +
+                      std::to_string(in.number()) + "; nothing was graded yet");
     };
     for (;;) {
-        if (stop_requested()) throw stopped();
+        if (stop_requested()) throw_stopped();
         auto status = in.next(&line);
         if (status == jsonl::LineReader::Status::end) break;
         if (status == jsonl::LineReader::Status::error) {
-            if (stop_requested()) throw stopped();
+            if (stop_requested()) throw_stopped();
             throw std::runtime_error(in.error());
         }
         if (status == jsonl::LineReader::Status::too_long)
@@ -356,7 +380,8 @@ std::vector<Case> read_cases_of(const Options& o) {
                                      jsonl::too_long_message(in.number(), o.max_line_bytes));
         if (jsonl::blank(line)) continue;
         Case c;
-        if (!parse_case(line, &c, &why)) throw fail(why);
+        if (!parse_line([&] { return parse_case(line, &c, &why); }, o.cases_file, in.number()))
+            throw fail(why);
         if (c.id == "null") throw fail("a case needs an id, to match its answers");
         auto [it, fresh] = line_of.emplace(c.id, in.number());
         if (!fresh) throw fail("id " + c.id + " repeats line " + std::to_string(it->second) + "'s");
@@ -390,7 +415,8 @@ ResultsByCase read_answers(const Options& o,
         if (jsonl::blank(line)) continue;
         Answer a;
         a.line = res.number();
-        if (!parse_result(line, &a.result, &why)) {
+        if (!parse_line([&] { return parse_result(line, &a.result, &why); }, o.results_file,
+                        res.number())) {
             // An answer that names its case is graded as refused; one that does not cannot be
             // attributed to any case.
             if (!a.result.has_id) throw std::runtime_error(where + ": " + why);
@@ -738,15 +764,16 @@ void grade_chunks(const Options& o, const Solvers& solvers, bool batch,
         graders.clear(); // their scratch space, for the save
         rep.status = Status::stopped;
         saver.end(rep, o, start);
-        throw std::runtime_error("out of memory while grading: the report in " +
-                                 (o.out_dir.empty() ? std::string("memory") : o.out_dir) +
-                                 " holds what was measured, marked stopped");
+        throw out_of_memory_grading(o);
     }
     for (const ExternalSolver* e : solvers.external)
         note_worker(rep.external[e->name], *e);
     rep.status = stop_requested() ? Status::stopped : Status::complete;
-    if (stop_requested() && o.notice) o.notice("stopped early; writing what was measured");
+    bool out_of_memory = memory_low; // while grading (the report's writing says its own)
+    if (stop_requested() && !out_of_memory && o.notice)
+        o.notice("stopped early; writing what was measured");
     saver.end(rep, o, start);
+    if (out_of_memory) throw out_of_memory_grading(o);
 }
 
 // Every solver on the cases of a cases file, grouped by family, shape and precision (in the

@@ -53,6 +53,7 @@ constexpr std::size_t max_hello_bytes = std::size_t(1) << 20;
 
 struct Request {
     std::uint32_t magic, seq, solver, first, count, batch;
+    std::uint32_t check_socket; // after it, the worker checks its socket (see socket_intact)
 };
 struct Reply {
     std::uint32_t magic, seq, status, unused;
@@ -94,7 +95,13 @@ struct Header {
     Request requests[ring];
     alignas(64) std::atomic<std::uint32_t> worker_sleeps;
     alignas(64) std::atomic<std::uint32_t> parent_sleeps;
+    // When the worker finds its socket closed or replaced by the plugin, it ends, leaving here
+    // the requests (by seq) since it last found it intact: (lost_after, lost_through]. A call
+    // of one of them is to blame, not the next case. lost_through ~0: while loading.
+    alignas(64) std::atomic<std::uint32_t> lost_after;
+    std::atomic<std::uint32_t> lost_through;
 };
+constexpr std::uint32_t lost_while_loading = ~0u;
 
 // Spins (with pause) while `waiting` says so, for at most `limit`; true when it stopped waiting.
 template <class Waiting>
@@ -190,6 +197,37 @@ std::string exact_text(double x) {
 
 jsonl::Json state_json(FpState s) {
     return {{"simd", s.simd}, {"x87", s.x87}};
+}
+
+// The worker's socket as it was given: a plugin may close every descriptor it did not open (as a
+// daemon does) or open another file onto the same number, and the worker must tell that apart
+// from its parent going away.
+struct stat given_socket {};
+
+bool socket_intact() {
+    for (int fd : {request_fd, reply_fd}) {
+        struct stat now {};
+        if (::fstat(fd, &now) != 0 || now.st_dev != given_socket.st_dev ||
+            now.st_ino != given_socket.st_ino)
+            return false;
+    }
+    return true;
+}
+
+// The last request answered before the socket was last found intact.
+std::uint32_t intact_through = 0;
+
+// Checks the socket (a system call: a microsecond here, so not after every request, but where
+// the parent asks, before sleeping and when the socket fails); ends the worker, leaving word of
+// the requests since the last check, when a call has taken it.
+void check_socket(Header* h, std::uint32_t answered_through) {
+    if (socket_intact()) {
+        intact_through = answered_through;
+        return;
+    }
+    h->lost_after.store(intact_through);
+    h->lost_through.store(answered_through);
+    _exit(5);
 }
 
 void say_hello(const jsonl::Json& hello) {
@@ -366,11 +404,15 @@ class Answerer {
 bool wait_for_request(Header* h, std::uint32_t next) {
     auto waiting = [&] { return std::int32_t(h->posted.load() - next) < 0; };
     while (!spin_while(waiting, std::chrono::microseconds(300))) {
+        check_socket(h, next - 1); // asleep on a socket taken, it would never wake
         h->worker_sleeps.store(1);
         if (waiting()) {
             char bell[64];
             ssize_t n = ::read(request_fd, bell, sizeof bell);
-            if (n == 0 || (n < 0 && errno != EINTR)) return false;
+            if (n == 0 || (n < 0 && errno != EINTR)) {
+                check_socket(h, next - 1); // taken while it slept, by a helper the plugin forked
+                return false;
+            }
         }
         h->worker_sleeps.store(0);
     }
@@ -389,11 +431,15 @@ int plugin_worker_main(const std::string& path) {
         return 2;
     }
     shared.base = ::mmap(nullptr, shared.at.size, PROT_READ | PROT_WRITE, MAP_SHARED, shared_fd, 0);
-    if (shared.base == MAP_FAILED) return 2;
+    if (shared.base == MAP_FAILED || ::fstat(request_fd, &given_socket) != 0) return 2;
+    Header* h = shared.header();
     Loaded loaded = load(path);
+    if (!socket_intact()) {
+        h->lost_through.store(lost_while_loading);
+        _exit(5);
+    }
     say_hello(hello(loaded));
     Answerer answerer(shared, loaded.after);
-    Header* h = shared.header();
     for (std::uint32_t next = 1;; ++next) {
         if (!wait_for_request(h, next)) return 0; // the parent is done
         Request q = h->requests[next % ring];
@@ -401,10 +447,14 @@ int plugin_worker_main(const std::string& path) {
             q.count > capacity || q.first > q.count)
             return 4;
         h->replies[next % ring] = answerer.answer(q, loaded.offered[q.solver]);
+        if (q.check_socket) check_socket(h, next);
         h->finished.store(next);
         if (h->parent_sleeps.load()) {
             char bell = 1;
-            if (!write_exactly(reply_fd, &bell, 1)) return 0;
+            if (!write_exactly(reply_fd, &bell, 1)) {
+                check_socket(h, next);
+                return 0;
+            }
         }
     }
 }
@@ -730,6 +780,8 @@ struct PluginWorker::Impl {
             }
             if (n == 0 || (n < 0 && errno != EAGAIN && errno != EINTR)) {
                 int status = reap();
+                if (shared.header()->lost_through.load() == lost_while_loading)
+                    return "it closed the worker's descriptors while loading" + loading_output();
                 return "the worker ended while loading it: " + process::describe_status(status) +
                        loading_output();
             }
@@ -965,6 +1017,11 @@ struct PluginWorker::Impl {
         std::vector<ExternalAnswer>& out;
         bool batch;
         std::uint32_t cursor = 0, filled = 0;
+        std::uint32_t one_at_a_time_until = 0; // cases before it asked one per request
+        struct Sent {
+            std::uint32_t seq, from, to;
+        };
+        std::vector<Sent> sent{}; // every request of this run, for a worker that lost its socket
         double ns = 0;
         std::uint64_t timed = 0;
     };
@@ -993,18 +1050,26 @@ struct PluginWorker::Impl {
         // stays small beside its calls'.
         const std::uint32_t per_request = std::max<std::uint32_t>(64, (r.count + 3) / 4);
         Header* h = shared.header();
-        struct Sent {
-            std::uint32_t seq, from, to;
-        };
+        using Sent = Run::Sent;
         Sent flight[2];
         int in_flight = 0;
         std::uint32_t next = r.cursor;
+        r.sent.clear();                                     // a worker numbers its requests from 1
         h->done.store(r.cursor, std::memory_order_release); // the worker waits: nothing in flight
         while (r.cursor < r.count) {
             while (in_flight < 2 && next < r.count && !(r.batch && in_flight)) {
-                std::uint32_t to = r.batch ? r.count : std::min(r.count, next + per_request);
+                std::uint32_t to =
+                    r.batch ? r.count
+                            : std::min(r.count,
+                                       next + (next < r.one_at_a_time_until ? 1 : per_request));
                 fill(r, to);
-                Request q{request_magic, ++seq, std::uint32_t(r.s), next, to, r.batch ? 1u : 0u};
+                // The socket is checked after the last request of a run (so that a call that
+                // took it is looked for in this run's requests only) and after each one asked
+                // alone to find that call.
+                bool check = to == r.count || next < r.one_at_a_time_until;
+                Request q{request_magic,     ++seq,          std::uint32_t(r.s), next, to,
+                          r.batch ? 1u : 0u, check ? 1u : 0u};
+                r.sent.push_back({q.seq, next, to});
                 h->requests[q.seq % ring] = q;
                 h->posted.store(q.seq);
                 char bell = 1;
@@ -1041,6 +1106,35 @@ struct PluginWorker::Impl {
         return {Waited::replied, {}, ""};
     }
 
+    // After the worker ended: whether it ended because a call took its socket (closed it, or
+    // opened another file on its number). Then the answers before the requests it names stand,
+    // and their cases are asked again one per request, checked after each, so that the call to
+    // blame is charged, not the next case.
+    bool took_socket(Run& r) {
+        Header* h = shared.header();
+        std::uint32_t after = h->lost_after.load(), through = h->lost_through.load();
+        if (through == 0 || through == lost_while_loading) return false;
+        h->lost_through.store(0);
+        std::uint32_t from = r.count, to = 0;
+        for (const Run::Sent& q : r.sent)
+            if (std::int32_t(q.seq - after) > 0 && std::int32_t(q.seq - through) <= 0)
+                from = std::min(from, q.from), to = std::max(to, q.to);
+        if (from >= to || to > r.count) return false; // not this run's requests
+        take(r, std::min(from, h->done.load(std::memory_order_acquire)));
+        r.cursor = std::min(r.cursor, from);
+        if (r.cursor < from) return true; // asked again from the first answer not read
+        ++restarts[std::size_t(r.s)];
+        r.batch = false;
+        if (to - from > 1) {
+            r.one_at_a_time_until = std::max(r.one_at_a_time_until, to);
+            return true;
+        }
+        r.out[r.base + r.cursor].result = Result::failure(
+            ErrorCode::foreign, "crashed the worker: closed or replaced its descriptors");
+        ++r.cursor;
+        return true;
+    }
+
     // Solver s on posed[base, base + count), through cases [0, count) of the shared memory, into
     // out[base + i]; false when stopped. When the worker ends, the cases it answered stand; a
     // packet's call is asked again one case at a time (which case failed is not known); else the
@@ -1057,6 +1151,13 @@ struct PluginWorker::Impl {
             writing = r.s;
             Waited w = drive(r);
             if (w.kind == Waited::stopped) return false;
+            if (w.kind != Waited::replied) {
+                stop_worker();
+                // Before the answers are taken as complete: a worker that found its socket
+                // taken after its last request has answered every case, one of them by a call
+                // to blame.
+                if (took_socket(r)) continue;
+            }
             if (r.cursor >= r.count) break;
             stop_worker();
             if (r.batch) {
