@@ -16,9 +16,12 @@
 
 #include "linequad/scene.hpp"
 #include "linequad/solvers.hpp"
+#include "linequad/surfaces.hpp"
 
+#include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 namespace linequad {
@@ -116,6 +119,22 @@ struct Record {
 // a scene otherwise; unreadable if it is no JSON object), so that a broken shape can break its
 // scene.
 bool parse_record(std::string_view line, Record* r, std::string* why);
+
+// A sense query: which side of a plane or a general quadric a point is on (linequad/surfaces.hpp),
+// optionally as seen moving along u. One JSON object per line:
+//   {"id": 1, "shape": "plane", "n": [a, b, c], "d": d, "p": [x, y, z], "u": [ux, uy, uz]}
+//   {"id": 2, "shape": "quadric", "q": [A, B, C, D, E, F, G, H, J, K], "p": [...]}
+// numbers as in a case (hex-float strings or JSON numbers); "u" optional.
+struct SenseQuery {
+    std::string id = "null"; // JSON text
+    std::variant<Plane, Quadric> surface;
+    Vec3 p{};
+    std::optional<Vec3> u;
+};
+bool parse_sense_query(std::string_view line, SenseQuery* q, std::string* why);
+// {"id": .., "sense": "negative"|"on"|"positive", "sign": -1|0|1}, or the refusal as
+// format_failure writes it (solver "sense").
+std::string format_sense(const std::string& id, const SenseResult& r);
 std::string format_scene(const SceneHeader& s);
 std::string format_scene_shape(const SceneShape& s);
 std::string format_scene_line(const SceneLine& l);

@@ -310,10 +310,7 @@ Command audit_command(CLI::App& app) {
         ->type_name("FILE")
         ->check(CLI::ExistingFile)
         ->needs(cases_file);
-    c->add_option("--max-line-bytes", a->max_line_bytes, "the longest line read from those files")
-        ->type_name("N")
-        ->check(WholeNumber(64, std::uint64_t(1) << 30))
-        ->capture_default_str();
+    add_max_line_bytes(c, a->max_line_bytes, "the longest line read from those files");
     auto check = [a]() -> std::pair<std::string, std::string> {
         if (a->check && !a->results_file.empty())
             return {"--check", "checks linequad's own claims; it cannot grade a file"};

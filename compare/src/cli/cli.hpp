@@ -27,6 +27,7 @@ struct Command {
 };
 
 Command solve_command(CLI::App& app);
+Command sense_command(CLI::App& app);
 Command replay_command(CLI::App& app);
 Command audit_command(CLI::App& app);
 Command cases_command(CLI::App& app);
@@ -81,6 +82,9 @@ CLI::Validator names_in(const Kind& kind, std::vector<std::string> known);
 
 // --plugin and --solver-timeout; --history and --commit.
 void add_plugin_options(CLI::App* app, std::vector<std::string>& plugins, std::string& timeout);
+// --max-line-bytes N (64 to 2^30), into `value` (its default already there).
+void add_max_line_bytes(CLI::App* app, std::string& value,
+                        const char* help = "the longest line read");
 void add_history_options(CLI::App* app, std::string& history, std::string& commit);
 
 // ---- outputs

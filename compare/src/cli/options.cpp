@@ -156,6 +156,13 @@ CLI::Validator names_in(const Kind& kind, std::vector<std::string> known) {
         [kind, known](const std::string& name) { return unknown_name(kind, name, known); });
 }
 
+void add_max_line_bytes(CLI::App* app, std::string& value, const char* help) {
+    app->add_option("--max-line-bytes", value, help)
+        ->type_name("N")
+        ->check(WholeNumber(64, std::uint64_t(1) << 30))
+        ->capture_default_str();
+}
+
 void add_plugin_options(CLI::App* app, std::vector<std::string>& plugins, std::string& timeout) {
     app->add_option("--plugin", plugins,
                     "a shared library of solvers (the C ABI of linequad/audit_plugin.h), run in "

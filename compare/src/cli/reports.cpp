@@ -118,10 +118,7 @@ Command scenes_command(CLI::App& app) {
     c->add_option("--write-cases", a->write_cases,
                   "write the scenes graded, in the case format (linequad solve reads them)")
         ->type_name("FILE");
-    c->add_option("--max-line-bytes", a->max_line_bytes, "the longest line read")
-        ->type_name("N")
-        ->check(WholeNumber(64, std::uint64_t(1) << 30))
-        ->capture_default_str();
+    add_max_line_bytes(c, a->max_line_bytes);
     c->add_option("--out", a->out, "write the report here (default: standard output)")
         ->type_name("FILE.md");
     return {c, [a](const std::string& command) { return run_scenes(*a, command); }, {}};

@@ -303,30 +303,20 @@ int run_solve(const SolveArgs& a) {
     Tally tally;
     Records records(solvers, every_solver, query, a.format == "decimal",
                     a.summary ? &tally : nullptr);
-    std::string line, why;
-    for (Record rec;;) {
-        auto status = in.next(&line);
-        if (status == jsonl::LineReader::Status::end) break;
-        if (status == jsonl::LineReader::Status::error) throw std::runtime_error(in.error());
-        std::string at = "line " + std::to_string(in.number()) + ": ";
-        if (status == jsonl::LineReader::Status::too_long) {
-            records.malformed(Record{}, jsonl::too_long_message(in.number(), max_bytes));
-            continue;
-        }
-        if (jsonl::blank(line)) continue;
-        bool parsed = false;
-        try {
-            parsed = parse_record(line, &rec, &why);
-        } catch (const std::bad_alloc&) {
-            rec = Record{}, why = "out of memory while reading it";
-        }
-        if (parsed) why = records.misplaced(rec, at);
-        if (!parsed) why = at + why;
-        if (!parsed || !why.empty())
-            records.malformed(rec, why);
-        else
-            records.take(rec);
-    }
+    std::string why;
+    Record rec;
+    jsonl::each_line(
+        in, max_bytes, &why,
+        [&](const std::string& line, auto&& parse) {
+            std::string at = "line " + std::to_string(in.number()) + ": ";
+            bool parsed = parse([&] { return parse_record(line, &rec, &why); });
+            why = parsed ? records.misplaced(rec, at) : at + why;
+            if (!why.empty())
+                records.malformed(rec, why);
+            else
+                records.take(rec);
+        },
+        [&](const std::string& too_long) { records.malformed(Record{}, too_long); });
     records.finish();
     report_plugin_output(ext);
     if (a.summary) tally.print(stderr, solvers.size());
@@ -359,10 +349,7 @@ Command solve_command(CLI::App& app) {
         ->capture_default_str();
     s->add_flag("--summary", a->summary,
                 "at the end, on standard error: how many answers, and the failures by reason");
-    s->add_option("--max-line-bytes", a->max_line_bytes, "the longest line read")
-        ->type_name("N")
-        ->check(WholeNumber(64, std::uint64_t(1) << 30))
-        ->capture_default_str();
+    add_max_line_bytes(s, a->max_line_bytes);
     s->add_option("file", a->file, "the cases (- or nothing: standard input)")->type_name("FILE");
     return {s, [a](const std::string&) { return run_solve(*a); }, {}};
 }

@@ -502,6 +502,52 @@ std::string format_failure(const std::string& id, std::string_view solver, std::
            ",\"error\":" + json_string(message) + ",\"code\":" + json_string(code) + "}";
 }
 
+bool parse_sense_query(std::string_view line, SenseQuery* q, std::string* why) {
+    *q = SenseQuery{};
+    Json obj;
+    if (!parse_object(line, &obj, why)) return false;
+    Reader r{obj, why};
+    if (const Json* id = r.find("id")) q->id = id_text(line, "id", *id);
+    const Json* shape = r.need("shape");
+    if (!shape) return false;
+    std::string kind = shape->is_string() ? shape->get<std::string>() : "";
+    if (kind != "plane" && kind != "quadric") return r.fail("shape", "expected plane or quadric");
+    for (const auto& m : obj.items()) {
+        const std::string& f = m.key();
+        bool known = f == "id" || f == "shape" || f == "p" || f == "u" ||
+                     (kind == "plane" ? f == "n" || f == "d" : f == "q");
+        if (!known) return r.fail(f, "not a field of a " + kind + " sense query");
+    }
+    if (kind == "plane") {
+        Plane plane{};
+        if (!r.vec("n", &plane.n) || !r.number("d", &plane.d)) return false;
+        q->surface = plane;
+    } else {
+        Quadric quadric{};
+        const Json* c = r.need("q");
+        if (!c) return false;
+        if (!c->is_array() || c->size() != 10)
+            return r.fail("q", "expected an array of 10 numbers (A B C D E F G H J K)");
+        for (std::size_t i = 0; i < 10; ++i)
+            if (!to_double((*c)[i], &quadric.q[i]))
+                return r.fail("q", "expected an array of 10 numbers (A B C D E F G H J K)");
+        q->surface = quadric;
+    }
+    if (!r.vec("p", &q->p)) return false;
+    if (r.find("u")) {
+        Vec3 u;
+        if (!r.vec("u", &u)) return false;
+        q->u = u;
+    }
+    return true;
+}
+
+std::string format_sense(const std::string& id, const SenseResult& r) {
+    if (!r.ok()) return format_failure(id, "sense", code_name(r.error.code), message(r.error));
+    return "{\"id\":" + id + ",\"sense\":" + json_string(sense_name(r.sense)) +
+           ",\"sign\":" + std::to_string(int(r.sense)) + "}";
+}
+
 // A result line's hits, into pr (at most max_hits, checked by the caller).
 bool read_hits(Reader& r, const Json& hits, ParsedResult* pr, std::string* why) {
     for (const Json& h : hits) {

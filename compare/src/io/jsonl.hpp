@@ -14,6 +14,8 @@
 #include <cstddef>
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -125,5 +127,33 @@ class Output {
 // makes every use fail: a file opened later cannot take its number and receive our output, and
 // writing to a closed standard output is still an error rather than silence.
 void guard_standard_descriptors();
+
+// Every line of `in` that is not blank, to on_line(line, parse) where parse(f) runs the parser
+// f() (true when the line reads) and turns running out of memory into a false with *why said;
+// a line over the limit to on_too_long(message). A read error throws naming the input.
+template <class OnLine, class OnTooLong>
+void each_line(LineReader& in, std::size_t max_bytes, std::string* why, OnLine&& on_line,
+               OnTooLong&& on_too_long) {
+    std::string line;
+    for (;;) {
+        auto status = in.next(&line);
+        if (status == LineReader::Status::end) return;
+        if (status == LineReader::Status::error) throw std::runtime_error(in.error());
+        if (status == LineReader::Status::too_long) {
+            on_too_long(too_long_message(in.number(), max_bytes));
+            continue;
+        }
+        if (blank(line)) continue;
+        auto parse = [&](auto&& f) {
+            try {
+                return bool(f());
+            } catch (const std::bad_alloc&) {
+                *why = "out of memory while reading it";
+                return false;
+            }
+        };
+        on_line(line, parse);
+    }
+}
 
 } // namespace linequad::jsonl

@@ -217,9 +217,9 @@ bool socket_intact() {
 // The last request answered before the socket was last found intact.
 std::uint32_t intact_through = 0;
 
-// Checks the socket (a system call: a microsecond here, so not after every request, but where
-// the parent asks, before sleeping and when the socket fails); ends the worker, leaving word of
-// the requests since the last check, when a call has taken it.
+// Checks the socket (two system calls, dear beside a request of cheap solves: so not after each
+// request, but where the parent asks, before sleeping and when the socket fails); ends the
+// worker, leaving word of the requests since the last check, when a call has taken it.
 void check_socket(Header* h, std::uint32_t answered_through) {
     if (socket_intact()) {
         intact_through = answered_through;

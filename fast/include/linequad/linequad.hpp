@@ -14,4 +14,5 @@
 #include "linequad/shapes.hpp"
 #include "linequad/solvers.hpp"
 #include "linequad/spawn.hpp"
+#include "linequad/surfaces.hpp"
 #include "linequad/vec3.hpp"

@@ -52,17 +52,18 @@ enum class Rung : std::uint8_t { none, newton, double_double, exact };
 // Why an input was refused. Never a hit, never undefined behaviour.
 enum class ErrorCode : std::uint8_t {
     none,
-    not_a_number,    // a NaN coordinate (or range end)
-    infinite,        // an infinite coordinate
-    zero_direction,  // v = 0
-    bad_radius,      // r <= 0
-    degenerate_axis, // H = C
-    singular_frame,  // a, b, c linearly dependent
-    empty_range,     // t0 > t1, or an end that leaves no real t (t0 = +inf, t1 = -inf)
-    out_of_range,    // inputs whose products overflow or underflow double
-    bad_option,      // caps on a shape that is not finite; nappes other than 1 or 2
-    not_binary32,    // a float solver given an input that is not a float
-    along_surface,   // spawn_ray: a direction that does not leave the surface at the hit
+    not_a_number,      // a NaN coordinate (or range end)
+    infinite,          // an infinite coordinate
+    zero_direction,    // v = 0
+    bad_radius,        // r <= 0
+    degenerate_axis,   // H = C
+    singular_frame,    // a, b, c linearly dependent
+    empty_range,       // t0 > t1, or an end that leaves no real t (t0 = +inf, t1 = -inf)
+    out_of_range,      // inputs whose products overflow or underflow double
+    bad_option,        // caps on a shape that is not finite; nappes other than 1 or 2
+    not_binary32,      // a float solver given an input that is not a float
+    along_surface,     // spawn_ray: a direction that does not leave the surface at the hit
+    zero_coefficients, // a plane's n or a quadric's q all zero: no surface
     // Another library's own refusal, which fits none of the above; field names it. linequad's
     // solvers never return it: the audit grades it as a refusal the oracle does not make.
     foreign,

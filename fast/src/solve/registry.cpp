@@ -59,6 +59,8 @@ const char* code_name(ErrorCode c) {
         return "not_binary32";
     case ErrorCode::along_surface:
         return "along_surface";
+    case ErrorCode::zero_coefficients:
+        return "zero_coefficients";
     case ErrorCode::foreign:
         return "foreign";
     }
@@ -93,6 +95,8 @@ std::string message(const Error& e) {
         return f + " is not a binary32 value (a float solver takes float inputs)";
     case ErrorCode::along_surface:
         return f + " does not leave the surface at the hit (tangent to it within rounding)";
+    case ErrorCode::zero_coefficients:
+        return f + " has every coefficient 0 (it is no surface)";
     case ErrorCode::foreign:
         return f + " (the solver's own refusal, not one of linequad's)";
     }

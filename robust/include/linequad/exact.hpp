@@ -13,6 +13,7 @@
 
 #include "linequad/scene.hpp"
 #include "linequad/solvers.hpp"
+#include "linequad/surfaces.hpp"
 
 #include <cstdint>
 
@@ -36,6 +37,13 @@ Result intersect_gmpq(const Shape& shape, const Line& line, Query query = {},
 // CGAL::Mpzf, not by the rounded t, and refuses nothing that double cannot hold. shapes_solved
 // counts every shape; exact_comparisons stays 0.
 void intersect(const std::vector<Shape>& shapes, const Line& line, Query query, SceneAnswer& out);
+
+// The sense of a point against a plane or a general quadric (linequad/surfaces.hpp), summed
+// exactly in CGAL::Mpzf with no filter: what fast/'s sense() must equal.
+SenseResult sense(const Plane& s, Vec3 p);
+SenseResult sense(const Quadric& s, Vec3 p);
+SenseResult sense(const Plane& s, Vec3 p, Vec3 u);
+SenseResult sense(const Quadric& s, Vec3 p, Vec3 u);
 
 // The oracle as a named solver ("exact") for the CLI and the audit, answering in p.
 const Solver& solver(Precision p = Precision::binary64);

@@ -1,0 +1,65 @@
+// The sense of a point, derived once for every number type: double (the filter), BigFloat (fast/'s
+// exact path) and CGAL's Mpzf (the oracle in robust/).
+//
+// Along the line p + t u, f is the polynomial g(t) = f(p) + t (grad f(p) . u) + t^2 f2(u), where
+// f2 is f's quadratic part (A u_x^2 + ... + F u_z u_x) and
+//     grad f(p) = (2A x + D y + F z + G,  2B y + D x + E z + H,  2C z + E y + F x + J).
+// (Expanding f(p + t u) term by term: A (x + t u_x)^2 = A x^2 + 2A x u_x t + A u_x^2 t^2, and
+// D (x + t u_x)(y + t u_y) = D xy + D (x u_y + y u_x) t + D u_x u_y t^2, and so on.) The sign of
+// g just after t = 0 is that of its first nonzero coefficient. For a plane g(t) = (n . p - d) +
+// t (n . u). Each coefficient is written as a sum of products of at most three inputs (and a
+// factor 2, exact), handed one at a time to `add`: a filter sums them and their magnitudes, an
+// exact type just sums them.
+#pragma once
+
+#include "linequad/surfaces.hpp"
+
+namespace linequad::detail {
+
+template <class T>
+using QuadricCoefficients = std::array<T, 10>;
+
+// f(p): g's constant coefficient.
+template <class T, class Add>
+void quadric_value_terms(const QuadricCoefficients<T>& q, const Vec3T<T>& p, Add&& add) {
+    add(q[0] * p.x * p.x), add(q[1] * p.y * p.y), add(q[2] * p.z * p.z);
+    add(q[3] * p.x * p.y), add(q[4] * p.y * p.z), add(q[5] * p.z * p.x);
+    add(q[6] * p.x), add(q[7] * p.y), add(q[8] * p.z), add(q[9]);
+}
+
+// grad f(p) . u: g's linear coefficient.
+template <class T, class Add>
+void quadric_slope_terms(const QuadricCoefficients<T>& q, const Vec3T<T>& p, const Vec3T<T>& u,
+                         Add&& add) {
+    const T two(2);
+    add(two * q[0] * p.x * u.x), add(q[3] * p.y * u.x), add(q[5] * p.z * u.x), add(q[6] * u.x);
+    add(two * q[1] * p.y * u.y), add(q[3] * p.x * u.y), add(q[4] * p.z * u.y), add(q[7] * u.y);
+    add(two * q[2] * p.z * u.z), add(q[4] * p.y * u.z), add(q[5] * p.x * u.z), add(q[8] * u.z);
+}
+
+// f2(u): g's quadratic coefficient.
+template <class T, class Add>
+void quadric_curvature_terms(const QuadricCoefficients<T>& q, const Vec3T<T>& u, Add&& add) {
+    add(q[0] * u.x * u.x), add(q[1] * u.y * u.y), add(q[2] * u.z * u.z);
+    add(q[3] * u.x * u.y), add(q[4] * u.y * u.z), add(q[5] * u.z * u.x);
+}
+
+// n . p - d and n . u.
+template <class T, class Add>
+void plane_value_terms(const Vec3T<T>& n, const T& d, const Vec3T<T>& p, Add&& add) {
+    add(n.x * p.x), add(n.y * p.y), add(n.z * p.z), add(-d);
+}
+template <class T, class Add>
+void plane_slope_terms(const Vec3T<T>& n, const Vec3T<T>& u, Add&& add) {
+    add(n.x * u.x), add(n.y * u.y), add(n.z * u.z);
+}
+
+// The exact sum of the terms `terms(add)` gives, in an exact ring type T.
+template <class T, class Terms>
+T exact_sum(Terms&& terms) {
+    T sum(0);
+    terms([&](const T& x) { sum = sum + x; });
+    return sum;
+}
+
+} // namespace linequad::detail
