@@ -1120,10 +1120,10 @@ struct PluginWorker::Impl {
             if (std::int32_t(q.seq - after) > 0 && std::int32_t(q.seq - through) <= 0)
                 from = std::min(from, q.from), to = std::max(to, q.to);
         if (from >= to || to > r.count) return false; // not this run's requests
+        ++restarts[std::size_t(r.s)];
         take(r, std::min(from, h->done.load(std::memory_order_acquire)));
         r.cursor = std::min(r.cursor, from);
         if (r.cursor < from) return true; // asked again from the first answer not read
-        ++restarts[std::size_t(r.s)];
         r.batch = false;
         if (to - from > 1) {
             r.one_at_a_time_until = std::max(r.one_at_a_time_until, to);
