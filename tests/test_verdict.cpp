@@ -41,6 +41,16 @@ TEST_CASE("verdict: report.md opens with it, one line per solver, then the famil
     CHECK(first.find("| [correct](#solver-correct) | 100 % of ") != std::string::npos);
     CHECK(first.find("### Misclassified, by family (% of the cases graded)") != std::string::npos);
     CHECK(first.find("| rim |") != std::string::npos);
+    // Columns that would be empty for every solver are left out: ours declare no tolerance and
+    // are asked every case. A solver with cases within its tolerance brings its column back.
+    CHECK(first.find("| solver | right | misclassifies most (from k) |") != std::string::npos);
+    CHECK(first.find("not asked") == std::string::npos);
+    audit::Report tolerant = r;
+    for (auto& [key, row] : tolerant.rows)
+        if (key.solver == "seed") row.within_tolerance = row.cases_mismatched;
+    std::string with = audit::markdown(tolerant);
+    CHECK(with.find("| solver | right | within its tolerance | misclassifies most (from k) |") !=
+          std::string::npos);
     // Provenance at the end, each solver in a section of its own.
     CHECK(md.find("## Solver\\: seed") != std::string::npos); // ':' escaped for markdown
     CHECK(md.find("## Provenance") > md.find("## Solver\\: seed"));

@@ -463,21 +463,30 @@ void write_verdict(std::ostream& md, const Report& r) {
           "families it misclassifies most, with the difficulty k from which it misses 1 % of "
           "them. Errors in bits, log2(1 + ulps): 0 is correctly rounded, 52 every bit of a "
           "double wrong.\n\n";
-    md << "| solver | right | within its tolerance | not asked | misclassifies most (from k) | "
-          "t error, worst | t error, p99 |\n";
-    md << "|---|---:|---:|---:|---|---:|---:|\n";
-    for (const Verdict& v : verdicts(r)) {
+    // A column only where some solver has something in it: linequad's own solvers declare no
+    // tolerance and are asked every case.
+    std::vector<Verdict> all = verdicts(r);
+    bool tolerance = false, unasked = false;
+    for (const Verdict& v : all)
+        tolerance |= v.within_tolerance > 0, unasked |= v.not_asked > 0;
+    md << "| solver | right |" << (tolerance ? " within its tolerance |" : "")
+       << (unasked ? " not asked |" : "") << " misclassifies most (from k) | t error, worst | "
+       << "t error, p99 |\n";
+    md << "|---|---:|" << (tolerance ? "---:|" : "") << (unasked ? "---:|" : "")
+       << "---|---:|---:|\n";
+    for (const Verdict& v : all) {
         md << "| [" << markdown_text(v.solver) << "](#" << escape::anchor("Solver: " + v.solver)
            << ") | ";
+        std::string asked = unasked ? (v.not_asked ? grouped(v.not_asked) : "-") + " | " : "";
         if (v.cases == 0) {
-            md << "graded no case | - | " << (v.not_asked ? grouped(v.not_asked) : "-")
-               << " | - | - | - |\n";
+            md << "graded no case | " << (tolerance ? "- | " : "") << asked << "- | - | - |\n";
             continue;
         }
         md << percent_of(v.cases - v.misclassified - v.within_tolerance, v.cases) << " of "
-           << grouped(v.cases) << " | "
-           << (v.within_tolerance ? percent_of(v.within_tolerance, v.cases) : "-") << " | "
-           << (v.not_asked ? grouped(v.not_asked) : "-") << " | ";
+           << grouped(v.cases) << " | ";
+        if (tolerance)
+            md << (v.within_tolerance ? percent_of(v.within_tolerance, v.cases) : "-") << " | ";
+        md << asked;
         std::string most;
         for (std::size_t i = 0; i < v.worst_families.size() && i < 2; ++i) {
             const FamilyShare& f = v.worst_families[i];
