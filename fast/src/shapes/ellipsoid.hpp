@@ -116,7 +116,9 @@ struct ShapeTraits<Ellipsoid> : OnFrame<Ellipsoid, ShapeTraits<Ellipsoid>> {
     static Box bounds(const Ellipsoid& s) {
         BoxBuilder box;
         for (int i = 0; i < 3; ++i) {
-            double spread = std::sqrt(s.a[i] * s.a[i] + s.b[i] * s.b[i] + s.c[i] * s.c[i]);
+            // hypot scales before it squares: the squares of tiny axes underflow to 0, and a box
+            // of no width culled lines through the surface (found by the fuzzer).
+            double spread = std::hypot(s.a[i], s.b[i], s.c[i]);
             double m = std::fabs(s.C[i]) + spread;
             box.reach(i, s.C[i] - spread, m);
             box.reach(i, s.C[i] + spread, m);
