@@ -76,6 +76,32 @@ struct Generic<Capsule> {
     }
 };
 
+// A plane through the middle, its normal a.
+template <>
+struct Generic<Plane> {
+    template <class Real>
+    static Plane make(Vec3 C, Vec3 a, Vec3, Vec3 c, Real&) {
+        return {a, dot(a, C + 0.5 * c)};
+    }
+};
+
+// An ellipsoid in GQ form around the middle m: f(x) = (x - m)^T Q (x - m) - r^2, Q diagonally
+// dominant (so positive definite), expanded into the ten coefficients (each rounded once).
+template <>
+struct Generic<Quadric> {
+    template <class Real>
+    static Quadric make(Vec3 C, Vec3, Vec3, Vec3 c, Real& real) {
+        Vec3 m = C + 0.5 * c;
+        double A = real(1, 2), B = real(1, 2), Cq = real(1, 2);
+        double D = real(-0.5, 0.5), E = real(-0.5, 0.5), F = real(-0.5, 0.5), r = real(0.5, 2);
+        double G = -(2 * A * m.x + D * m.y + F * m.z), H = -(2 * B * m.y + D * m.x + E * m.z),
+               J = -(2 * Cq * m.z + E * m.y + F * m.x);
+        double K = A * m.x * m.x + B * m.y * m.y + Cq * m.z * m.z + D * m.x * m.y + E * m.y * m.z +
+                   F * m.z * m.x - r * r;
+        return {{A, B, Cq, D, E, F, G, H, J, K}};
+    }
+};
+
 // The generic instance of the shape with index `index` in Shape.
 template <std::size_t I = 0, class Real>
 Shape generic_shape(int index, Vec3 C, Vec3 a, Vec3 b, Vec3 c, Real& real) {

@@ -108,8 +108,11 @@ TEST_CASE("tolerance: each bracket lies in S grown by delta and holds S shrunk b
                 }
             }
     CHECK(brackets_checked > 500);
-    for (int shape = 0; shape < shape_kinds; ++shape)
-        CHECK(shapes_seen[shape] > 0);
+    for (int shape = 0; shape < shape_kinds; ++shape) {
+        // The unbounded surfaces are not convex solids: no brackets (convex_solid).
+        std::string name = shape_name_at(std::size_t(shape));
+        if (name != "plane" && name != "quadric") CHECK(shapes_seen[shape] > 0);
+    }
 }
 
 TEST_CASE("tolerance: an answer right for a surface within delta is within tolerance, one "

@@ -221,6 +221,7 @@ TEST_CASE("output directory: a second run into it is refused by its lock", "[rep
 TEST_CASE("diff: a report made worse is caught and the reverse is better", "[diff]") {
     audit::Report before = audit::run(small_campaign()), after = before;
     const audit::RowKey key = after.rows.begin()->first;
+    INFO(key.name() << " t_max " << after.rows.begin()->second.t_max);
     after.rows.begin()->second.cases_mismatched += 1;
     after.rows.begin()->second.t_max += 5;
     // Every chunk of this family and solver: 2.4 times as slow (20 buckets of 1/16 octave).

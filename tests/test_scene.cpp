@@ -31,6 +31,19 @@ Shape translated(const Shape& s, Vec3 d) {
                 x.C = x.C + d, x.H = x.H + d;
             } else if constexpr (std::is_same_v<S, Frustum>) {
                 x.C0 = x.C0 + d, x.C1 = x.C1 + d;
+            } else if constexpr (std::is_same_v<S, Plane>) {
+                x.d = x.d + dot(x.n, d); // rounded: some plane near the carried one
+            } else if constexpr (std::is_same_v<S, Quadric>) {
+                // f(y - d), expanded (rounded: some quadric near the carried one).
+                const auto& q = x.q;
+                Quadric m = x;
+                m.q[6] = q[6] - (2 * q[0] * d.x + q[3] * d.y + q[5] * d.z);
+                m.q[7] = q[7] - (2 * q[1] * d.y + q[3] * d.x + q[4] * d.z);
+                m.q[8] = q[8] - (2 * q[2] * d.z + q[4] * d.y + q[5] * d.x);
+                m.q[9] = q[9] + q[0] * d.x * d.x + q[1] * d.y * d.y + q[2] * d.z * d.z +
+                         q[3] * d.x * d.y + q[4] * d.y * d.z + q[5] * d.z * d.x -
+                         (q[6] * d.x + q[7] * d.y + q[8] * d.z);
+                x = m;
             } else {
                 static_assert(std::is_same_v<S, Sphere> || std::is_same_v<S, Ellipsoid>,
                               "a new shape: translate its points");

@@ -343,7 +343,9 @@ TEST_CASE("worker: a packet solver is audited through its batch entry", "[worker
     fs::path dir = scratch("worker_packet");
     Ran ran = program(std::string("audit --plugin '") + LINEQUAD_CONVENTIONS_PLUGIN +
                           "' --solvers correct,packet,packet_crashes --families "
-                          "generic,near_tangent,rim --cases 100 --no-plots --out out",
+                          "generic,near_tangent,rim --cases 100 --no-plots --out out "
+                          "--shapes cylinder,elliptic_cylinder,elliptic_cone,frustum,sphere,"
+                          "ellipsoid,capsule", // the shapes the plugin declares
                       dir);
     REQUIRE(ran.status == 0);
     audit::Report r = read_report(dir / "out");

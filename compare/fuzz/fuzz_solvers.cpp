@@ -6,6 +6,7 @@
 #include "linequad/case_io.hpp"
 #include "linequad/invariants.hpp"
 
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -41,11 +42,15 @@ void take_into(double& x, const std::uint8_t*& p, const std::uint8_t* end) {
 void take_into(Vec3& x, const std::uint8_t*& p, const std::uint8_t* end) {
     x.x = take(p, end), x.y = take(p, end), x.z = take(p, end);
 }
+void take_into(std::array<double, 10>& q, const std::uint8_t*& p, const std::uint8_t* end) {
+    for (double& x : q)
+        x = take(p, end);
+}
 
 // The shape of kind `kind` (its index in Shape), its fields from the bytes in the case format's
 // order: every shape is fuzzed, the ones added later too.
 // Options, for the shapes that have them: finite, caps (refused when not finite), the cone's
-// nappes.
+// nappes; coincident (a plane's, a quadric's) from the caps bit.
 struct Options {
     bool finite, caps;
     int nappes;
@@ -57,6 +62,7 @@ Shape take_shape(std::size_t kind, Options o, const std::uint8_t*& p, const std:
         detail::for_each_field<S>([&](const auto& f) { take_into(s.*f.member, p, end); });
         if constexpr (has_extent_options<S>) s.finite = o.finite, s.caps = o.caps;
         if constexpr (has_nappes<S>) s.nappes = o.nappes;
+        if constexpr (has_coincident<S>) s.coincident = o.caps;
         return s;
     });
 }

@@ -14,6 +14,7 @@
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
 #include <CGAL/number_utils.h>
+#include <array>
 
 #include <algorithm>
 #include <cfloat>
@@ -146,6 +147,12 @@ inline bool moderate(double x) {
 }
 inline bool moderate(Vec3 p) {
     return moderate(p.x) && moderate(p.y) && moderate(p.z);
+}
+template <std::size_t N>
+bool moderate(const std::array<double, N>& a) {
+    for (double x : a)
+        if (!moderate(x)) return false;
+    return true;
 }
 
 // What the filter decided: nothing, a miss, or the hits (each root's kind, part and form, and

@@ -35,8 +35,11 @@ enum lq_shape_kind {
     LQ_FRUSTUM = 3,           /* p: C0[3], r0, C1[3], r1 */
     LQ_SPHERE = 4,            /* p: C[3], r; a closed solid: finite 1, caps 0, nappes 1 */
     LQ_ELLIPSOID = 5,         /* p: C[3], a[3], b[3], c[3]; a closed solid, as the sphere */
-    LQ_CAPSULE = 6            /* p: C[3], H[3], r; a closed solid; parts: LQ_LATERAL, and the
+    LQ_CAPSULE = 6,           /* p: C[3], H[3], r; a closed solid; parts: LQ_LATERAL, and the
                                  hemispheres LQ_BASE (around C) and LQ_TOP (around H) */
+    LQ_PLANE = 7,             /* p: n[3], d, coincident (1: L0 is on the plane, f(L0) taken as 0);
+                                 n . x = d, unbounded: finite 0; its inside n . x < d */
+    LQ_QUADRIC = 8 /* p: A B C D E F G H J K (MCNP's GQ order), coincident; as the plane */
 };
 typedef struct {
     int kind; /* lq_shape_kind */

@@ -172,6 +172,8 @@ Made offset(Shape& shape, double radial, double axial, int sign) {
                     x.H = moved(x.H, eps, c), x.C = moved(x.C, -eps, c);
                 }
                 return Made::shape;
+            } else if constexpr (has_coincident<S>) {
+                return Made::none; // an unbounded surface: no bracket (convex_solid says so)
             } else {
                 static_assert(std::is_same_v<S, Ellipsoid>);
                 if (axial != 0) return Made::none;

@@ -88,6 +88,15 @@ struct Reader {
         *out = {c[0], c[1], c[2]};
         return true;
     }
+    bool coefficients(const char* field, std::array<double, 10>* out) {
+        const Json* v = need(field);
+        if (!v) return false;
+        bool ok = v->is_array() && v->size() == 10;
+        for (std::size_t i = 0; ok && i < 10; ++i)
+            ok = to_double((*v)[i], &(*out)[i]);
+        if (!ok) return fail(field, "expected an array of 10 numbers (A B C D E F G H J K)");
+        return true;
+    }
 };
 
 // Fields every case may have, whatever its shape.
@@ -101,6 +110,7 @@ bool known_field(const std::string& key) {
     // Options some shapes take (a closed solid by definition takes none).
     if (key == "finite" || key == "caps") return has_extent_options<S>;
     if (key == "nappes") return has_nappes<S>;
+    if (key == "coincident") return has_coincident<S>;
     bool known = false;
     detail::for_each_field<S>([&](const auto& f) { known = known || key == f.name; });
     return known;
@@ -119,6 +129,9 @@ bool read_field(Reader& r, const char* name, Vec3* out) {
 }
 bool read_field(Reader& r, const char* name, double* out) {
     return r.number(name, out);
+}
+bool read_field(Reader& r, const char* name, std::array<double, 10>* out) {
+    return r.coefficients(name, out);
 }
 
 bool read_bool(Reader& r, const char* name, bool* out) {
@@ -139,6 +152,8 @@ bool read_shape(Reader& r, Shape* out) {
     if (!ok) return false;
     if constexpr (has_extent_options<S>)
         if (!read_bool(r, "finite", &s.finite) || !read_bool(r, "caps", &s.caps)) return false;
+    if constexpr (has_coincident<S>)
+        if (!read_bool(r, "coincident", &s.coincident)) return false;
     if constexpr (has_nappes<S>) {
         if (const Json* n = r.find("nappes")) {
             if (!n->is_number_integer() || (*n != 1 && *n != 2))
@@ -184,6 +199,14 @@ void put_field(std::string& out, const char* name, double x) {
     out += name;
     out += "\":\"" + hex(x) + "\"";
 }
+void put_field(std::string& out, const char* name, const std::array<double, 10>& q) {
+    out += ",\"";
+    out += name;
+    out += "\":[";
+    for (std::size_t i = 0; i < q.size(); ++i)
+        out += (i == 0 ? "\"" : ",\"") + hex(q[i]) + "\"";
+    out += "]";
+}
 
 // The shorthand an interval is, if any.
 bool shorthand(Interval i, Range* r) {
@@ -207,6 +230,11 @@ bool float_or_refuse(Reader& r, const char* field, double x) {
 bool float_or_refuse(Reader& r, const char* field, Vec3 p) {
     return float_or_refuse(r, field, p.x) && float_or_refuse(r, field, p.y) &&
            float_or_refuse(r, field, p.z);
+}
+bool float_or_refuse(Reader& r, const char* field, const std::array<double, 10>& q) {
+    for (double x : q)
+        if (!float_or_refuse(r, field, x)) return false;
+    return true;
 }
 bool all_binary32(Reader& r, const Case& c) {
     if (!float_or_refuse(r, "L0", c.line.L0) || !float_or_refuse(r, "v", c.line.v) ||
@@ -313,7 +341,8 @@ bool parse_scene_shape(Reader& r, const Json& obj, SceneShape* s) {
             key == "shape_id" || key == "shape" || key == "finite" || key == "caps" ||
             key == "note" || with_shape_type(kind, [&](auto tag) {
                 using S = typename decltype(tag)::type;
-                bool field = key == "nappes" && has_nappes<S>;
+                bool field = (key == "nappes" && has_nappes<S>) ||
+                             (key == "coincident" && has_coincident<S>);
                 detail::for_each_field<S>([&](const auto& f) { field = field || key == f.name; });
                 return field;
             });
@@ -377,6 +406,8 @@ std::string put_shape(std::string& out, const Shape& shape) {
             }
             if constexpr (has_nappes<S>)
                 if (s.nappes != 1) o += ",\"nappes\":" + std::to_string(s.nappes);
+            if constexpr (has_coincident<S>)
+                if (s.coincident) o += ",\"coincident\":true";
             return o;
         },
         shape);
@@ -524,13 +555,7 @@ bool parse_sense_query(std::string_view line, SenseQuery* q, std::string* why) {
         q->surface = plane;
     } else {
         Quadric quadric{};
-        const Json* c = r.need("q");
-        if (!c) return false;
-        if (!c->is_array() || c->size() != 10)
-            return r.fail("q", "expected an array of 10 numbers (A B C D E F G H J K)");
-        for (std::size_t i = 0; i < 10; ++i)
-            if (!to_double((*c)[i], &quadric.q[i]))
-                return r.fail("q", "expected an array of 10 numbers (A B C D E F G H J K)");
+        if (!r.coefficients("q", &quadric.q)) return false;
         q->surface = quadric;
     }
     if (!r.vec("p", &q->p)) return false;

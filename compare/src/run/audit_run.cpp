@@ -434,6 +434,15 @@ ResultsByCase read_answers(const Options& o,
                                      a.result.id + " (the first is on line " +
                                      std::to_string(prev->second.line) + ")");
     }
+    // What a solver's answers carry (points, kinds, parts) is what any of its lines shows: a line
+    // without hits shows none of them, yet a solver that reports kinds has said "no tangent" there.
+    for (auto& [solver, by_case] : answers) {
+        bool points = false, kinds = false, parts = false;
+        for (const auto& [i, a] : by_case)
+            points |= a.result.has_points, kinds |= a.result.has_kinds, parts |= a.result.has_parts;
+        for (auto& [i, a] : by_case)
+            a.result.has_points |= points, a.result.has_kinds |= kinds, a.result.has_parts |= parts;
+    }
     // An empty results file still grades one solver: every case unanswered.
     if (answers.empty()) answers["results"];
     return answers;

@@ -10,6 +10,7 @@
 #include "numeric/fp_environment.hpp"
 #include "run/stop.hpp"
 
+#include <array>
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -561,14 +562,19 @@ lq_shape to_plugin_shape(const Shape& s) {
             using S = std::decay_t<decltype(x)>;
             int at = 0;
             auto put = [&](const auto& value) {
-                if constexpr (std::is_same_v<std::decay_t<decltype(value)>, Vec3>) {
+                using V = std::decay_t<decltype(value)>;
+                if constexpr (std::is_same_v<V, Vec3>) {
                     for (int k = 0; k < 3; ++k)
                         out.p[at++] = value[k];
+                } else if constexpr (std::is_same_v<V, std::array<double, 10>>) {
+                    for (double c : value)
+                        out.p[at++] = c;
                 } else {
                     out.p[at++] = value;
                 }
             };
             detail::for_each_field<S>([&](const auto& f) { put(x.*f.member); });
+            if constexpr (has_coincident<S>) put(x.coincident ? 1.0 : 0.0);
             out.finite = has_finite_extent(x), out.caps = has_caps(x), out.nappes = nappes_of(x);
         },
         s);

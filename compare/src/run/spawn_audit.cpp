@@ -180,6 +180,11 @@ std::vector<SpawnRow> run_spawn_audit(const SpawnAuditOptions& o) {
         SpawnRow through{family_name(f), "through", {}}, reflect{family_name(f), "reflect", {}};
         for (int shape = 0; shape < int(std::variant_size_v<Shape>); ++shape) {
             if (!family_applies(f, shape)) continue;
+            // The unbounded surfaces (plane, quadric) have no spawn offset yet (docs/limits.md).
+            bool unbounded = with_shape_type(std::size_t(shape), [](auto tag) {
+                return has_coincident<typename decltype(tag)::type>;
+            });
+            if (unbounded) continue;
             for (std::uint64_t i = 0; i < o.cases; ++i) {
                 Case c = make_case(f, shape, Range::line, o.seed, i);
                 Line line{c.line.L0, c.line.v, Range::line};

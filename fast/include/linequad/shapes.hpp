@@ -1,6 +1,7 @@
 // The inputs every solver shares: a line over an interval of its parameter, and the shapes.
 #pragma once
 
+#include "linequad/surfaces.hpp"
 #include "linequad/vec3.hpp"
 
 #include <cstdint>
@@ -125,18 +126,24 @@ struct Capsule {
 
 // Every shape. The solvers, the case format, the families and the benchmarks take their list
 // of shapes from here (and each shape's derivation from fast/src/shapes/).
-using Shape =
-    std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum, Sphere, Ellipsoid, Capsule>;
+// Plane and Quadric (linequad/surfaces.hpp) are unbounded surfaces: what a transport code's cells
+// are built from, the region f < 0 their inside.
+using Shape = std::variant<Cylinder, EllipticCylinder, EllipticCone, Frustum, Sphere, Ellipsoid,
+                           Capsule, Plane, Quadric>;
 
 // The options a shape may have: `finite` and `caps` (the shapes with an axis), `nappes` (the
-// cone). The closed solids by definition (sphere, ellipsoid, capsule) have none: they are finite,
-// closed and one solid.
+// cone), `coincident` (the plane and the quadric). The closed solids by definition (sphere,
+// ellipsoid, capsule) have none: they are finite, closed and one solid.
 namespace detail {
 template <class S, class = void>
 struct HasExtentOptions : std::false_type {};
 template <class S>
 struct HasExtentOptions<S, std::void_t<decltype(&S::finite), decltype(&S::caps)>> : std::true_type {
 };
+template <class S, class = void>
+struct HasCoincident : std::false_type {};
+template <class S>
+struct HasCoincident<S, std::void_t<decltype(&S::coincident)>> : std::true_type {};
 template <class S, class = void>
 struct HasNappes : std::false_type {};
 template <class S>
@@ -146,13 +153,18 @@ template <class S>
 inline constexpr bool has_extent_options = detail::HasExtentOptions<S>::value;
 template <class S>
 inline constexpr bool has_nappes = detail::HasNappes<S>::value;
+// `coincident` (the plane and the quadric): the caller's word that L0 is on the surface.
+template <class S>
+inline constexpr bool has_coincident = detail::HasCoincident<S>::value;
 
+// The unbounded surfaces (plane, quadric) are not finite: the region f < 0 they bound is closed
+// by them alone, and is not convex in general.
 template <class S>
 bool has_finite_extent(const S& s) {
     if constexpr (has_extent_options<S>)
         return s.finite;
     else
-        return true;
+        return !has_coincident<S>;
 }
 // Whether end discs close it.
 template <class S>
@@ -192,7 +204,8 @@ inline bool bounds_solid(const Shape& s) {
 Shape rounded_to_binary32(const Shape& s);
 Line rounded_to_binary32(const Line& l);
 
-// "cylinder", "elliptic_cylinder", "elliptic_cone", "frustum", "sphere", "ellipsoid", "capsule".
+// "cylinder", "elliptic_cylinder", "elliptic_cone", "frustum", "sphere", "ellipsoid", "capsule",
+// "plane", "quadric".
 const char* shape_name(const Shape& s);
 template <class S>
 const char* shape_name();

@@ -11,17 +11,26 @@
 namespace linequad {
 
 // The plane n . x = d (OpenMC's plane A B C D): f(x) = n . x - d.
+//
+// As a shape a line is solved against (linequad/shapes.hpp): the hits are the t in the line's
+// range where f(L0 + t v) = 0, a line in the plane on_surface. `coincident`: the caller states
+// that L0 lies on the surface (a transport code's "on this surface" flag), and g(t) = f(L0 + t v)
+// is taken with its constant term exactly 0, as OpenMC and ORANGE do.
 struct Plane {
-    Vec3 n;
-    double d;
+    Vec3 n{};
+    double d = 0;
+    bool coincident = false;
 };
 
 // f(x) = A x^2 + B y^2 + C z^2 + D xy + E yz + F zx + G x + H y + J z + K, with
 // q = {A, B, C, D, E, F, G, H, J, K}: the GQ order of MCNP and OpenMC (some codes order the cross
 // terms otherwise, or write them with a factor of 2). Every degree of degeneracy is a surface:
 // a plane, a pair of planes, a line, a point, nothing (f > 0 everywhere).
+// As a shape: the hits of a line are the t where f(L0 + t v) = 0 (a simple root a cross, a double
+// root a tangent, f = 0 all along the line on_surface), and `coincident` as the plane's.
 struct Quadric {
-    std::array<double, 10> q;
+    std::array<double, 10> q{};
+    bool coincident = false;
 };
 
 // Which side of the surface a point is on: the sign of f there. The half-spaces f < 0 and f > 0

@@ -122,7 +122,7 @@ inline std::optional<exact_form::LineThrough<BoundedDD>> line_through(const Line
         exact = exact && std::isfinite(p.hi) && dd_detail::product_exact(t, l.v[k], p.hi);
         return BoundedDD(l.L0[k]) + BoundedDD(p.hi, p.lo, 0);
     };
-    exact_form::LineThrough<BoundedDD> through{{at(0), at(1), at(2)}, l.v};
+    exact_form::LineThrough<BoundedDD> through{{at(0), at(1), at(2)}, l.v, l.L0};
     if (!exact) return std::nullopt;
     return through;
 }
@@ -308,6 +308,11 @@ struct ShortInputs {
         low |= bits & ((std::uint64_t(1) << 33) - 1);
     }
     LINEQUAD_INLINE void add(const Vec3& a) { add(a.x), add(a.y), add(a.z); }
+    template <std::size_t N>
+    LINEQUAD_INLINE void add(const std::array<double, N>& a) {
+        for (double x : a)
+            add(x);
+    }
 };
 template <class S>
 bool short_inputs(const S& s, const Line& l) {
@@ -444,7 +449,8 @@ class ExactForm final : public ExtentEnds {
         if (!unit_tried_) {
             unit_tried_ = true;
             if (std::optional<Unit> u = unit_scale(src_, extent_, line_))
-                unit_.emplace(UnitScene<S>{*u, scaled(shape_, 1 / u->pos_factor)});
+                if (std::optional<S> shape = scaled(shape_, 1 / u->pos_factor))
+                    unit_.emplace(UnitScene<S>{*u, *shape});
         }
         return unit_ ? &*unit_ : nullptr;
     }

@@ -76,6 +76,7 @@ template <class NT>
 struct LineThrough {
     Vec3T<NT> L0;
     Vec3 v;
+    Vec3 line_L0; // the line's own origin (where a coincident surface's g is 0)
 };
 // g's local quadratic at a point t of the line, g(t + x) = A x^2 + 2 half_slope x + G, enclosed:
 // what a shape gives where it has a cheaper form of it than its exact quadratic (a sphere's).

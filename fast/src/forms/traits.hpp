@@ -25,7 +25,9 @@
 #include "linequad/result.hpp"
 #include "linequad/shapes.hpp"
 
+#include <array>
 #include <cmath>
+#include <optional>
 #include <tuple>
 #include <type_traits>
 
@@ -76,24 +78,82 @@ inline double component_sum(Vec3 a) {
     return a.x + a.y + a.z;
 }
 
+// A field of N numbers (a quadric's coefficients), as the functions above take a Vec3.
+template <std::size_t N>
+double max_abs(const std::array<double, N>& a) {
+    double m = 0;
+    for (double x : a)
+        m = std::fmax(m, std::fabs(x));
+    return m;
+}
+template <std::size_t N>
+double min_nonzero(const std::array<double, N>& a) {
+    double m = Binary64::inf;
+    for (double x : a)
+        m = std::fmin(m, min_nonzero(x));
+    return m;
+}
+template <std::size_t N>
+bool has_nan(const std::array<double, N>& a) {
+    for (double x : a)
+        if (std::isnan(x)) return true;
+    return false;
+}
+template <std::size_t N>
+bool is_finite(const std::array<double, N>& a) {
+    for (double x : a)
+        if (!std::isfinite(x)) return false;
+    return true;
+}
+template <std::size_t N>
+double component_sum(const std::array<double, N>& a) {
+    double sum = 0;
+    for (double x : a)
+        sum += x;
+    return sum;
+}
+
+// Shapes whose fields are not positions (a plane's normal, a quadric's coefficients) size and
+// scale themselves: ShapeTraits<S>::magnitude (a length the shape is about, a power of two),
+// ::smallest (infinity: no position holds a tiny component) and ::scaled_exactly (the same
+// surface with every position times f, a power of two, or none where that would lose bits).
+template <class S, class = void>
+inline constexpr bool scales_itself = false;
+template <class S>
+inline constexpr bool scales_itself<
+    S, std::void_t<decltype(ShapeTraits<S>::scaled_exactly(std::declval<const S&>(), 1.0))>> = true;
+
 // The largest |coordinate| of the shape's positions: the scene's size as the shape sets it.
 template <class S>
 double shape_magnitude(const S& s) {
-    double m = 0;
-    for_each_field<S>([&](const auto& f) { m = std::max(m, max_abs(s.*f.member)); });
-    return m;
+    if constexpr (scales_itself<S>) {
+        return ShapeTraits<S>::magnitude(s);
+    } else {
+        double m = 0;
+        for_each_field<S>([&](const auto& f) { m = std::max(m, max_abs(s.*f.member)); });
+        return m;
+    }
 }
 template <class S>
 double smallest_component(const S& s) {
-    double m = Binary64::inf;
-    for_each_field<S>([&](const auto& f) { m = std::fmin(m, min_nonzero(s.*f.member)); });
-    return m;
+    if constexpr (scales_itself<S>) {
+        return Binary64::inf;
+    } else {
+        double m = Binary64::inf;
+        for_each_field<S>([&](const auto& f) { m = std::fmin(m, min_nonzero(s.*f.member)); });
+        return m;
+    }
 }
-// The shape with every position times f (a power of two: exactly, barring underflow).
+// The shape with every position times f (a power of two: exactly, barring underflow, which
+// fragile_scene() rules out for positions; a shape that scales itself says).
 template <class S>
-S scaled(S s, double f) {
-    for_each_field<S>([&](const auto& fl) { s.*fl.member = f * (s.*fl.member); });
-    return s;
+std::optional<S> scaled(S s, double f) {
+    if constexpr (scales_itself<S>) {
+        return ShapeTraits<S>::scaled_exactly(s, f);
+    } else {
+        for_each_field<S>([&](const auto& fl) { s.*fl.member = f * (s.*fl.member); });
+        return s;
+    }
 }
 
 // The sum of every coordinate of the shape's fields: finite when they all are (or it overflowed).
@@ -124,6 +184,12 @@ Error check_fields(const S& s) {
 // unrounded.)
 double nearest_float(double x);
 Vec3 nearest_float(Vec3 a);
+template <std::size_t N>
+std::array<double, N> nearest_float(std::array<double, N> a) {
+    for (double& x : a)
+        x = nearest_float(x);
+    return a;
+}
 
 // For a float solver, after the usual checks: the first input that is not a float (the line's
 // L0, v, t0, t1, then the shape's fields in the table's order). The usual case in one pass,
@@ -133,6 +199,11 @@ struct Binary32Check {
     double off = 0; // the sum of |x - float(x)| over finite inputs (the solvers refuse others)
     LINEQUAD_INLINE void add(double x) { off += std::fabs(x - double(float(x))); }
     LINEQUAD_INLINE void add(const Vec3& a) { add(a.x), add(a.y), add(a.z); }
+    template <std::size_t N>
+    LINEQUAD_INLINE void add(const std::array<double, N>& a) {
+        for (double x : a)
+            add(x);
+    }
     LINEQUAD_INLINE void add(const Interval& i) {
         if (i.has_t0()) add(i.t0);
         if (i.has_t1()) add(i.t1);
@@ -144,6 +215,12 @@ inline bool holds_binary32(double x) {
 }
 inline bool holds_binary32(Vec3 a) {
     return Binary32::holds(a.x) && Binary32::holds(a.y) && Binary32::holds(a.z);
+}
+template <std::size_t N>
+bool holds_binary32(const std::array<double, N>& a) {
+    for (double x : a)
+        if (!Binary32::holds(x)) return false;
+    return true;
 }
 template <class S>
 [[gnu::noinline]] Error binary32_culprit(const S& s, const Line& l) {

@@ -14,6 +14,8 @@
 
 #include "linequad/surfaces.hpp"
 
+#include <type_traits>
+
 namespace linequad::detail {
 
 template <class T>
@@ -27,11 +29,20 @@ void quadric_value_terms(const QuadricCoefficients<T>& q, const Vec3T<T>& p, Add
     add(q[6] * p.x), add(q[7] * p.y), add(q[8] * p.z), add(q[9]);
 }
 
+// 2 in T: a number type, or a bounded one (numeric/bounded.hpp) built from an exact double.
+template <class T>
+T two_in() {
+    if constexpr (std::is_constructible_v<T, double>)
+        return T(2.0);
+    else
+        return T::exact(2);
+}
+
 // grad f(p) . u: g's linear coefficient.
 template <class T, class Add>
 void quadric_slope_terms(const QuadricCoefficients<T>& q, const Vec3T<T>& p, const Vec3T<T>& u,
                          Add&& add) {
-    const T two(2);
+    const T two = two_in<T>();
     add(two * q[0] * p.x * u.x), add(q[3] * p.y * u.x), add(q[5] * p.z * u.x), add(q[6] * u.x);
     add(two * q[1] * p.y * u.y), add(q[3] * p.x * u.y), add(q[4] * p.z * u.y), add(q[7] * u.y);
     add(two * q[2] * p.z * u.z), add(q[4] * p.y * u.z), add(q[5] * p.x * u.z), add(q[8] * u.z);

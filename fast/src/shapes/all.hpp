@@ -9,12 +9,16 @@
 #include "shapes/elliptic_cone.hpp"
 #include "shapes/elliptic_cylinder.hpp"
 #include "shapes/frustum.hpp"
+#include "shapes/plane.hpp"
+#include "shapes/quadric.hpp"
 #include "shapes/sphere.hpp"
 
 #include <variant>
 
 #define LINEQUAD_FOR_EACH_SHAPE(X)                                                                 \
-    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid) X(Capsule)
+    X(Cylinder)                                                                                    \
+    X(EllipticCylinder)                                                                            \
+    X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid) X(Capsule) X(Plane) X(Quadric)
 // The shapes that are one quadric (not made of patches: the batch kernels take them).
 #define LINEQUAD_FOR_EACH_QUADRIC_SHAPE(X)                                                         \
     X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid)
@@ -23,6 +27,16 @@
     X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid)
 
 namespace linequad::detail {
+// Whether the stable batch kernels take the shape: the one-quadric shapes above. (A plane or a
+// general quadric has no lane kernel yet: its batches are solved line by line.)
+template <class S>
+inline constexpr bool stable_in_lanes = false;
+#define LINEQUAD_STABLE_IN_LANES(S)                                                                \
+    template <>                                                                                    \
+    inline constexpr bool stable_in_lanes<S> = true;
+LINEQUAD_FOR_EACH_QUADRIC_SHAPE(LINEQUAD_STABLE_IN_LANES)
+#undef LINEQUAD_STABLE_IN_LANES
+
 #define LINEQUAD_COUNT_SHAPE(S) +1
 static_assert(std::variant_size_v<Shape> == 0 LINEQUAD_FOR_EACH_SHAPE(LINEQUAD_COUNT_SHAPE),
               "LINEQUAD_FOR_EACH_SHAPE must list every alternative of linequad::Shape");

@@ -111,9 +111,10 @@ void solve_batch(const S& shape, const LineArraysT<R>& lines, Query q, Result* o
     std::size_t i = 0;
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
     // The shape is checked once, and the range (for float lines: that they are floats). A closed
-    // shape's discs, and a shape made of patches, are the scalar solver's.
+    // shape's discs, a shape made of patches, and a shape without a lane kernel are the scalar
+    // solver's.
     auto src = detail::source(shape);
-    if constexpr (!detail::is_composite<typename decltype(src)::Shape>) {
+    if constexpr (detail::stable_in_lanes<typename decltype(src)::Shape>) {
         Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
         bool shape_ok = src.validity().error.ok() && !detail::has_discs(src.shape) &&
                         detail::check_line(probe).ok() && detail::real_error<R>(src, probe).ok();

@@ -137,7 +137,9 @@ template <class S>
 Vec3 gradient(const S& shape, int orientation, Part part, Vec3 p) {
     double size = std::fmax(detail::shape_magnitude(shape), max_abs(p));
     double f = size > 0 ? std::ldexp(1.0, -std::ilogb(size)) : 1.0;
-    S unit = detail::scaled(shape, f);
+    std::optional<S> scaled = detail::scaled(shape, f);
+    if (!scaled) scaled = shape, f = 1; // a shape that cannot be scaled exactly: as it is
+    const S& unit = *scaled;
     Vec3 q = f * p;
     double g[3];
     for (int k = 0; k < 3; ++k) {
