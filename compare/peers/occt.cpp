@@ -1,6 +1,6 @@
 // OpenCascade 7.6: IntAna_IntConicQuad, the analytic intersection of a gp_Lin with the quadric of a
-// gp_Cylinder, gp_Cone or gp_Sphere (what BRep and GeomAPI intersections of lines with such faces
-// rest on).
+// gp_Cylinder, gp_Cone, gp_Sphere or gp_Pln (what BRep and GeomAPI intersections of lines with such
+// faces rest on).
 #include "peers/peers.hpp"
 
 // IntAna's headers use the gp types without including them.
@@ -8,6 +8,7 @@
 #include <gp_Cone.hxx>
 #include <gp_Cylinder.hxx>
 #include <gp_Lin.hxx>
+#include <gp_Pln.hxx>
 #include <gp_Sphere.hxx>
 
 #include <IntAna_IntConicQuad.hxx>
@@ -69,15 +70,18 @@ audit::ExternalSolver occt() {
     s.parametrisation = audit::Parametrisation::unit_direction;
     s.surface = audit::Surface::infinite;
     s.kinds = false, s.parts = false;
-    s.mapping =
-        "IntAna_IntConicQuad(gp_Lin(L0, gp_Dir(u)), IntAna_Quadric(surface)); hits are "
-        "its points whose distance ParamOnConic lies in the posed range. Cylinder: "
-        "gp_Cylinder(gp_Ax3(C, H - C), r). Elliptic cylinder with a circular frame: "
-        "gp_Cylinder(gp_Ax3(C, c, a), |a|). Elliptic cone with a circular frame: "
-        "gp_Cone(gp_Ax3(H, c, a), atan(|a|/|c|), 0), both nappes: OCCT holds a cone by "
-        "its half-angle, which rounds. Cannot represent: finite extents and caps (OCCT "
-        "bounds faces elsewhere), oblique or elliptic frames (to 1e-12), frusta (one "
-        "nappe). Sphere: gp_Sphere(gp_Ax3(C, z), r). Tangent or crossing is not told apart.";
+    s.mapping = "IntAna_IntConicQuad(gp_Lin(L0, gp_Dir(u)), IntAna_Quadric(surface)); hits are "
+                "its points whose distance ParamOnConic lies in the posed range. Cylinder: "
+                "gp_Cylinder(gp_Ax3(C, H - C), r). Elliptic cylinder with a circular frame: "
+                "gp_Cylinder(gp_Ax3(C, c, a), |a|). Elliptic cone with a circular frame: "
+                "gp_Cone(gp_Ax3(H, c, a), atan(|a|/|c|), 0), both nappes: OCCT holds a cone by "
+                "its half-angle, which rounds. Cannot represent: finite extents and caps (OCCT "
+                "bounds faces elsewhere), oblique or elliptic frames (to 1e-12), frusta (one "
+                "nappe). Sphere: gp_Sphere(gp_Ax3(C, z), r). Plane: gp_Pln(n, -d) (OCCT "
+                "normalises n, which rounds). Quadric: only a sphere in GQ form (A = B = C > 0, "
+                "D = E = F = 0), as gp_Sphere around (-G, -H, -J) / 2A of radius "
+                "sqrt(|centre|^2 - K/A), rounded; IntAna_Quadric takes no general coefficients. "
+                "coincident cannot be said. Tangent or crossing is not told apart.";
     s.on<Cylinder>() = [](const Cylinder& c, const Line& l) -> std::optional<Result> {
         Vec3 axis = c.H - c.C;
         if (!(c.r > 0) || !(dot(axis, axis) > 0)) return std::nullopt;
@@ -102,6 +106,21 @@ audit::ExternalSolver occt() {
     s.on<Sphere>() = [](const Sphere& k, const Line& l) -> std::optional<Result> {
         if (!(k.r > 0)) return std::nullopt;
         return intersect(IntAna_Quadric(gp_Sphere(gp_Ax3(pnt(k.C), gp_Dir(0, 0, 1)), k.r)), l);
+    };
+    s.on<Plane>() = [](const Plane& p, const Line& l) -> std::optional<Result> {
+        if (p.coincident || !(dot(p.n, p.n) > 0)) return std::nullopt;
+        return intersect(IntAna_Quadric(gp_Pln(p.n.x, p.n.y, p.n.z, -p.d)), l);
+    };
+    s.on<Quadric>() = [](const Quadric& k, const Line& l) -> std::optional<Result> {
+        const auto& q = k.q;
+        bool sphere = q[0] > 0 && q[0] == q[1] && q[1] == q[2] && q[3] == 0 && q[4] == 0 &&
+                      q[5] == 0 && !k.coincident;
+        if (!sphere) return std::nullopt;
+        Vec3 centre = (-0.5 / q[0]) * Vec3{q[6], q[7], q[8]};
+        double r2 = dot(centre, centre) - q[9] / q[0];
+        if (!(r2 > 0) || !std::isfinite(r2)) return std::nullopt;
+        gp_Sphere ball(gp_Ax3(pnt(centre), gp_Dir(0, 0, 1)), std::sqrt(r2));
+        return intersect(IntAna_Quadric(ball), l);
     };
     return s;
 }

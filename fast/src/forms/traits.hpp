@@ -79,18 +79,20 @@ inline double component_sum(Vec3 a) {
 }
 
 // A field of N numbers (a quadric's coefficients), as the functions above take a Vec3.
+// (std::max, not fmax: a libm call per coefficient. NaN never reaches these: fields are checked
+// first.)
 template <std::size_t N>
 double max_abs(const std::array<double, N>& a) {
     double m = 0;
     for (double x : a)
-        m = std::fmax(m, std::fabs(x));
+        m = std::max(m, std::fabs(x));
     return m;
 }
 template <std::size_t N>
 double min_nonzero(const std::array<double, N>& a) {
     double m = Binary64::inf;
     for (double x : a)
-        m = std::fmin(m, min_nonzero(x));
+        m = std::min(m, min_nonzero(x));
     return m;
 }
 template <std::size_t N>

@@ -42,8 +42,10 @@
 #include "forms/exact_form.hpp"
 #include "forms/roots.hpp"
 #include "forms/traits.hpp"
+#include "numeric/compensated_sum.hpp"
 #include "sense/sense_terms.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -87,7 +89,11 @@ std::optional<QuadricCoefficients<R>> quadric_in_frame(const QuadricCoefficients
     QuadricCoefficients<R> out{};
     for (int i = 0; i < 10; ++i) {
         if (q[i] == 0) continue;
-        R x = std::ldexp(R(q[i]), shift_of(i) - top);
+        // A multiply by a power of two (exact where the result is normal; ldexp, a libm call,
+        // only beyond R's moderate exponents).
+        int shift = shift_of(i) - top;
+        R x = std::abs(shift) <= Format<R>::moderate_exponent ? R(q[i]) * Format<R>::pow2(shift)
+                                                              : std::ldexp(R(q[i]), shift);
         if (!(std::fabs(x) >= std::numeric_limits<R>::min() &&
               std::fabs(x) <= std::numeric_limits<R>::max()))
             return std::nullopt;
@@ -222,10 +228,53 @@ Vec3 own_origin(const exact_form::LineThrough<NT>& l) {
     return l.line_L0;
 }
 
+// The correct ladder's filter: A, B and C0 in bounded double-double at the line's own origin, each
+// one compensated sum of exact products with one bound (numeric/compensated_sum.hpp) rather than
+// a chain of bounded operations (a third of the instructions). A term of a zero coefficient is
+// left out, so that an absent degree is an exact 0 (a plane's A, a coincident C0).
+struct QuadricFilterSum {
+    CompensatedSum sum;
+    bool any = false;
+    void add(double k) {
+        if (k != 0) sum.add_exact(k), any = true;
+    }
+    void add(double k, double a) {
+        if (k != 0) sum.add_product(k, a), any = true;
+    }
+    void add(double k, double a, double b) { // k a b: a b exactly, then k times each part
+        if (k == 0) return;
+        TwoTerm p = two_prod(a, b);
+        sum.add_product(k, p.hi), sum.add_small(k * p.lo), any = true;
+    }
+    BoundedDD result() const { return any ? sum.result() : BoundedDD(0.0); }
+};
+inline exact_form::LineQuadratic<BoundedDD> quadric_filter(const QuadricCoefficients<double>& q,
+                                                           bool coincident, const Line& l) {
+    const Vec3 &w = l.L0, &v = l.v;
+    QuadricFilterSum A, B, C;
+    A.add(2 * q[0], v.x, v.x), A.add(2 * q[1], v.y, v.y), A.add(2 * q[2], v.z, v.z);
+    A.add(2 * q[3], v.x, v.y), A.add(2 * q[4], v.y, v.z), A.add(2 * q[5], v.z, v.x);
+    B.add(2 * q[0], w.x, v.x), B.add(q[3], w.y, v.x), B.add(q[5], w.z, v.x), B.add(q[6], v.x);
+    B.add(2 * q[1], w.y, v.y), B.add(q[3], w.x, v.y), B.add(q[4], w.z, v.y), B.add(q[7], v.y);
+    B.add(2 * q[2], w.z, v.z), B.add(q[4], w.y, v.z), B.add(q[5], w.x, v.z), B.add(q[8], v.z);
+    if (!coincident) {
+        C.add(2 * q[0], w.x, w.x), C.add(2 * q[1], w.y, w.y), C.add(2 * q[2], w.z, w.z);
+        C.add(2 * q[3], w.x, w.y), C.add(2 * q[4], w.y, w.z), C.add(2 * q[5], w.z, w.x);
+        C.add(2 * q[6], w.x), C.add(2 * q[7], w.y), C.add(2 * q[8], w.z), C.add(2 * q[9]);
+    }
+    exact_form::LineQuadratic<BoundedDD> out;
+    out.A = A.result(), out.B = B.result(), out.C0 = C.result();
+    out.Z0 = out.dZ = out.lo = out.hi = BoundedDD(0.0);
+    out.lo_bounded = out.hi_bounded = false;
+    return out;
+}
+
 // A t^2 + 2 B t + C0 in NT, exactly, at the line's origin (or a point of it: LineThrough).
 template <class NT, class L>
 exact_form::LineQuadratic<NT> quadric_quadratic(const QuadricCoefficients<double>& q,
                                                 bool coincident, const L& l) {
+    if constexpr (std::is_same_v<NT, BoundedDD> && std::is_same_v<L, Line>)
+        return quadric_filter(q, coincident, l);
     using exact_form::lift;
     QuadricCoefficients<NT> c;
     for (int i = 0; i < 10; ++i)
@@ -254,7 +303,7 @@ exact_form::LineQuadratic<NT> quadric_quadratic(const QuadricCoefficients<double
 // does (a single degree).
 inline double quadric_length(const QuadricCoefficients<double>& q) {
     double a2 = max_abs(std::array<double, 6>{q[0], q[1], q[2], q[3], q[4], q[5]});
-    double a1 = std::fmax(std::fabs(q[6]), std::fmax(std::fabs(q[7]), std::fabs(q[8])));
+    double a1 = std::max({std::fabs(q[6]), std::fabs(q[7]), std::fabs(q[8])});
     double a0 = std::fabs(q[9]);
     auto e = [](double x) { return Binary64::exponent(x); };
     int L = -(1 << 20);
