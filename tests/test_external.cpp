@@ -319,7 +319,7 @@ TEST_CASE("the peer libraries built in are audited through their adapters", "[ex
                 (key.shape == "plane" ? generic_plane : generic).merge(row);
         // OCCT's gp_Pln normalises n, which rounds: a line lying exactly in the plane may be
         // found off it, and nothing else goes wrong on generic planes.
-        int on_surface = generic_plane.mismatches[audit::on_surface_missed];
+        std::uint64_t on_surface = generic_plane.mismatches[audit::on_surface_missed];
         CHECK(generic_plane.cases_mismatched == on_surface);
         CHECK(t.cases > 0);
         CHECK(t.foreign.empty()); // no crash, no error of their own on these families

@@ -492,3 +492,31 @@ TEST_CASE("an in-process solver that changes the environment is reported, and pu
     CHECK(t.cases_mismatched == 0); // correct under FE_UPWARD: its guard keeps it correct
     CHECK(r.total("correct").cases_mismatched == 0);
 }
+
+TEST_CASE("worker: a transport code's textbook distances are graded on planes and quadrics",
+          "[worker][cli]") {
+    // OpenMC's formulas in a plugin (tests/plugins/transport_plugin.c), handed LQ_PLANE and
+    // LQ_QUADRIC as audit_plugin.h lays them out: a wrong coefficient order or a lost
+    // `coincident` would show as mismatches on generic lines, where the formula itself is right.
+    fs::path dir = scratch("worker_transport");
+    Ran ran = program(std::string("audit --plugin '") + LINEQUAD_TRANSPORT_PLUGIN +
+                          "' --solvers correct,transport_textbook --shapes plane,quadric "
+                          "--families generic,inside_start,far_origin --cases 100 --no-plots "
+                          "--out out",
+                      dir);
+    REQUIRE(ran.status == 0);
+    audit::Report r = read_report(dir / "out");
+    std::uint64_t far_mismatched = 0;
+    for (const auto& [key, row] : r.rows) {
+        INFO(key.name());
+        CHECK(row.cases == 300); // 100 cases x 3 ranges, none unrepresented
+        if (key.solver == "correct") CHECK(row.cases_mismatched == 0);
+        if (key.solver != "transport_textbook") continue;
+        if (key.family == "generic") CHECK(row.cases_mismatched == 0);
+        if (key.family == "far_origin" && key.shape == "quadric")
+            far_mismatched = row.cases_mismatched;
+    }
+    // The half-b formula cancels for a source 2^10 to 2^40 sizes away.
+    CHECK(far_mismatched > 30);
+    fs::remove_all(dir);
+}
