@@ -73,12 +73,18 @@ Case plane_case(Family f, Rng& r, int k, Precision precision) {
         return make(p.plane, L0, d);
     }
     case Family::scale: {
-        // The same plane written 2^e (n, d): every answer must be the unscaled one's.
+        // Half: the same plane written 2^e (n, d), every answer the unscaled one's. Half: the
+        // scene 2^j times as large (d and the line times 2^j), the same t.
         // binary32: within float's range for every coefficient (the largest near 2^12).
-        int e = std::min(k, precision == Precision::binary32 ? 96 : k) * (r.coin() ? 1 : -1);
-        Plane scaled{std::ldexp(1.0, e) * n, std::ldexp(p.plane.d, e)};
+        bool binary32 = precision == Precision::binary32;
         Vec3 d = direction(r);
-        return make(scaled, p.P - s * d, d);
+        if (r.coin()) {
+            int e = std::min(k, binary32 ? 96 : k) * (r.coin() ? 1 : -1);
+            Plane scaled{std::ldexp(1.0, e) * n, std::ldexp(p.plane.d, e)};
+            return make(scaled, p.P - s * d, d);
+        }
+        double size = std::ldexp(1.0, std::min(k, binary32 ? 96 : k) * (r.coin() ? 1 : -1));
+        return make(Plane{n, size * p.plane.d}, size * (p.P - s * d), size * d);
     }
     case Family::far_origin: {
         Vec3 d = direction(r);

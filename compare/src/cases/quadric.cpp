@@ -227,13 +227,24 @@ Case quadric_case(Family f, Rng& r, int k, Frames frames, Precision p) {
         return make(b.q, l.L0, l.v);
     }
     case Family::scale: {
-        // The same surface written 2^e q (e = +-k): every answer must be the unscaled one's.
+        // Half: the same surface written 2^e q (e = +-k): every answer must be the unscaled
+        // one's. Half: a surface of size 2^j (j = +-k/2) and its line, scaled with it: f(x / 2^j)
+        // times 2^2j keeps the quadratic part and takes the linear part times 2^j, K times 2^2j
+        // (exact: powers of two), and the line's t does not change.
         Built b = build(Kind(r.integer(0, kind_count - 2)), r, rotate);
-        // binary32: within float's range for every coefficient (the largest near 2^12).
-        int e = std::min(k, p == Precision::binary32 ? 96 : k) * (r.coin() ? 1 : -1);
-        for (double& x : b.q.q)
-            x = std::ldexp(x, e);
         Line l = through(b.P, direction(r), r);
+        bool binary32 = p == Precision::binary32;
+        if (r.coin()) {
+            // binary32: within float's range for every coefficient (the largest near 2^12).
+            int e = std::min(k, binary32 ? 96 : k) * (r.coin() ? 1 : -1);
+            for (double& x : b.q.q)
+                x = std::ldexp(x, e);
+        } else {
+            int j = std::min(k / 2, binary32 ? 40 : k / 2) * (r.coin() ? 1 : -1);
+            for (int i = 6; i < 10; ++i)
+                b.q.q[std::size_t(i)] = std::ldexp(b.q.q[std::size_t(i)], i < 9 ? j : 2 * j);
+            l = {std::ldexp(1.0, j) * l.L0, std::ldexp(1.0, j) * l.v};
+        }
         return make(b.q, l.L0, l.v);
     }
     case Family::far_origin: {

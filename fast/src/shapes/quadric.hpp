@@ -299,8 +299,9 @@ exact_form::LineQuadratic<NT> quadric_quadratic(const QuadricCoefficients<double
 }
 
 // The quadric's length scale, a power of two: where its terms of each degree balance
-// (a2 L^2 ~ a1 L ~ a0 for the largest coefficient of each degree), for prescaling; 1 when none
-// does (a single degree).
+// (a2 L^2 ~ a1 L ~ a0 for the largest coefficient of each degree), for prescaling; 0 when none
+// does (a single degree: a cone or a plane through the origin has no size, and the line's origin
+// alone sets the scene's).
 inline double quadric_length(const QuadricCoefficients<double>& q) {
     double a2 = max_abs(std::array<double, 6>{q[0], q[1], q[2], q[3], q[4], q[5]});
     double a1 = std::max({std::fabs(q[6]), std::fabs(q[7]), std::fabs(q[8])});
@@ -310,7 +311,7 @@ inline double quadric_length(const QuadricCoefficients<double>& q) {
     if (a2 > 0 && a0 > 0) L = std::max(L, (e(a0) - e(a2)) / 2);
     if (a2 > 0 && a1 > 0) L = std::max(L, e(a1) - e(a2));
     if (a1 > 0 && a0 > 0) L = std::max(L, e(a0) - e(a1));
-    if (L == -(1 << 20)) return 1;
+    if (L == -(1 << 20)) return 0;
     return std::ldexp(1.0,
                       std::clamp(L, -Binary64::moderate_exponent, Binary64::moderate_exponent));
 }
