@@ -23,7 +23,7 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 LATEST = ROOT / "reports" / "latest"
 PEERS = ROOT / "reports" / "peers"
 SHAPES = ["cylinder", "elliptic_cylinder", "elliptic_cone", "frustum", "sphere", "ellipsoid",
-          "capsule"]
+          "capsule", "plane", "quadric"]
 
 
 def read_json(path):
@@ -234,14 +234,16 @@ def vecgeom():
     declared tolerance, split by which way it is wrong."""
     path = PEERS / "aligned" / "report.json"
     report = read_json(path)
-    shapes = [s for s in SHAPES if s != "capsule" and s in report["shapes"]]
+    rows = {(r["family"], r["shape"]): r for r in report["rows"] if r["solver"] == "vecgeom"}
+    # The shapes it takes (none of its own for a capsule, a plane or a quadric).
+    shapes = [s for s in SHAPES if s != "capsule" and s in report["shapes"]
+              and any(r["cases"] for (_, shape), r in rows.items() if shape == s)]
     out = [source_line(path, report["command"], report_machine(report))
            + " `vecgeom` (DistanceToIn): cases misclassified beyond its declared tolerance, of those"
            " graded, and which way (invented: a hit where there is none; missed: one not found):",
            "",
            "| family | " + " | ".join(f"`{s}`" for s in shapes) + " |",
            "|---|" + "---:|" * len(shapes)]
-    rows = {(r["family"], r["shape"]): r for r in report["rows"] if r["solver"] == "vecgeom"}
     for family in report["families"]:
         cells = []
         for shape in shapes:
