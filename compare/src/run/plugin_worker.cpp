@@ -1050,7 +1050,12 @@ struct PluginWorker::Impl {
 
     // Requests of a few hundred cases kept two in flight, so that the worker answers one while
     // this process writes the next and reads the last (a packet solver's batch entry gets them
-    // all in one call), until every case is answered or the worker ends or a stop is asked.
+    // all in one call), until every case is answered and every request replied to, or the worker
+    // ends or a stop is asked. Every reply is waited for even when the answers were all read
+    // from the cases done: the last request's reply comes after the worker's socket check, and a
+    // run that ended on its answers alone left a worker that found its socket taken to end in the
+    // next run, which charged that run's first case and let the call to blame go (seen under
+    // load: two one-case requests in flight, both answered before the first reply was read).
     Waited drive(Run& r) {
         // A few requests per batch: enough to overlap, few enough that a request's own cost
         // stays small beside its calls'.
@@ -1062,7 +1067,7 @@ struct PluginWorker::Impl {
         std::uint32_t next = r.cursor;
         r.sent.clear();                                     // a worker numbers its requests from 1
         h->done.store(r.cursor, std::memory_order_release); // the worker waits: nothing in flight
-        while (r.cursor < r.count) {
+        while (r.cursor < r.count || in_flight > 0) {
             while (in_flight < 2 && next < r.count && !(r.batch && in_flight)) {
                 std::uint32_t to =
                     r.batch ? r.count

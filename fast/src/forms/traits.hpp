@@ -116,9 +116,10 @@ double component_sum(const std::array<double, N>& a) {
 }
 
 // Shapes whose fields are not positions (a plane's normal, a quadric's coefficients) size and
-// scale themselves: ShapeTraits<S>::magnitude (a length the shape is about, a power of two),
-// ::smallest (infinity: no position holds a tiny component) and ::scaled_exactly (the same
-// surface with every position times f, a power of two, or none where that would lose bits).
+// scale themselves: ShapeTraits<S>::magnitude (a length the shape is about, a power of two, or 0
+// where it sets none) and ::scaled_exactly (the same surface with every position times f, a power
+// of two, or none where that would lose bits). No position of theirs holds a tiny component:
+// their smallest is infinity.
 template <class S, class = void>
 inline constexpr bool scales_itself = false;
 template <class S>
