@@ -55,8 +55,8 @@
 namespace linequad::detail {
 
 // A sum of products kept to about twice the working precision (as numeric/compensated_sum.hpp,
-// without its bound, and for float too): each product exact (two_prod),
-// each sum's error carried (two_sum), a three-factor product's last low part rounded once.
+// without its bound, and for float too): each product exact (two_prod), each sum's error carried
+// (two_sum), a three-factor product's last low part rounded once.
 template <class T>
 struct ProductSum {
     T s = T(0), c = T(0);
@@ -120,7 +120,7 @@ struct QuadricStable {
         q = *framed;
         smallest = Format<T>::inf;
         for (int i = 0; i < 10; ++i)
-            if (q[i] != 0) smallest = std::fmin(smallest, std::fabs(q[i]));
+            if (q[i] != 0) smallest = std::min(smallest, std::fabs(q[i])); // not fmin: a call
         ProductSum<T> a;
         const T two(2);
         a.add_product(two * q[0], v.x, v.x), a.add_product(two * q[1], v.y, v.y);
