@@ -172,7 +172,7 @@ Made offset(Shape& shape, double radial, double axial, int sign) {
                     x.H = moved(x.H, eps, c), x.C = moved(x.C, -eps, c);
                 }
                 return Made::shape;
-            } else if constexpr (has_coincident<S>) {
+            } else if constexpr (is_unbounded_surface<S>) {
                 return Made::none; // an unbounded surface: no bracket (convex_solid says so)
             } else {
                 static_assert(std::is_same_v<S, Ellipsoid>);

@@ -182,7 +182,7 @@ std::vector<SpawnRow> run_spawn_audit(const SpawnAuditOptions& o) {
             if (!family_applies(f, shape)) continue;
             // The unbounded surfaces (plane, quadric) have no spawn offset yet (docs/limits.md).
             bool unbounded = with_shape_type(std::size_t(shape), [](auto tag) {
-                return has_coincident<typename decltype(tag)::type>;
+                return is_unbounded_surface<typename decltype(tag)::type>;
             });
             if (unbounded) continue;
             for (std::uint64_t i = 0; i < o.cases; ++i) {

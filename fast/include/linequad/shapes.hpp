@@ -157,14 +157,17 @@ inline constexpr bool has_nappes = detail::HasNappes<S>::value;
 template <class S>
 inline constexpr bool has_coincident = detail::HasCoincident<S>::value;
 
-// The unbounded surfaces (plane, quadric) are not finite: the region f < 0 they bound is closed
-// by them alone, and is not convex in general.
+// The unbounded surfaces (plane, quadric): not finite; the region f < 0 they bound is closed by
+// them alone, and is not convex in general.
+template <class S>
+inline constexpr bool is_unbounded_surface = std::is_same_v<S, Plane> || std::is_same_v<S, Quadric>;
+
 template <class S>
 bool has_finite_extent(const S& s) {
     if constexpr (has_extent_options<S>)
         return s.finite;
     else
-        return !has_coincident<S>;
+        return !is_unbounded_surface<S>;
 }
 // Whether end discs close it.
 template <class S>

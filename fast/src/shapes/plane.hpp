@@ -14,28 +14,24 @@
 
 namespace linequad::detail {
 
-// The plane as the quadric it is.
-inline QuadricCoefficients<double> plane_coefficients(const Plane& s) {
-    return {0, 0, 0, 0, 0, 0, s.n.x, s.n.y, s.n.z, -s.d};
-}
-
 template <>
-struct ShapeTraits<Plane> {
+struct ShapeTraits<Plane> : AsQuadric<Plane, ShapeTraits<Plane>> {
     static constexpr const char* name = "plane";
     static constexpr auto fields = std::make_tuple(field("n", &Plane::n), field("d", &Plane::d));
     static constexpr const char* scale_fields = "n,d";
     static constexpr const char* fragile_fields = "v,n,d";
-    static constexpr bool has_line_form = false;
+
+    // The plane as the quadric it is.
+    static QuadricCoefficients<double> coefficients(const Plane& s) {
+        return {0, 0, 0, 0, 0, 0, s.n.x, s.n.y, s.n.z, -s.d};
+    }
 
     static Validity validate(const Plane& s) {
         if (s.n == Vec3{}) return {{ErrorCode::zero_coefficients, "n"}};
         return {};
     }
 
-    // ---- Positions: d / |n| is the plane's distance from the origin; n is a direction ----
-
-    static double magnitude(const Plane& s) { return quadric_length(plane_coefficients(s)); }
-    // n . (x' / f) = d: n . x' = f d.
+    // n . (x' / f) = d: n . x' = f d (n is a direction, d / |n| the distance from the origin).
     static std::optional<Plane> scaled_exactly(const Plane& s, double f) {
         double d = f * s.d;
         if (s.d != 0 &&
@@ -43,13 +39,6 @@ struct ShapeTraits<Plane> {
             return std::nullopt;
         return Plane{s.n, d, s.coincident};
     }
-
-    // ---- Bounds (a scene's culling): unbounded ----
-
-    static Box bounds(const Plane&) { return everything(); }
-    static BoundingCapsule bounding_capsule(const Plane&) { return {{}, {}, Binary64::inf}; }
-
-    static void prepare(const Plane&, Facts<Plane>&) {}
 
     // ---- seed: f(L0) and n . v as OpenMC writes them; a t^2 + b t + c with a = 0 ----
 
@@ -63,32 +52,8 @@ struct ShapeTraits<Plane> {
         return {R(0), projection, f, R(0), R(0), Extent{-Binary64::inf, Binary64::inf}, usable};
     }
 
-    // ---- stable, certified, exact: the quadric's ----
-
-    template <class T>
-    using Stable = QuadricStable<T>;
-    template <class T, class Source, class Scale>
-    static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
-        const Plane& s = src.shape;
-        return {quadric_in_frame<T>(plane_coefficients(s), ps.k), s.coincident, ps.pos(L0),
-                ps.dir(v)};
-    }
-
-    template <class B, class Source>
-    static CertifiedForm<B> certified_form(const Source& src, const Prescale& ps, const Line& l) {
-        return quadric_certified<B>(plane_coefficients(src.shape), src.shape.coincident, ps, l);
-    }
-
-    template <class NT>
-    static int exact_orientation(const Plane&) {
-        return 0;
-    }
-    template <class NT, class L>
-    static exact_form::LineQuadratic<NT> exact_quadratic(const Plane& s, const L& l,
-                                                         int /*orientation*/) {
-        return quadric_quadratic<NT>(plane_coefficients(s), s.coincident, l);
-    }
-    // A = 0: D = B^2, whose sign is that of n . v's magnitude.
+    // A = 0: D = B^2, whose sign is that of n . v's magnitude (stable, certified, exact: the
+    // quadric's).
     template <class NT>
     static int discriminant_sign(const Plane& s, const Line& l, int /*orientation*/) {
         using exact_form::lift;

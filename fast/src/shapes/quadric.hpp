@@ -64,16 +64,41 @@ struct ProductSum {
         TwoTermT<T> t = two_sum(s, x);
         s = t.hi, c = c + t.lo;
     }
-    void add_product(T a, T b) {
-        TwoTermT<T> p = two_prod(a, b);
+    void add(T k, T a) {
+        TwoTermT<T> p = two_prod(k, a);
         add(p.hi), c = c + p.lo;
     }
-    void add_product(T k, T a, T b) { // k a b
+    void add(T k, T a, T b) { // k a b
         TwoTermT<T> p = two_prod(a, b), q = two_prod(k, p.hi);
         add(q.hi), c = c + (q.lo + k * p.lo);
     }
     T value() const { return s + c; }
 };
+
+// A = 2 f2(v), B = grad f(w) . v and 2 f(w) (C0 at w) as products k a b of doubles, each handed
+// to a sum's add(k), add(k, a) or add(k, a, b) (the factors 2 taken into k, exactly): stable's
+// sums (ProductSum) and the correct filter's (QuadricFilterSum) take one list.
+template <class T, class Sum>
+LINEQUAD_INLINE void curvature_products(const QuadricCoefficients<T>& q, Vec3T<T> v, Sum& A) {
+    const T two(2);
+    A.add(two * q[0], v.x, v.x), A.add(two * q[1], v.y, v.y), A.add(two * q[2], v.z, v.z);
+    A.add(two * q[3], v.x, v.y), A.add(two * q[4], v.y, v.z), A.add(two * q[5], v.z, v.x);
+}
+template <class T, class Sum>
+LINEQUAD_INLINE void slope_products(const QuadricCoefficients<T>& q, Vec3T<T> w, Vec3T<T> v,
+                                    Sum& B) {
+    const T two(2);
+    B.add(two * q[0], w.x, v.x), B.add(q[3], w.y, v.x), B.add(q[5], w.z, v.x), B.add(q[6], v.x);
+    B.add(two * q[1], w.y, v.y), B.add(q[3], w.x, v.y), B.add(q[4], w.z, v.y), B.add(q[7], v.y);
+    B.add(two * q[2], w.z, v.z), B.add(q[4], w.y, v.z), B.add(q[5], w.x, v.z), B.add(q[8], v.z);
+}
+template <class T, class Sum>
+LINEQUAD_INLINE void value_products(const QuadricCoefficients<T>& q, Vec3T<T> w, Sum& C) {
+    const T two(2);
+    C.add(two * q[0], w.x, w.x), C.add(two * q[1], w.y, w.y), C.add(two * q[2], w.z, w.z);
+    C.add(two * q[3], w.x, w.y), C.add(two * q[4], w.y, w.z), C.add(two * q[5], w.z, w.x);
+    C.add(two * q[6], w.x), C.add(two * q[7], w.y), C.add(two * q[8], w.z), C.add(two * q[9]);
+}
 
 // The quadric of a shape's positions times 2^-k, multiplied through by 2^2k and then by a power
 // of two that brings its largest coefficient near 1: the same surface in the scaled frame, in R.
@@ -122,10 +147,7 @@ struct QuadricStable {
         for (int i = 0; i < 10; ++i)
             if (q[i] != 0) smallest = std::min(smallest, std::fabs(q[i])); // not fmin: a call
         ProductSum<T> a;
-        const T two(2);
-        a.add_product(two * q[0], v.x, v.x), a.add_product(two * q[1], v.y, v.y);
-        a.add_product(two * q[2], v.z, v.z), a.add_product(two * q[3], v.x, v.y);
-        a.add_product(two * q[4], v.y, v.z), a.add_product(two * q[5], v.z, v.x);
+        curvature_products(q, v, a);
         A = a.value();
     }
     // The scaling lost bits: the solver refuses (out_of_range, "q").
@@ -139,26 +161,14 @@ struct QuadricStable {
 
     // 2 f(w): C0 at w, unrounded.
     ProductSum<T> twice_value(Vec3T<T> w) const {
-        const T two(2);
         ProductSum<T> c;
-        if (coincident) return c;
-        c.add_product(two * q[0], w.x, w.x), c.add_product(two * q[1], w.y, w.y);
-        c.add_product(two * q[2], w.z, w.z), c.add_product(two * q[3], w.x, w.y);
-        c.add_product(two * q[4], w.y, w.z), c.add_product(two * q[5], w.z, w.x);
-        c.add_product(two * q[6], w.x), c.add_product(two * q[7], w.y);
-        c.add_product(two * q[8], w.z), c.add(two * q[9]);
+        if (!coincident) value_products(q, w, c);
         return c;
     }
     // grad f(w) . v: B at w, unrounded.
     ProductSum<T> slope(Vec3T<T> w) const {
-        const T two(2);
         ProductSum<T> b;
-        b.add_product(two * q[0], w.x, v.x), b.add_product(q[3], w.y, v.x);
-        b.add_product(q[5], w.z, v.x), b.add_product(q[6], v.x);
-        b.add_product(two * q[1], w.y, v.y), b.add_product(q[3], w.x, v.y);
-        b.add_product(q[4], w.z, v.y), b.add_product(q[7], v.y);
-        b.add_product(two * q[2], w.z, v.z), b.add_product(q[4], w.y, v.z);
-        b.add_product(q[5], w.x, v.z), b.add_product(q[8], v.z);
+        slope_products(q, w, v, b);
         return b;
     }
     T C0_at_origin() const { return twice_value(L0).value(); }
@@ -172,8 +182,8 @@ struct QuadricStable {
         B = b.value(), C_moved = c.value();
         T B_lo = (b.s - B) + b.c, C_lo = (c.s - C_moved) + c.c;
         ProductSum<T> d;
-        d.add_product(B, B), d.add_product(T(2) * B, B_lo);
-        d.add_product(-A, C_moved), d.add_product(-A, C_lo);
+        d.add(B, B), d.add(T(2) * B, B_lo);
+        d.add(-A, C_moved), d.add(-A, C_lo);
         D = d.value();
     }
     template <class Roots>
@@ -250,18 +260,10 @@ struct QuadricFilterSum {
 };
 inline exact_form::LineQuadratic<BoundedDD> quadric_filter(const QuadricCoefficients<double>& q,
                                                            bool coincident, const Line& l) {
-    const Vec3 &w = l.L0, &v = l.v;
     QuadricFilterSum A, B, C;
-    A.add(2 * q[0], v.x, v.x), A.add(2 * q[1], v.y, v.y), A.add(2 * q[2], v.z, v.z);
-    A.add(2 * q[3], v.x, v.y), A.add(2 * q[4], v.y, v.z), A.add(2 * q[5], v.z, v.x);
-    B.add(2 * q[0], w.x, v.x), B.add(q[3], w.y, v.x), B.add(q[5], w.z, v.x), B.add(q[6], v.x);
-    B.add(2 * q[1], w.y, v.y), B.add(q[3], w.x, v.y), B.add(q[4], w.z, v.y), B.add(q[7], v.y);
-    B.add(2 * q[2], w.z, v.z), B.add(q[4], w.y, v.z), B.add(q[5], w.x, v.z), B.add(q[8], v.z);
-    if (!coincident) {
-        C.add(2 * q[0], w.x, w.x), C.add(2 * q[1], w.y, w.y), C.add(2 * q[2], w.z, w.z);
-        C.add(2 * q[3], w.x, w.y), C.add(2 * q[4], w.y, w.z), C.add(2 * q[5], w.z, w.x);
-        C.add(2 * q[6], w.x), C.add(2 * q[7], w.y), C.add(2 * q[8], w.z), C.add(2 * q[9]);
-    }
+    curvature_products(q, l.v, A);
+    slope_products(q, l.L0, l.v, B);
+    if (!coincident) value_products(q, l.L0, C);
     exact_form::LineQuadratic<BoundedDD> out;
     out.A = A.result(), out.B = B.result(), out.C0 = C.result();
     out.Z0 = out.dZ = out.lo = out.hi = BoundedDD(0.0);
@@ -271,10 +273,8 @@ inline exact_form::LineQuadratic<BoundedDD> quadric_filter(const QuadricCoeffici
 
 // A t^2 + 2 B t + C0 in NT, exactly, at the line's origin (or a point of it: LineThrough).
 template <class NT, class L>
-exact_form::LineQuadratic<NT> quadric_quadratic(const QuadricCoefficients<double>& q,
-                                                bool coincident, const L& l) {
-    if constexpr (std::is_same_v<NT, BoundedDD> && std::is_same_v<L, Line>)
-        return quadric_filter(q, coincident, l);
+exact_form::LineQuadratic<NT> quadric_terms(const QuadricCoefficients<double>& q, bool coincident,
+                                            const L& l) {
     using exact_form::lift;
     QuadricCoefficients<NT> c;
     for (int i = 0; i < 10; ++i)
@@ -296,6 +296,15 @@ exact_form::LineQuadratic<NT> quadric_quadratic(const QuadricCoefficients<double
     out.Z0 = out.dZ = out.lo = out.hi = NT(0);
     out.lo_bounded = out.hi_bounded = false;
     return out;
+}
+// The same, the filter's way in bounded double-double at the line's own origin.
+template <class NT, class L>
+exact_form::LineQuadratic<NT> quadric_quadratic(const QuadricCoefficients<double>& q,
+                                                bool coincident, const L& l) {
+    if constexpr (std::is_same_v<NT, BoundedDD> && std::is_same_v<L, Line>)
+        return quadric_filter(q, coincident, l);
+    else
+        return quadric_terms<NT>(q, coincident, l);
 }
 
 // The quadric's length scale, a power of two: where its terms of each degree balance
@@ -330,34 +339,79 @@ inline std::optional<QuadricCoefficients<double>> quadric_scaled(QuadricCoeffici
     return q;
 }
 
+// What the plane and the quadric share: each is f of degree at most 2, given by its ten GQ
+// coefficients (Traits::coefficients) and `coincident`; unbounded; every layer but the seed is the
+// quadric's derivation above. A surface's traits derive from AsQuadric<S, their own type>.
+template <class S, class Traits>
+struct AsQuadric {
+    static constexpr bool has_line_form = false; // correct: the exact form's rungs
+
+    // ---- Positions: the coefficients are not positions ----
+
+    static double magnitude(const S& s) { return quadric_length(Traits::coefficients(s)); }
+
+    // ---- Bounds (a scene's culling): unbounded ----
+
+    static Box bounds(const S&) { return everything(); }
+    static BoundingCapsule bounding_capsule(const S&) { return {{}, {}, Binary64::inf}; }
+
+    static void prepare(const S&, Facts<S>&) {}
+
+    // ---- stable ----
+
+    template <class T>
+    using Stable = QuadricStable<T>;
+    template <class T, class Source, class Scale>
+    static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
+        const S& s = src.shape;
+        return {quadric_in_frame<T>(Traits::coefficients(s), ps.k), s.coincident, ps.pos(L0),
+                ps.dir(v)};
+    }
+
+    // ---- certified ----
+
+    template <class B, class Source>
+    static CertifiedForm<B> certified_form(const Source& src, const Prescale& ps, const Line& l) {
+        return quadric_certified<B>(Traits::coefficients(src.shape), src.shape.coincident, ps, l);
+    }
+
+    // ---- exact ----
+
+    template <class NT>
+    static int exact_orientation(const S&) {
+        return 0;
+    }
+    template <class NT, class L>
+    static exact_form::LineQuadratic<NT> exact_quadratic(const S& s, const L& l,
+                                                         int /*orientation*/) {
+        return quadric_quadratic<NT>(Traits::coefficients(s), s.coincident, l);
+    }
+    template <class NT>
+    static int discriminant_sign(const S& s, const Line& l, int /*orientation*/) {
+        exact_form::LineQuadratic<NT> g = exact_quadratic<NT>(s, l, 0);
+        return sign(g.B * g.B - g.A * g.C0);
+    }
+};
+
 template <>
-struct ShapeTraits<Quadric> {
+struct ShapeTraits<Quadric> : AsQuadric<Quadric, ShapeTraits<Quadric>> {
     static constexpr const char* name = "quadric";
     static constexpr auto fields = std::make_tuple(field("q", &Quadric::q));
     static constexpr const char* scale_fields = "q";
     static constexpr const char* fragile_fields = "v,q";
-    static constexpr bool has_line_form = false;
+
+    static const QuadricCoefficients<double>& coefficients(const Quadric& s) { return s.q; }
 
     static Validity validate(const Quadric& s) {
         if (max_abs(s.q) == 0) return {{ErrorCode::zero_coefficients, "q"}};
         return {};
     }
 
-    // ---- Positions: none (the coefficients are not positions) ----
-
-    static double magnitude(const Quadric& s) { return quadric_length(s.q); }
     static std::optional<Quadric> scaled_exactly(const Quadric& s, double f) {
         std::optional<QuadricCoefficients<double>> q = quadric_scaled(s.q, f);
         if (!q) return std::nullopt;
         return Quadric{*q, s.coincident};
     }
-
-    // ---- Bounds (a scene's culling): unbounded ----
-
-    static Box bounds(const Quadric&) { return everything(); }
-    static BoundingCapsule bounding_capsule(const Quadric&) { return {{}, {}, Binary64::inf}; }
-
-    static void prepare(const Quadric&, Facts<Quadric>&) {}
 
     // ---- seed: OpenMC's a, k, c as written ----
 
@@ -376,40 +430,6 @@ struct ShapeTraits<Quadric> {
                                  G * x + H * y + J * z + K;
         bool usable = std::isfinite(a) && std::isfinite(k) && std::isfinite(c);
         return {a, 2 * k, c, R(0), R(0), Extent{-Binary64::inf, Binary64::inf}, usable};
-    }
-
-    // ---- stable ----
-
-    template <class T>
-    using Stable = QuadricStable<T>;
-    template <class T, class Source, class Scale>
-    static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
-        const Quadric& s = src.shape;
-        return {quadric_in_frame<T>(s.q, ps.k), s.coincident, ps.pos(L0), ps.dir(v)};
-    }
-
-    // ---- certified ----
-
-    template <class B, class Source>
-    static CertifiedForm<B> certified_form(const Source& src, const Prescale& ps, const Line& l) {
-        return quadric_certified<B>(src.shape.q, src.shape.coincident, ps, l);
-    }
-
-    // ---- exact ----
-
-    template <class NT>
-    static int exact_orientation(const Quadric&) {
-        return 0;
-    }
-    template <class NT, class L>
-    static exact_form::LineQuadratic<NT> exact_quadratic(const Quadric& s, const L& l,
-                                                         int /*orientation*/) {
-        return quadric_quadratic<NT>(s.q, s.coincident, l);
-    }
-    template <class NT>
-    static int discriminant_sign(const Quadric& s, const Line& l, int /*orientation*/) {
-        exact_form::LineQuadratic<NT> g = exact_quadratic<NT>(s, l, 0);
-        return sign(g.B * g.B - g.A * g.C0);
     }
 };
 
