@@ -90,6 +90,11 @@ if [ -z "$rows" ]; then
     for solver in seed stable certified correct; do rows="$rows $solver:$shape:all:points:direct"; done
   done
   rows="$rows correct:capsule:any:no_points:direct"
+  # The transport codes' surfaces: a plane and a general quadric (an ellipsoid in GQ form).
+  for shape in plane quadric; do
+    for solver in seed stable certified correct; do rows="$rows $solver:$shape:all:points:direct"; done
+  done
+  rows="$rows correct:quadric:nearest:no_points:direct correct32:quadric:all:points:direct"
   # The batch solvers on AVX2 lanes (valgrind runs no AVX-512): 1024 lines against one prepared
   # shape, per line.
   rows="$rows batch-avx2:cylinder:all:points:prepared batchcorrect-avx2:cylinder:all:points:prepared"

@@ -371,6 +371,15 @@ inline constexpr bool
     has_exact_axial<S, std::void_t<decltype(ShapeTraits<S>::template exact_axial<BigFloat>(
                            std::declval<const S&>(), std::declval<const Line&>(), 0))>> = true;
 
+// Whether a shape gives the Newton rung its local quadratic at any point (newton_form: a
+// quadric's), in place of a line form.
+template <class S, class = void>
+inline constexpr bool has_newton_form = false;
+template <class S>
+inline constexpr bool
+    has_newton_form<S, std::void_t<decltype(ShapeTraits<S>::newton_form(
+                           std::declval<const S&>(), std::declval<const Line&>()))>> = true;
+
 // The scene scaled to unit size (unit_scale): the double-double rung's, and the Newton rung's
 // where the scene as given is not of moderate size.
 template <class S>
@@ -839,6 +848,17 @@ struct CorrectTo {
         using Traits = ShapeTraits<S>;
         Result r; // the one result, returned in place
         ExactForm<Source> exact(src, l, orientation, extent);
+        // A surface without extent (a quadric) has its own local quadratic for the Newton rung.
+        if constexpr (has_newton_form<S>) {
+            if (moderate(extent, l))
+                if (std::optional form = Traits::newton_form(src.shape, l)) {
+                    if (surface_newton_rung<Target>(*form, Unit{1, 1, l}, l, q, r, &exact)) {
+                        mark_certain<Target>(r, Rung::newton);
+                        return r;
+                    }
+                    r = Result();
+                }
+        }
         // The Newton rung's bounds hold at any scale (underflow is in them, overflow makes them
         // infinite), so a scene of moderate size is solved as given; others are scaled first,
         // so that tiny or huge scenes are not left to the slower rungs.

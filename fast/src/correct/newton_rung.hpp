@@ -147,6 +147,14 @@ template <class Target, Residual R = Residual::double_double>
 bool newton_rung(const LineForm& f, const Unit& u, const Line& caller, Query query, Result& r,
                  const ExtentEnds* ends = nullptr);
 
+// The same proof for a surface without extent, from its own local quadratic at any point (a
+// quadric's: shapes/quadric.hpp) rather than a line form; u's factors 1 (the scene as given).
+// False where a bound leaves anything open (a tangency, a root at the range's end).
+class QuadricNewtonForm;
+template <class Target>
+bool surface_newton_rung(const QuadricNewtonForm& f, const Unit& u, const Line& caller, Query query,
+                         Result& r, const ExtentEnds* ends);
+
 // The hit test (Need::any) on a quick line form (the shape's quick_line_form: doubles with
 // bounds) of a scene as given (u's factors 1): the same proof, from G in double. When it proves
 // a root inside the extent and the range, r holds that one hit, certain, its t the enclosure's

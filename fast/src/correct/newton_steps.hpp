@@ -83,10 +83,6 @@ LINEQUAD_INLINE decltype(auto) with_sigma_z_of_lanes(int sigma_z, F&& f) {
 // A = sum sigma_k U1_k^2, g's leading coefficient, in double: three products and two sums err
 // by at most gamma_3 sum U1_k^2 (4u covers it; four terms, 5u), and U1's own bounds move each
 // square by d (2 |U1_k| + d), d = |U1_k - hi|.
-template <class T>
-struct Leading {
-    T A, e;
-};
 template <int SigmaZ, class T>
 LINEQUAD_INLINE Leading<T> leading(const LineFormT<T>& f) {
     using std::fabs;
@@ -105,10 +101,6 @@ LINEQUAD_INLINE Leading<T> leading(const LineFormT<T>& f) {
 // g(c + x) = A x^2 + G' x + G: G = g(c) in double-double, read as a double with its bound, and
 // G' = 2 sum sigma_k u_k(c) U1_k in double. For N points at once: their chains of dependent
 // operations are independent, so the processor overlaps them.
-template <class T>
-struct Local {
-    T G, e_G, Gp, e_Gp;
-};
 template <int SigmaZ, int N, class T>
 void local_at(const LineFormT<T>& f, const T (&c)[N], Local<T> (&out)[N]) {
     using std::fabs;

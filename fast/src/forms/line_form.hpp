@@ -76,6 +76,21 @@ struct LineFormT {
 };
 using LineForm = LineFormT<double>;
 
+namespace newton {
+// What the Newton rung (correct/newton_rung.hpp) takes of a shape's g near a point c:
+// g(c + x) = A x^2 + G' x + G, A within e, G within e_G and G' within e_Gp, each in double. A
+// line form gives them (correct/newton_steps.hpp), as does a quadric's own expansion
+// (shapes/quadric.hpp).
+template <class T>
+struct Leading {
+    T A, e;
+};
+template <class T>
+struct Local {
+    T G, e_G, Gp, e_Gp;
+};
+} // namespace newton
+
 // Term k's U0 and U1 (k = 3: the fourth term's).
 template <class T>
 LINEQUAD_INLINE const BoundedDDT<T>& U0_of(const LineFormT<T>& f, int k) {

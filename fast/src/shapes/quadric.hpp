@@ -33,13 +33,21 @@
 //
 // exact: A, B and C0 above, term by term in any exact ring type.
 //
-// correct: no line form of signed squares (a general quadric has none without a division); the
-// ladder takes the exact form in double-double on the scene scaled to unit size, then BigFloat.
+// correct: no line form of signed squares (a general quadric has none without a division), but
+// the Newton rung needs only g's local quadratic at a point c of the line, and a quadric's is its
+// own Taylor expansion, exact at any point: g(c + x) = A x^2 + G' x + G with A = f2(v),
+// G = f(P), G' = grad f(P) . v at P = L0 + c v (QuadricNewtonForm). P is held as s + w (s the
+// rounded sum, w what it dropped), and f(P) = f(s) + grad f(s) . w + f2(w): f(s) in double-double,
+// the rest, some 2^-53 of it, in double. Evaluated at the hit rather than at L0, G keeps its
+// digits for a far source. Where the rung cannot prove (a tangency, a root at the range's end,
+// `coincident`), the ladder takes the exact form in double-double on the scene scaled to unit
+// size, then BigFloat.
 #pragma once
 
 #include "forms/bounds.hpp"
 #include "forms/certified.hpp"
 #include "forms/exact_form.hpp"
+#include "forms/line_form.hpp"
 #include "forms/roots.hpp"
 #include "forms/traits.hpp"
 #include "numeric/compensated_sum.hpp"
@@ -271,6 +279,134 @@ inline exact_form::LineQuadratic<BoundedDD> quadric_filter(const QuadricCoeffici
     return out;
 }
 
+// The Newton rung's view of a quadric (see the derivation above), for a line of the scene as given.
+// Bounds: a rounded sum of n products errs by at most gamma_(n+1) of its terms' magnitudes
+// (Higham (3.5), one more u for each product's rounding); what is some 2^-53 of G already (w's
+// terms, grad f(s)'s rounding times w) is bounded by magnitudes, loosely. Every bound is a dozen
+// roundings of nonnegative terms (cover(32)). Products that underflow err by 2^-1074 absolute:
+// an absolute floor, times a coefficient where a coefficient multiplies them. Overflow makes a
+// value or a bound infinite or NaN, which proves nothing.
+class QuadricNewtonForm {
+    using F = Binary64;
+    static constexpr double u = F::u;
+
+  public:
+    // None for `coincident`: g is then f(P) - f(L0), which this form does not carry.
+    static std::optional<QuadricNewtonForm> of(const QuadricCoefficients<double>& q,
+                                               bool coincident, const Line& l) {
+        if (coincident) return std::nullopt;
+        return QuadricNewtonForm(q, l);
+    }
+
+    // A = f2(v): six rounded products q_i (v_a v_b) and five sums (8u covers gamma_7). Exactly 0,
+    // with no bound, where f has no quadratic part (a plane): g is then linear.
+    newton::Leading<double> leading() const {
+        if (quadratic_size_ == 0) return {0, 0};
+        const Vec3& v = v_;
+        double t[6] = {q_[0] * (v.x * v.x), q_[1] * (v.y * v.y), q_[2] * (v.z * v.z),
+                       q_[3] * (v.x * v.y), q_[4] * (v.y * v.z), q_[5] * (v.z * v.x)};
+        double A = 0, size = 0;
+        for (double x : t)
+            A += x, size += std::fabs(x);
+        return {A,
+                (8 * u * size + quadratic_size_ * 0x1p-1072) * F::cover(32) + F::underflow_floor};
+    }
+
+    // g(c + x) = A x^2 + G' x + G at the point P = L0 + c v.
+    newton::Local<double> local_at(double c) const {
+        // P = s + w + delta exactly: s + (the low parts) is L0 + c v exactly (two_prod, two_sum),
+        // w their sum rounded once: |delta_k| <= u |w_k|, or 2^-1074 where c v_k underflows.
+        double s[3], w[3];
+        for (int k = 0; k < 3; ++k) {
+            TwoTerm cv = two_prod(c, v_[k]), sum = two_sum(L0_[k], cv.hi);
+            s[k] = sum.hi, w[k] = sum.lo + cv.lo;
+        }
+        // f(s) in double-double: each q_i s_a s_b as q_i times the exact pair s_a s_b.
+        CompensatedSum f;
+        constexpr int a_of[6] = {0, 1, 2, 0, 1, 2}, b_of[6] = {0, 1, 2, 1, 2, 0};
+        for (int i = 0; i < 6; ++i) {
+            TwoTerm p = two_prod(s[a_of[i]], s[b_of[i]]);
+            f.add_product(q_[i], p.hi);
+            f.add_small(q_[i] * p.lo);
+        }
+        for (int k = 0; k < 3; ++k)
+            f.add_product(q_[6 + k], s[k]);
+        f.add_exact(q_[9]);
+        BoundedDD fs = f.unnormalized();
+        // grad f(s) in double, each component four terms (gamma_4: 5u) no larger than
+        // 2 quadratic_size max|s| + linear_size together.
+        Vec3 at{s[0], s[1], s[2]}, g = gradient(at);
+        double e_g = 5 * u * (2 * quadratic_size_ * max_abs(at) + linear_size_) * F::cover(8) +
+                     F::underflow_floor;
+        // G = f(s) + grad f(s) . w + [grad f(s) . delta + f2(w + delta)], the bracket bounded
+        // with W = sum |w_k| + slack >= max |w_k + delta_k|.
+        double gw = g.x * w[0] + g.y * w[1] + g.z * w[2];
+        double aw = std::fabs(w[0]) + std::fabs(w[1]) + std::fabs(w[2]);
+        double gw_size = std::fabs(g.x * w[0]) + std::fabs(g.y * w[1]) + std::fabs(g.z * w[2]);
+        double g_size = std::fabs(g.x) + std::fabs(g.y) + std::fabs(g.z) + 3 * e_g;
+        double W = aw * (1 + 4 * u) + F::subnormal_slack;
+        double lo = fs.lo + gw, G = fs.hi + lo;
+        // An s_a s_b below the normal range is 2^-1074 off in its pair, times q_i.
+        double e_G = (fs.e + e_g * aw + 6 * u * gw_size + g_size * F::subnormal_slack +
+                      quadratic_size_ * (W * W + 0x1p-1070) + u * (std::fabs(lo) + std::fabs(G))) *
+                         F::cover(32) +
+                     2 * F::underflow_floor;
+        // G' = grad f(P) . v = grad f(s) . v + d^T H v (d = w + delta, H the Hessian, whose
+        // entries' magnitudes sum to 2 quadratic_size).
+        double Gp = g.x * v_.x + g.y * v_.y + g.z * v_.z;
+        double gv_size = std::fabs(g.x * v_.x) + std::fabs(g.y * v_.y) + std::fabs(g.z * v_.z);
+        double e_Gp =
+            (e_g * v_sum_ + 4 * u * gv_size + 2 * quadratic_size_ * W * v_max_) * F::cover(32) +
+            F::underflow_floor;
+        return {G, e_G, Gp, e_Gp};
+    }
+
+    // The roots' estimates in double from g's coefficients at L0 (f(L0) and grad f(L0) . v, each
+    // rounded as the seed's), smaller first: the stable pair where the discriminant is positive
+    // (`real`), one where g is linear; else the vertex, where the rung proves there is none.
+    struct Estimates {
+        bool real;
+        int count;
+        double root[2], vertex;
+    };
+    Estimates estimates(const newton::Leading<double>& A) const {
+        double b = dot(gradient(L0_), v_), c = value(L0_);
+        if (A.A == 0) return {b != 0, 1, {-c / b, 0}, 0};
+        double D = b * b - 4 * A.A * c;
+        if (!(D > 0)) return {false, 0, {0, 0}, -b / (2 * A.A)};
+        double q = -0.5 * (b + std::copysign(std::sqrt(D), b)), r0 = q / A.A, r1 = c / q;
+        if (r1 < r0) std::swap(r0, r1);
+        return {true, 2, {r0, r1}, 0};
+    }
+
+  private:
+    QuadricNewtonForm(const QuadricCoefficients<double>& q, const Line& l)
+        : q_(q), L0_(l.L0), v_(l.v) {
+        for (int i = 0; i < 6; ++i)
+            quadratic_size_ += std::fabs(q[i]);
+        quadratic_size_ *= F::cover(8);
+        linear_size_ = std::fabs(q[6]) + std::fabs(q[7]) + std::fabs(q[8]);
+        v_sum_ = std::fabs(v_.x) + std::fabs(v_.y) + std::fabs(v_.z);
+        v_max_ = max_abs(v_);
+    }
+    Vec3 gradient(const Vec3& s) const {
+        const QuadricCoefficients<double>& q = q_;
+        return {2 * q[0] * s.x + q[3] * s.y + q[5] * s.z + q[6],
+                2 * q[1] * s.y + q[3] * s.x + q[4] * s.z + q[7],
+                2 * q[2] * s.z + q[4] * s.y + q[5] * s.x + q[8]};
+    }
+    double value(const Vec3& p) const {
+        const QuadricCoefficients<double>& q = q_;
+        return q[0] * p.x * p.x + q[1] * p.y * p.y + q[2] * p.z * p.z + q[3] * p.x * p.y +
+               q[4] * p.y * p.z + q[5] * p.z * p.x + q[6] * p.x + q[7] * p.y + q[8] * p.z + q[9];
+    }
+
+    QuadricCoefficients<double> q_;
+    Vec3 L0_, v_;
+    // Sums of magnitudes, rounded up: |f2(d)| <= quadratic_size max|d_k|^2
+    double quadratic_size_ = 0, linear_size_ = 0, v_sum_ = 0, v_max_ = 0;
+};
+
 // A t^2 + 2 B t + C0 in NT, exactly, at the line's origin (or a point of it: LineThrough).
 template <class NT, class L>
 exact_form::LineQuadratic<NT> quadric_terms(const QuadricCoefficients<double>& q, bool coincident,
@@ -312,17 +448,18 @@ exact_form::LineQuadratic<NT> quadric_quadratic(const QuadricCoefficients<double
 // does (a single degree: a cone or a plane through the origin has no size, and the line's origin
 // alone sets the scene's).
 inline double quadric_length(const QuadricCoefficients<double>& q) {
-    double a2 = max_abs(std::array<double, 6>{q[0], q[1], q[2], q[3], q[4], q[5]});
-    double a1 = std::max({std::fabs(q[6]), std::fabs(q[7]), std::fabs(q[8])});
-    double a0 = std::fabs(q[9]);
+    double a2 = 0, a1 = 0, a0 = std::fabs(q[9]);
+    for (int i = 0; i < 6; ++i)
+        a2 = std::max(a2, std::fabs(q[i]));
+    for (int i = 6; i < 9; ++i)
+        a1 = std::max(a1, std::fabs(q[i]));
     auto e = [](double x) { return Binary64::exponent(x); };
     int L = -(1 << 20);
     if (a2 > 0 && a0 > 0) L = std::max(L, (e(a0) - e(a2)) / 2);
     if (a2 > 0 && a1 > 0) L = std::max(L, e(a1) - e(a2));
     if (a1 > 0 && a0 > 0) L = std::max(L, e(a0) - e(a1));
     if (L == -(1 << 20)) return 0;
-    return std::ldexp(1.0,
-                      std::clamp(L, -Binary64::moderate_exponent, Binary64::moderate_exponent));
+    return Binary64::pow2(std::clamp(L, -Binary64::moderate_exponent, Binary64::moderate_exponent));
 }
 
 // The same surface with every position times f (a power of two): multiplied through by f^2,
@@ -344,7 +481,11 @@ inline std::optional<QuadricCoefficients<double>> quadric_scaled(QuadricCoeffici
 // quadric's derivation above. A surface's traits derive from AsQuadric<S, their own type>.
 template <class S, class Traits>
 struct AsQuadric {
-    static constexpr bool has_line_form = false; // correct: the exact form's rungs
+    static constexpr bool has_line_form = false; // correct: newton_form, then the exact form
+
+    static std::optional<QuadricNewtonForm> newton_form(const S& s, const Line& l) {
+        return QuadricNewtonForm::of(Traits::coefficients(s), s.coincident, l);
+    }
 
     // ---- Positions: the coefficients are not positions ----
 
