@@ -189,3 +189,22 @@ TEST_CASE("surfaces: bad input is named", "[surfaces]") {
     REQUIRE(parse_case(format_case(c), &back, &why));
     CHECK(std::get<Plane>(back.shape).coincident);
 }
+
+TEST_CASE("stable: a quadric seen from 2^30 away keeps A's low part in D", "[surfaces]") {
+    // Found by the tracking audit (linequad cells examples/models/spheres.json --audit): the
+    // sphere of radius 4, a ray from 2^30 away through it. B^2 and A C0 are some 2^62 A while D
+    // is some 16 A^2: A rounded to a double erred by 2^9 A in A C0, and stable saw no crossing.
+    Quadric sphere{{1, 1, 1, 0, 0, 0, 0, 0, 0, -16}};
+    Line ray{{0x1.c0619c853cc6bp+30, -0x1.ec5529748952bp+29, -0x1.65e599478373cp+26},
+             {-0x1.8dbb396520ac3p+0, 0x1.b4b7c78fbbfe3p-1, 0x1.3d77dbe8023efp-4},
+             Range::ray};
+    Result want = exact::intersect(sphere, ray, {});
+    REQUIRE(want.count == 2);
+    Result got = stable::intersect(sphere, ray, {});
+    REQUIRE(got.count == 2);
+    for (int h = 0; h < 2; ++h) {
+        CHECK(got.hits[h].kind == HitKind::cross);
+        // t is some 2^30: stable's roots are within a few ulps of it.
+        CHECK(std::fabs(got.hits[h].t - want.hits[h].t) <= 8 * 0x1p-52 * 0x1p30);
+    }
+}

@@ -145,6 +145,7 @@ struct QuadricStable {
     bool coincident = false, in_frame = false;
     T smallest = T(0); // the smallest nonzero |coefficient| in the frame
     T A = T(0), tc = T(0), B = T(0), C_moved = T(0), D = T(0);
+    T A_lo = T(0); // what A, rounded, left out: a far source's A C0 needs it
 
     QuadricStable(const std::optional<QuadricCoefficients<T>>& framed, bool coincident_,
                   Vec3T<T> L0_, Vec3T<T> v_)
@@ -157,6 +158,7 @@ struct QuadricStable {
         ProductSum<T> a;
         curvature_products(q, v, a);
         A = a.value();
+        A_lo = (a.s - A) + a.c;
     }
     // The scaling lost bits: the solver refuses (out_of_range, "q").
     Mask smaller_than(T) const { return !in_frame; }
@@ -180,8 +182,8 @@ struct QuadricStable {
         return b;
     }
     T C0_at_origin() const { return twice_value(L0).value(); }
-    // At the line's own origin: B and C0 kept to twice the precision, and D = B^2 - A C0 formed
-    // from their two parts, so that a far source's huge B^2 and A C0 cancel without losing D
+    // At the line's own origin: A, B and C0 kept to twice the precision, and D = B^2 - A C0
+    // formed from their two parts, so that a far source's huge B^2 and A C0 cancel without losing D
     // (and exact inputs give an exact D: a tangency is found, which moving the origin to a
     // rounded point lost).
     void discriminant() {
@@ -191,7 +193,7 @@ struct QuadricStable {
         T B_lo = (b.s - B) + b.c, C_lo = (c.s - C_moved) + c.c;
         ProductSum<T> d;
         d.add(B, B), d.add(T(2) * B, B_lo);
-        d.add(-A, C_moved), d.add(-A, C_lo);
+        d.add(-A, C_moved), d.add(-A, C_lo), d.add(-A_lo, C_moved);
         D = d.value();
     }
     template <class Roots>
