@@ -46,6 +46,13 @@ step "spawned-ray audit" "$reports/latest/spawn.log" \
 step "scene audit" "$reports/latest/scenes.log" \
   $linequad scenes --scenes 400 --out "$reports/latest/scenes.md"
 step "peer libraries' audit" "$reports/peers.log" env OUT="$reports/peers" bash scripts/peers.sh
+# The tracking audit on each shipped model: the tracker transport codes write, graded against
+# the exact tracks.
+for model in examples/models/*.json; do
+  name=$(basename "$model" .json)
+  step "tracking audit: $name" "$reports/latest/cells_$name.log" \
+    $linequad cells "$model" --audit --rays 20000 --markdown "$reports/latest/cells_$name.md"
+done
 
 cat <<SUMMARY
 main job done in $((SECONDS - start)) s. Reports:
@@ -53,4 +60,5 @@ main job done in $((SECONDS - start)) s. Reports:
   $reports/latest/spawn.md      rays leaving a hit
   $reports/latest/scenes.md     scenes
   $reports/peers/report.html    five other libraries beside linequad's correct
+  $reports/latest/cells_*.md    particles tracked through the shipped models (examples/models/)
 SUMMARY

@@ -14,10 +14,12 @@
 // the JSON integer -0 is negative zero.
 #pragma once
 
+#include "linequad/cells.hpp"
 #include "linequad/scene.hpp"
 #include "linequad/solvers.hpp"
 #include "linequad/surfaces.hpp"
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -127,7 +129,7 @@ bool parse_record(std::string_view line, Record* r, std::string* why);
 // numbers as in a case (hex-float strings or JSON numbers); "u" optional.
 struct SenseQuery {
     std::string id = "null"; // JSON text
-    std::variant<Plane, Quadric> surface;
+    SurfaceShape surface;
     Vec3 p{};
     std::optional<Vec3> u;
 };
@@ -135,6 +137,21 @@ bool parse_sense_query(std::string_view line, SenseQuery* q, std::string* why);
 // {"id": .., "sense": "negative"|"on"|"positive", "sign": -1|0|1}, or the refusal as
 // format_failure writes it (solver "sense").
 std::string format_sense(const std::string& id, const SenseResult& r);
+// A model file (linequad/cells.hpp), one JSON document:
+//   {"surfaces": [{"id": 1, "shape": "plane", "n": [a, b, c], "d": d},
+//                 {"id": 2, "shape": "quadric", "q": [A, ..., K]}, ...],
+//    "cells": [{"id": 10, "name": "fuel", "region": "-2 1"}, ...]}
+// ids positive integers, numbers as in a case; "note" allowed anywhere; optional "box":
+// [[x0, y0, z0], [x1, y1, z1]], where the tracking audit draws its sources. On failure, false
+// with *why naming the element (surfaces[3], cells[0]) and the field; Model::build checks the
+// rest.
+struct ModelFile {
+    std::vector<Model::Surface> surfaces;
+    std::vector<Model::CellSource> cells;
+    std::optional<std::array<Vec3, 2>> box;
+};
+bool parse_model(std::string_view text, ModelFile* out, std::string* why);
+
 std::string format_scene(const SceneHeader& s);
 std::string format_scene_shape(const SceneShape& s);
 std::string format_scene_line(const SceneLine& l);

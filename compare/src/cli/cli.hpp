@@ -28,6 +28,7 @@ struct Command {
 
 Command solve_command(CLI::App& app);
 Command sense_command(CLI::App& app);
+Command cells_command(CLI::App& app);
 Command replay_command(CLI::App& app);
 Command audit_command(CLI::App& app);
 Command cases_command(CLI::App& app);

@@ -29,11 +29,11 @@ int main_checked(int argc, char** argv) {
     bool version = false;
     app.add_flag("--version", version, "version, compiler and floating-point flags");
     const cli::Command commands[] = {
-        cli::solve_command(app),   cli::sense_command(app),  cli::replay_command(app),
-        cli::audit_command(app),   cli::cases_command(app),  cli::merge_command(app),
-        cli::diff_command(app),    cli::html_command(app),   cli::history_command(app),
-        cli::spawn_command(app),   cli::scenes_command(app), cli::solvers_command(app),
-        cli::version_command(app), cli::worker_command(app)};
+        cli::solve_command(app),   cli::sense_command(app),   cli::cells_command(app),
+        cli::replay_command(app),  cli::audit_command(app),   cli::cases_command(app),
+        cli::merge_command(app),   cli::diff_command(app),    cli::html_command(app),
+        cli::history_command(app), cli::spawn_command(app),   cli::scenes_command(app),
+        cli::solvers_command(app), cli::version_command(app), cli::worker_command(app)};
     try {
         app.parse(argc, argv);
         for (const cli::Command& c : commands)

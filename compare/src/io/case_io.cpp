@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -533,6 +534,114 @@ std::string format_failure(const std::string& id, std::string_view solver, std::
            ",\"error\":" + json_string(message) + ",\"code\":" + json_string(code) + "}";
 }
 
+namespace {
+
+// A plane's fields ("n", "d") or a quadric's ("q"), `kind` being the one or the other.
+bool read_surface(Reader& r, const std::string& kind, SurfaceShape* out) {
+    if (kind == "plane") {
+        Plane plane{};
+        if (!r.vec("n", &plane.n) || !r.number("d", &plane.d)) return false;
+        *out = plane;
+    } else {
+        Quadric quadric{};
+        if (!r.coefficients("q", &quadric.q)) return false;
+        *out = quadric;
+    }
+    return true;
+}
+
+// A model's id: a JSON integer from 1 to 2^63 - 1 (OpenMC's ids are positive).
+bool read_id(Reader& r, std::int64_t* out) {
+    const Json* id = r.need("id");
+    if (!id) return false;
+    if (!id->is_number_integer() ||
+        (id->is_number_unsigned() && id->get<std::uint64_t>() > std::uint64_t(INT64_MAX)) ||
+        (!id->is_number_unsigned() && id->get<std::int64_t>() < 1))
+        return r.fail("id", "expected a positive integer");
+    *out =
+        id->is_number_unsigned() ? std::int64_t(id->get<std::uint64_t>()) : id->get<std::int64_t>();
+    return true;
+}
+
+} // namespace
+
+bool parse_model(std::string_view text, ModelFile* out, std::string* why) {
+    *out = ModelFile{};
+    std::vector<Model::Surface>* surfaces = &out->surfaces;
+    std::vector<Model::CellSource>* cells = &out->cells;
+    Json doc;
+    std::string err;
+    if (!jsonl::parse(text, &doc, &err)) return *why = "not valid JSON: " + err, false;
+    jsonl::ReleaseOnUnwind release(doc);
+    if (!doc.is_object()) return *why = "not a JSON object", false;
+    Reader top{doc, why};
+    if (!only_fields(top, doc, {"surfaces", "cells", "box", "note"}, "a model")) return false;
+    if (const Json* box = top.find("box")) {
+        Json corners = Json::object();
+        if (box->is_array() && box->size() == 2) corners = {{"lo", (*box)[0]}, {"hi", (*box)[1]}};
+        Reader b{corners, why};
+        std::array<Vec3, 2> at{};
+        if (!box->is_array() || box->size() != 2 || !b.vec("lo", &at[0]) || !b.vec("hi", &at[1]))
+            return top.fail("box", "expected [[x0, y0, z0], [x1, y1, z1]]");
+        if (!(at[0].x < at[1].x && at[0].y < at[1].y && at[0].z < at[1].z) ||
+            !std::isfinite(at[1].x - at[0].x + at[1].y - at[0].y + at[1].z - at[0].z))
+            return top.fail("box", "expected finite corners, the first below the second");
+        out->box = at;
+    }
+    const Json* s = top.need("surfaces");
+    const Json* c = s ? top.need("cells") : nullptr;
+    if (!s || !c) return false;
+    if (!s->is_array()) return top.fail("surfaces", "expected an array");
+    if (!c->is_array()) return top.fail("cells", "expected an array");
+    // Each element of a model's array, read by `read` (an object's Reader), its errors prefixed
+    // with the element: "surfaces[3]: field "q": ...".
+    auto each = [&](const Json& array, const char* name, auto read) {
+        for (std::size_t i = 0; i < array.size(); ++i) {
+            const Json& obj = array[i];
+            std::string inner;
+            Reader r{obj, &inner};
+            if (!obj.is_object()) inner = "not a JSON object";
+            if (!obj.is_object() || !read(r, obj)) {
+                *why = std::string(name) + "[" + std::to_string(i) + "]: " + inner;
+                return false;
+            }
+        }
+        return true;
+    };
+    bool surfaces_read = each(*s, "surfaces", [&](Reader& r, const Json& obj) {
+        Model::Surface surface{};
+        const Json* shape = r.need("shape");
+        if (!shape) return false;
+        std::string kind = shape->is_string() ? shape->get<std::string>() : "";
+        if (kind != "plane" && kind != "quadric")
+            return r.fail("shape", "expected plane or quadric");
+        bool fields =
+            kind == "plane"
+                ? only_fields(r, obj, {"id", "shape", "n", "d", "note"}, "a model's plane")
+                : only_fields(r, obj, {"id", "shape", "q", "note"}, "a model's quadric");
+        if (!fields || !read_id(r, &surface.id) || !read_surface(r, kind, &surface.shape))
+            return false;
+        surfaces->push_back(surface);
+        return true;
+    });
+    return surfaces_read && each(*c, "cells", [&](Reader& r, const Json& obj) {
+        Model::CellSource cell{};
+        if (!only_fields(r, obj, {"id", "name", "region", "note"}, "a model's cell") ||
+            !read_id(r, &cell.id))
+            return false;
+        const Json* region = r.need("region");
+        if (!region) return false;
+        if (!region->is_string()) return r.fail("region", "expected a string");
+        cell.region = region->get<std::string>();
+        if (const Json* name = r.find("name")) {
+            if (!name->is_string()) return r.fail("name", "expected a string");
+            cell.name = name->get<std::string>();
+        }
+        cells->push_back(std::move(cell));
+        return true;
+    });
+}
+
 bool parse_sense_query(std::string_view line, SenseQuery* q, std::string* why) {
     *q = SenseQuery{};
     Json obj;
@@ -549,15 +658,7 @@ bool parse_sense_query(std::string_view line, SenseQuery* q, std::string* why) {
                      (kind == "plane" ? f == "n" || f == "d" : f == "q");
         if (!known) return r.fail(f, "not a field of a " + kind + " sense query");
     }
-    if (kind == "plane") {
-        Plane plane{};
-        if (!r.vec("n", &plane.n) || !r.number("d", &plane.d)) return false;
-        q->surface = plane;
-    } else {
-        Quadric quadric{};
-        if (!r.coefficients("q", &quadric.q)) return false;
-        q->surface = quadric;
-    }
+    if (!read_surface(r, kind, &q->surface)) return false;
     if (!r.vec("p", &q->p)) return false;
     if (r.find("u")) {
         Vec3 u;

@@ -264,14 +264,20 @@ std::string too_long_message(long line, std::size_t max_bytes) {
            std::to_string(max_bytes) + " bytes (--max-line-bytes)";
 }
 
-std::string read_file(const std::string& path) {
+std::string read_file(const std::string& path, std::size_t max_bytes, const char* option) {
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) throw std::runtime_error("cannot open " + path + ": " + std::strerror(errno));
     std::string out;
     char buf[1 << 16];
     std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
+        if (n > max_bytes - out.size()) {
+            std::fclose(f);
+            throw std::runtime_error(path + " is larger than " + std::to_string(max_bytes) +
+                                     " bytes (" + option + ")");
+        }
         out.append(buf, n);
+    }
     bool failed = std::ferror(f);
     int err = errno;
     std::fclose(f);

@@ -105,8 +105,10 @@ std::string markup_text(std::string_view s);
 // "line 12 is longer than the limit of 1048576 bytes (--max-line-bytes)"
 std::string too_long_message(long line, std::size_t max_bytes);
 
-// The whole of a file; throws std::runtime_error naming the path and the reason.
-std::string read_file(const std::string& path);
+// The whole of a file, at most max_bytes of it; throws std::runtime_error naming the path and
+// the reason (a file larger than that named so, `option` saying which option sets the bound).
+std::string read_file(const std::string& path, std::size_t max_bytes = std::size_t(-1),
+                      const char* option = "");
 
 // Writes content to path through a temporary file in the same directory, synced and renamed,
 // so that a reader (or a crash) never sees half a file. Throws std::runtime_error naming the

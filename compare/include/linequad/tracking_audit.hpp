@@ -1,0 +1,87 @@
+// The tracking audit: rays tracked through a model (linequad/cells.hpp) by a tracker as transport
+// codes write it, each step graded against the model's exact track. docs/cells.md says more.
+#pragma once
+
+#include "linequad/cells.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace linequad {
+
+// One step of a tracker: the distance travelled so far when it crossed into `cell` (-1: it found
+// no cell, after its nudge), its position then.
+struct TrackerStep {
+    double t;      // the sum of its distances: where along the ray it thinks it is
+    double length; // this step's own distance
+    int cell;      // -1: none found
+};
+struct TrackerRun {
+    int start = -1; // the cell it found at the ray's origin (-1: none)
+    std::vector<TrackerStep> steps;
+    bool escaped = false; // it found no surface ahead
+};
+
+// The tracker OpenMC (src/particle.cpp, src/surface.cpp) and codes like it write: each surface's
+// distance by the textbook quadratic (the half-b formula in double, a root with |f| < 1e-12 at
+// the particle's position taken as the surface it is on), the nearest of the current cell's
+// surfaces (a later one only if nearer by a relative 1e-14), the particle moved by it, the next
+// cell searched for among all cells (the crossed surface's side known, others by the sign of f,
+// |f| < 1e-12 counting as on the surface and taking the side u points into), then once more
+// after a nudge of 1e-8 along u; none found: lost.
+// `distances`: the textbook quadratic as OpenMC writes it, or linequad's stable or correct solver
+// on the same loop (the surface just crossed posed `coincident`, as the codes pose it): what
+// better distances alone change, the rest of the tracker as it is.
+enum class TrackerDistances : std::uint8_t { textbook, stable, correct };
+inline constexpr int tracker_distances_count = 3;
+const char* tracker_distances_name(TrackerDistances d);
+TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
+                          TrackerDistances distances = TrackerDistances::textbook);
+
+// How a ray's track went against the exact one.
+enum class TrackOutcome : std::uint8_t {
+    right,      // every step into the right cell (distances graded apart)
+    lost,       // found no cell where the exact track is in one
+    wrong_cell, // entered a cell the exact track is not in at that step
+    missed,     // found no surface ahead while the exact track crosses on
+    extra,      // crossed where the exact track does not
+    overlap,    // the exact track is in several cells at once (the model's fault)
+    undecided,  // the exact track runs along a surface: no step to grade
+    stuck,      // more steps than max_steps (a run of steps of length ~0)
+};
+inline constexpr int track_outcome_count = 8;
+const char* track_outcome_name(TrackOutcome o);
+
+struct GradedTrack {
+    TrackOutcome outcome = TrackOutcome::right;
+    int failed_step = -1;      // the step where it went wrong (0: the start)
+    int steps = 0;             // steps graded
+    double max_t_ulps = 0;     // the largest |t - exact t| over the graded steps, in ulps of t
+    int zero_length_steps = 0; // steps shorter than 1e-12, the codes' coincidence tolerance
+};
+GradedTrack grade_track(const Model& m, const Model::Track& exact, const TrackerRun& run);
+
+// The ray families the audit runs on a model: where its box (the region sources are drawn from)
+// is given.
+enum class TrackFamily : std::uint8_t { generic, far_source, axis_parallel, along_plane };
+inline constexpr int track_family_count = 4;
+const char* track_family_name(TrackFamily f);
+
+struct TrackRay {
+    Vec3 p, u;
+};
+// Ray i of a family, reproducible from (seed, i); none where the family does not apply to the
+// model (along_plane in a model without planes).
+std::optional<TrackRay> track_ray(const Model& m, Vec3 box_lo, Vec3 box_hi, TrackFamily f,
+                                  std::uint64_t seed, std::uint64_t i);
+
+struct TrackingTally {
+    std::uint64_t rays = 0, steps = 0, zero_length_steps = 0;
+    std::array<std::uint64_t, track_outcome_count> outcomes{};
+    double max_t_ulps = 0;
+    std::string worst; // the first failing ray, as a replayable query line
+};
+
+} // namespace linequad

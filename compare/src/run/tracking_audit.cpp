@@ -1,0 +1,286 @@
+// The tracking audit's tracker as transport codes write it, the grading of its steps against a
+// model's exact track, and the ray families.
+#include "linequad/tracking_audit.hpp"
+
+#include "linequad/solvers.hpp"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <random>
+
+namespace linequad {
+
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+// OpenMC's constants (include/openmc/constants.h).
+constexpr double fp_coincident = 1e-12; // |f| below this: on the surface
+constexpr double fp_precision = 1e-14;  // a later surface wins only if nearer by this, relatively
+constexpr double tiny_bit = 1e-8;       // the nudge before a particle is declared lost
+
+double dot3(Vec3 a, Vec3 b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+// ---- the surfaces as OpenMC evaluates them (src/surface.cpp) ----
+
+double evaluate(const Plane& s, Vec3 p) {
+    return s.n.x * p.x + s.n.y * p.y + s.n.z * p.z - s.d;
+}
+double evaluate(const Quadric& s, Vec3 r) {
+    const auto& q = s.q;
+    double x = r.x, y = r.y, z = r.z;
+    return x * (q[0] * x + q[3] * y + q[6]) + y * (q[1] * y + q[4] * z + q[7]) +
+           z * (q[2] * z + q[5] * x + q[8]) + q[9];
+}
+Vec3 normal(const Plane& s, Vec3) {
+    return s.n;
+}
+Vec3 normal(const Quadric& s, Vec3 r) {
+    const auto& q = s.q;
+    return {2 * q[0] * r.x + q[3] * r.y + q[5] * r.z + q[6],
+            2 * q[1] * r.y + q[3] * r.x + q[4] * r.z + q[7],
+            2 * q[2] * r.z + q[4] * r.y + q[5] * r.x + q[8]};
+}
+
+double distance(const Plane& s, Vec3 r, Vec3 u, bool coincident) {
+    double f = evaluate(s, r), projection = dot3(s.n, u);
+    if (coincident || std::fabs(f) < fp_coincident || projection == 0.0) return infinity;
+    double d = -f / projection;
+    return d < 0.0 ? infinity : d;
+}
+double distance(const Quadric& s, Vec3 r, Vec3 dir, bool coincident) {
+    const auto& q = s.q;
+    double x = r.x, y = r.y, z = r.z, u = dir.x, v = dir.y, w = dir.z;
+    double a =
+        q[0] * u * u + q[1] * v * v + q[2] * w * w + q[3] * u * v + q[4] * v * w + q[5] * u * w;
+    double k = q[0] * u * x + q[1] * v * y + q[2] * w * z +
+               0.5 * (q[3] * (u * y + v * x) + q[4] * (v * z + w * y) + q[5] * (w * x + u * z) +
+                      q[6] * u + q[7] * v + q[8] * w);
+    double c = evaluate(s, r);
+    double quad = k * k - a * c, d;
+    if (quad < 0.0) {
+        d = infinity;
+    } else if (coincident || std::fabs(c) < fp_coincident) {
+        d = k >= 0.0 ? infinity : (-k + std::sqrt(quad)) / a; // on it: the other root
+    } else if (a == 0.0) {
+        d = -0.5 * c / k;
+    } else {
+        quad = std::sqrt(quad);
+        d = (-k - quad) / a;
+        double b = (-k + quad) / a;
+        if (d < 0.0) {
+            if (b > 0.0) d = b;
+        } else if (b > 0.0 && b < d) {
+            d = b;
+        }
+    }
+    return d <= 0.0 || std::isnan(d) ? infinity : d;
+}
+
+// OpenMC's Surface::sense: the sign of f, the direction's side of the normal where |f| is below
+// the coincidence tolerance.
+Sense textbook_sense(const SurfaceShape& s, Vec3 p, Vec3 u) {
+    return std::visit(
+        [&](const auto& x) {
+            double f = evaluate(x, p);
+            bool positive = std::fabs(f) < fp_coincident ? dot3(normal(x, p), u) > 0 : f > 0;
+            return positive ? Sense::positive : Sense::negative;
+        },
+        s);
+}
+
+// The first cell (in the model's order, as an exhaustive search finds it) holding p, the
+// surface `known` (if any) on its side `known_sense`.
+int find_cell(const Model& m, Vec3 p, Vec3 u, int known, Sense known_sense) {
+    std::vector<Sense> senses;
+    senses.reserve(m.surfaces().size());
+    for (std::size_t s = 0; s < m.surfaces().size(); ++s)
+        senses.push_back(int(s) == known ? known_sense
+                                         : textbook_sense(m.surfaces()[s].shape, p, u));
+    for (std::size_t c = 0; c < m.cells().size(); ++c)
+        if (m.cells()[c].region.contains(senses) == std::optional<bool>(true)) return int(c);
+    return -1;
+}
+
+// linequad's solver's distance: its first hit beyond the particle (t > 0) on the ray, the
+// surface it sits on posed coincident (its root at t = 0 exactly).
+template <class S>
+double solver_distance(S s, Vec3 p, Vec3 u, bool coincident, TrackerDistances d) {
+    s.coincident = coincident;
+    Line ray{p, u, Range::ray};
+    Result r = d == TrackerDistances::stable ? stable::intersect(s, ray, {Need::all, false})
+                                             : correct::intersect(s, ray, {Need::all, false});
+    for (int k = 0; k < r.count; ++k)
+        if (r.hits[k].t > 0 && r.hits[k].kind == HitKind::cross) return r.hits[k].t;
+    return infinity;
+}
+
+} // namespace
+
+const char* tracker_distances_name(TrackerDistances d) {
+    static const char* const names[] = {"textbook", "stable", "correct"};
+    return names[int(d)];
+}
+
+TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
+                          TrackerDistances distances) {
+    TrackerRun run;
+    int cell = run.start = find_cell(m, p, u, -1, Sense::on);
+    if (cell < 0) return run;
+    int last = -1;
+    double t = 0;
+    while (int(run.steps.size()) < max_steps) {
+        double d_min = infinity;
+        int nearest = -1;
+        for (const Region::Token& tok : m.cells()[std::size_t(cell)].region.tokens()) {
+            if (tok.op != Region::Op::half_space) continue;
+            bool on_it = tok.surface == last;
+            double d = std::visit(
+                [&](const auto& x) {
+                    return distances == TrackerDistances::textbook
+                               ? distance(x, p, u, on_it)
+                               : solver_distance(x, p, u, on_it, distances);
+                },
+                m.surfaces()[std::size_t(tok.surface)].shape);
+            if (d < d_min && (d_min == infinity || std::fabs(d - d_min) / d_min >= fp_precision))
+                d_min = d, nearest = tok.surface;
+        }
+        if (nearest < 0) {
+            run.escaped = true;
+            return run;
+        }
+        p = {p.x + d_min * u.x, p.y + d_min * u.y, p.z + d_min * u.z};
+        t += d_min;
+        last = nearest;
+        Vec3 n = std::visit([&](const auto& x) { return normal(x, p); },
+                            m.surfaces()[std::size_t(nearest)].shape);
+        Sense side = dot3(n, u) > 0 ? Sense::positive : Sense::negative;
+        cell = find_cell(m, p, u, nearest, side);
+        if (cell < 0) { // tangent, or a void: a tiny step on, then lost
+            p = {p.x + tiny_bit * u.x, p.y + tiny_bit * u.y, p.z + tiny_bit * u.z};
+            t += tiny_bit;
+            cell = find_cell(m, p, u, nearest, side);
+        }
+        run.steps.push_back({t, d_min, cell});
+        if (cell < 0) return run;
+    }
+    return run;
+}
+
+const char* track_outcome_name(TrackOutcome o) {
+    static const char* const names[] = {"right", "lost",    "wrong_cell", "missed",
+                                        "extra", "overlap", "undecided",  "stuck"};
+    return names[int(o)];
+}
+const char* track_family_name(TrackFamily f) {
+    static const char* const names[] = {"generic", "far_source", "axis_parallel", "along_plane"};
+    return names[int(f)];
+}
+
+GradedTrack grade_track(const Model&, const Model::Track& exact, const TrackerRun& run) {
+    GradedTrack g;
+    auto fail = [&](TrackOutcome o, int step) {
+        g.outcome = o, g.failed_step = step;
+        return g;
+    };
+    if (!exact.start_undecided.empty()) return fail(TrackOutcome::undecided, 0);
+    if (exact.start.size() > 1) return fail(TrackOutcome::overlap, 0);
+    int expected = exact.start.empty() ? -1 : exact.start[0];
+    if (run.start != expected)
+        return fail(run.start < 0 ? TrackOutcome::lost : TrackOutcome::wrong_cell, 0);
+    if (expected < 0) return g; // starts outside the model, and knows it
+    // The tracker's steps into another cell: a crossing of a surface inside its cell (a union's)
+    // is no step of the exact track, which records changes of cell only.
+    std::vector<TrackerStep> moves;
+    int current = run.start;
+    for (const TrackerStep& s : run.steps) {
+        // A step shorter than the codes' own coincidence tolerance: the crossing of a surface
+        // the particle already sits on (OpenMC #2618's coincident spheres).
+        if (s.length < fp_coincident) ++g.zero_length_steps;
+        if (s.cell != current) moves.push_back(s), current = s.cell;
+    }
+    for (std::size_t k = 0;; ++k) {
+        int step = int(k) + 1;
+        if (k >= exact.steps.size()) {
+            if (k < moves.size()) return fail(TrackOutcome::extra, step);
+            return g;
+        }
+        const Model::Step& e = exact.steps[k];
+        if (!e.undecided.empty()) return fail(TrackOutcome::undecided, step);
+        if (e.cells.size() > 1) return fail(TrackOutcome::overlap, step);
+        if (k >= moves.size())
+            return fail(run.escaped ? TrackOutcome::missed : TrackOutcome::stuck, step);
+        const TrackerStep& s = moves[k];
+        ++g.steps;
+        double ulp = std::nextafter(std::fabs(e.t), infinity) - std::fabs(e.t);
+        g.max_t_ulps = std::max(g.max_t_ulps, std::fabs(s.t - e.t) / ulp);
+        expected = e.cells.empty() ? -1 : e.cells[0];
+        if (s.cell != expected)
+            return fail(s.cell < 0 ? TrackOutcome::lost : TrackOutcome::wrong_cell, step);
+        if (expected < 0) return g; // left the model, as the exact track does
+    }
+}
+
+std::optional<TrackRay> track_ray(const Model& m, Vec3 lo, Vec3 hi, TrackFamily f,
+                                  std::uint64_t seed, std::uint64_t i) {
+    std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ull + std::uint64_t(f) * 0x100000001b3ull + i);
+    auto uniform = [&](double a, double b) {
+        return std::uniform_real_distribution<double>(a, b)(rng);
+    };
+    auto point = [&] {
+        return Vec3{uniform(lo.x, hi.x), uniform(lo.y, hi.y), uniform(lo.z, hi.z)};
+    };
+    auto direction = [&] {
+        std::normal_distribution<double> n;
+        for (;;) {
+            Vec3 d{n(rng), n(rng), n(rng)};
+            if (std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z) > 1e-3) return d;
+        }
+    };
+    switch (f) {
+    case TrackFamily::generic:
+        return TrackRay{point(), direction()};
+    case TrackFamily::far_source: {
+        // Aimed at a point of the box from 2^10 to 2^40 box sizes away.
+        Vec3 target = point(), d = direction();
+        double size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+        double far = std::ldexp(size, 10 + int(i % 31));
+        double len = std::sqrt(dot3(d, d));
+        Vec3 p{target.x - far * d.x / len, target.y - far * d.y / len, target.z - far * d.z / len};
+        return TrackRay{p, d};
+    }
+    case TrackFamily::axis_parallel: {
+        Vec3 u{};
+        int axis = int(i % 3);
+        double sign = (i / 3) % 2 ? -1.0 : 1.0;
+        u = axis == 0 ? Vec3{sign, 0, 0} : axis == 1 ? Vec3{0, sign, 0} : Vec3{0, 0, sign};
+        return TrackRay{point(), u};
+    }
+    case TrackFamily::along_plane: {
+        // On an axis-aligned plane of the model (its coordinate there exactly the plane's),
+        // moving within it.
+        std::vector<std::pair<int, double>> planes; // axis, coordinate
+        for (const Model::Surface& s : m.surfaces())
+            if (const Plane* pl = std::get_if<Plane>(&s.shape)) {
+                int nonzero = (pl->n.x != 0) + (pl->n.y != 0) + (pl->n.z != 0);
+                if (nonzero != 1) continue;
+                int axis = pl->n.x != 0 ? 0 : pl->n.y != 0 ? 1 : 2;
+                double n = axis == 0 ? pl->n.x : axis == 1 ? pl->n.y : pl->n.z;
+                double x = pl->d / n;
+                if (std::fma(x, n, -pl->d) == 0) planes.push_back({axis, x});
+            }
+        if (planes.empty()) return std::nullopt;
+        auto [axis, at] = planes[i % planes.size()];
+        Vec3 p = point(), u = direction();
+        if (axis == 0) p.x = at, u.x = 0;
+        if (axis == 1) p.y = at, u.y = 0;
+        if (axis == 2) p.z = at, u.z = 0;
+        return TrackRay{p, u};
+    }
+    }
+    return std::nullopt;
+}
+
+} // namespace linequad

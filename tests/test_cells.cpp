@@ -1,0 +1,362 @@
+// Cells and models (linequad/cells.hpp): regions in OpenMC's syntax, the model's checks, and the
+// exact queries a tracker asks, on models whose answers are known exactly.
+#include "support.hpp"
+
+#include "linequad/cells.hpp"
+#include "linequad/exact.hpp"
+#include "linequad/tracking_audit.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace linequad;
+
+namespace {
+
+// x^2 + y^2 + z^2 - r^2 in GQ form.
+Quadric sphere(double r2) {
+    return {{1, 1, 1, 0, 0, 0, 0, 0, 0, -r2}};
+}
+Plane plane_x(double d) {
+    return {{1, 0, 0}, d};
+}
+
+Model build(std::vector<Model::Surface> surfaces, std::vector<Model::CellSource> cells) {
+    std::string error;
+    std::optional<Model> m = Model::build(std::move(surfaces), cells, error);
+    INFO(error);
+    REQUIRE(m);
+    return *m;
+}
+std::string build_error(std::vector<Model::Surface> surfaces,
+                        std::vector<Model::CellSource> cells) {
+    std::string error;
+    std::optional<Model> m = Model::build(std::move(surfaces), cells, error);
+    CHECK(!m);
+    return error;
+}
+
+// The concentric spheres of radius 1 and 2: inside, the shell, outside.
+Model spheres() {
+    return build({{1, sphere(1)}, {2, sphere(4)}},
+                 {{10, "core", "-1"}, {20, "shell", "1 -2"}, {30, "outside", "2"}});
+}
+
+std::vector<Sense> senses(std::initializer_list<int> s) {
+    std::vector<Sense> out;
+    for (int x : s)
+        out.push_back(Sense(x));
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("cells: a region's text parses with OpenMC's precedence", "[cells]") {
+    std::string error;
+    // ~ binds tightest, then intersection, then union: "-1 2 | ~3" is (-1 and 2) or (not 3).
+    std::optional<Region> r = Region::parse("-1 2 | ~3", error);
+    REQUIRE(r);
+    for (Region::Token& t : r->tokens())
+        if (t.op == Region::Op::half_space) t.surface = int(t.id) - 1;
+    CHECK(r->contains(senses({-1, 1, 1})) == true);   // -1 and 2
+    CHECK(r->contains(senses({1, 1, -1})) == true);   // not 3
+    CHECK(r->contains(senses({1, 1, 1})) == false);   // neither
+    CHECK(r->contains(senses({-1, -1, 1})) == false); // 2 fails, 3 holds
+    // An undecided sense decides nothing unless the other operand does.
+    CHECK(!r->contains(senses({-1, 0, 1})).has_value());
+    CHECK(r->contains(senses({-1, 0, -1})) == true); // ~3 holds whatever 2 is
+    CHECK(r->contains(senses({1, 0, 1})) == false);  // -1 fails: the intersection is false
+
+    std::optional<Region> nested = Region::parse("~(1 | -2) +3", error);
+    REQUIRE(nested);
+    for (Region::Token& t : nested->tokens())
+        if (t.op == Region::Op::half_space) t.surface = int(t.id) - 1;
+    CHECK(nested->contains(senses({-1, 1, 1})) == true);
+    CHECK(nested->contains(senses({1, 1, 1})) == false);
+    CHECK(nested->contains(senses({-1, 1, -1})) == false);
+}
+
+TEST_CASE("cells: a malformed region is refused, naming what and the column", "[cells]") {
+    struct Bad {
+        const char* text;
+        const char* error;
+    };
+    const Bad bad[] = {
+        {"", "the region is empty at column 1"},
+        {"   ", "the region is empty at column 4"},
+        {"(1 2", "a '(' without its ')' at column 1"},
+        {"1 2)", "a ')' without its '(' at column 4"},
+        {"1 |", "'|' with nothing after it at column 4"},
+        {"~", "the region ends where a surface or '(' was expected at column 2"},
+        {"1 & 2", "unexpected '&' at column 3"},
+        {"()", "'()' holds no region at column 2"},
+        {"-0", "surface id 0 has no sign to give a side at column 1"},
+        {"- 4", "unexpected '-' at column 1"},
+        {"99999999999999999999", "a surface id too large at column 1"},
+    };
+    for (const Bad& b : bad) {
+        std::string error;
+        INFO(b.text);
+        CHECK(!Region::parse(b.text, error));
+        CHECK(error == b.error);
+    }
+}
+
+TEST_CASE("cells: a model with a problem is refused, naming the surface or cell", "[cells]") {
+    CHECK(build_error({{1, sphere(1)}}, {}) == "the model has no cells");
+    CHECK(build_error({{1, sphere(1)}, {1, sphere(4)}}, {{1, "", "-1"}}) ==
+          "surface 1 is defined twice");
+    CHECK(build_error({{1, sphere(1)}}, {{5, "", "-1"}, {5, "", "1"}}) ==
+          "cell 5 is defined twice");
+    CHECK(build_error({{1, sphere(1)}}, {{5, "", "-1 -2"}}) ==
+          "cell 5: region \"-1 -2\" names surface 2, which the model does not define");
+    CHECK(build_error({{1, sphere(1)}}, {{5, "", "(-1"}}) ==
+          "cell 5: region \"(-1\": a '(' without its ')' at column 1");
+    CHECK(build_error({{3, Plane{{0, 0, 0}, 1}}}, {{5, "", "-3"}}).rfind("surface 3: ", 0) == 0);
+    Quadric nan = sphere(1);
+    nan.q[4] = std::nan("");
+    CHECK(build_error({{7, nan}}, {{5, "", "-7"}}).rfind("surface 7: ", 0) == 0);
+}
+
+TEST_CASE("cells: the cells at a point, with the direction deciding a point on a surface",
+          "[cells]") {
+    Model m = spheres();
+    auto cells_at = [&](Vec3 p, Vec3 u) {
+        Model::Location l = m.locate(p, u);
+        REQUIRE(l.error.ok());
+        CHECK(l.undecided.empty());
+        std::vector<std::int64_t> ids;
+        for (int c : l.cells)
+            ids.push_back(m.cells()[std::size_t(c)].id);
+        return ids;
+    };
+    CHECK(cells_at({0, 0, 0}, {1, 0, 0}) == std::vector<std::int64_t>{10});
+    CHECK(cells_at({1.5, 0, 0}, {1, 0, 0}) == std::vector<std::int64_t>{20});
+    CHECK(cells_at({0, 3, 0}, {1, 0, 0}) == std::vector<std::int64_t>{30});
+    // On the unit sphere exactly: the side u points into.
+    CHECK(cells_at({1, 0, 0}, {1, 0, 0}) == std::vector<std::int64_t>{20});
+    CHECK(cells_at({1, 0, 0}, {-1, 0, 0}) == std::vector<std::int64_t>{10});
+    // Tangent there (grad f . u = 0): the quadratic part of f at u, positive: outside.
+    CHECK(cells_at({1, 0, 0}, {0, 1, 0}) == std::vector<std::int64_t>{20});
+
+    // An overlap and a gap are reported as such, not resolved.
+    Model overlap =
+        build({{1, plane_x(0)}, {2, plane_x(1)}}, {{1, "left", "-2"}, {2, "right", "1"}});
+    Model::Location both = overlap.locate({0.5, 0, 0}, {0, 1, 0});
+    CHECK(both.cells == std::vector<int>{0, 1});
+    Model gap = build({{1, plane_x(0)}, {2, plane_x(1)}}, {{1, "left", "-1"}, {2, "right", "2"}});
+    CHECK(gap.locate({0.5, 0, 0}, {0, 1, 0}).cells.empty());
+
+    // Moving along a surface: the cells it bounds are undecided.
+    Model halves = build({{1, plane_x(1)}}, {{1, "", "-1"}, {2, "", "1"}});
+    Model::Location along = halves.locate({1, 0, 0}, {0, 0, 1});
+    CHECK(along.cells.empty());
+    CHECK(along.undecided == std::vector<int>{0, 1});
+
+    CHECK(m.locate({std::nan(""), 0, 0}, {1, 0, 0}).error.code == ErrorCode::not_a_number);
+    CHECK(m.locate({0, 0, 0}, {0, 0, 0}).error.code == ErrorCode::zero_direction);
+}
+
+TEST_CASE("cells: the next crossing is exact: distance correctly rounded, surfaces, cells entered",
+          "[cells]") {
+    Model m = spheres();
+    SECTION("from the centre outwards: the unit sphere at t = 1, into the shell") {
+        Model::Crossing c = m.next_crossing(m.cell_index(10), {0, 0, 0}, {1, 0, 0});
+        REQUIRE(c.exit == Model::Exit::leaves);
+        CHECK(c.t == 1);
+        CHECK(c.surfaces == std::vector<int>{0});
+        CHECK(c.entered == std::vector<int>{1});
+    }
+    SECTION("an oblique ray: t is the oracle's correctly rounded root") {
+        Vec3 p{0.25, -0.375, 0.125}, u{0.3, 0.7, -0.1};
+        Model::Crossing c = m.next_crossing(m.cell_index(10), p, u);
+        REQUIRE(c.exit == Model::Exit::leaves);
+        Result want = exact::intersect(sphere(1), Line{p, u, Range::ray}, {});
+        REQUIRE(want.count == 1);
+        CHECK(test::same_bits(c.t, want.hits[0].t));
+        // From the shell the same ray leaves through the outer sphere, into the outside.
+        Vec3 q{1.5, 0, 0};
+        Model::Crossing out = m.next_crossing(m.cell_index(20), q, {1, 0, 0});
+        REQUIRE(out.exit == Model::Exit::leaves);
+        CHECK(out.t == 0.5);
+        CHECK(out.entered == std::vector<int>{2});
+        // Inwards from the shell: the unit sphere, into the core.
+        Model::Crossing in = m.next_crossing(m.cell_index(20), q, {-1, 0, 0});
+        REQUIRE(in.exit == Model::Exit::leaves);
+        CHECK(in.t == 0.5);
+        CHECK(in.entered == std::vector<int>{0});
+    }
+    SECTION("a particle on a surface, moving into its cell, leaves at the far side") {
+        Model::Crossing c = m.next_crossing(m.cell_index(10), {-1, 0, 0}, {1, 0, 0});
+        REQUIRE(c.exit == Model::Exit::leaves);
+        CHECK(c.t == 2);
+    }
+    SECTION("the outside never ends along a ray away from the spheres") {
+        CHECK(m.next_crossing(m.cell_index(30), {3, 0, 0}, {1, 0, 0}).exit == Model::Exit::escapes);
+    }
+    SECTION("a particle not in the cell asked about") {
+        CHECK(m.next_crossing(m.cell_index(10), {3, 0, 0}, {1, 0, 0}).exit ==
+              Model::Exit::not_inside);
+        CHECK(m.next_crossing(7, {0, 0, 0}, {1, 0, 0}).exit == Model::Exit::error);
+    }
+}
+
+TEST_CASE("cells: coincident surfaces tie and surfaces an ulp apart are told apart exactly",
+          "[cells]") {
+    SECTION("x = 1 written twice (x - 1 and 2x - 2): one crossing through both, a tie") {
+        Model m = build({{1, plane_x(1)}, {2, Plane{{2, 0, 0}, 2}}},
+                        {{1, "in", "-1 -2"}, {2, "out", "1 2"}});
+        Model::Crossing c = m.next_crossing(0, {0, 0, 0}, {1, 0, 0});
+        REQUIRE(c.exit == Model::Exit::leaves);
+        CHECK(c.t == 1);
+        CHECK(c.surfaces == std::vector<int>{0, 1});
+        CHECK(c.entered == std::vector<int>{1});
+    }
+    SECTION("crossings that round to the same t are taken in their exact order") {
+        // Along +x from the origin: the plane x = 1 at t = 1, and the sphere
+        // x^2 + y^2 + z^2 = 1 + 2^-52 at t = sqrt(1 + 2^-52), just below 1 + 2^-53: both round
+        // to 1. The sphere is written twice (the second times 2), so its crossing is a tie.
+        Quadric twice{{2, 2, 2, 0, 0, 0, 0, 0, 0, -(2 + 0x1p-51)}};
+        Model m = build({{1, plane_x(1)}, {2, sphere(1 + 0x1p-52)}, {3, twice}},
+                        {{1, "left", "-1 -2"}, {2, "sliver", "1 -2"}, {3, "outside", "2"}});
+        Model::Crossing c = m.next_crossing(m.cell_index(1), {0, 0, 0}, {1, 0, 0});
+        REQUIRE(c.exit == Model::Exit::leaves);
+        CHECK(c.t == 1);
+        CHECK(c.surfaces == std::vector<int>{0}); // the plane alone: it comes first, exactly
+        CHECK(c.entered == std::vector<int>{m.cell_index(2)});
+        // From the plane into the sliver no double lies inside it; the particle leaves it through
+        // both writings of the sphere at once, at sqrt(1 + 2^-52) - 1 correctly rounded.
+        Model::Crossing out = m.next_crossing(m.cell_index(2), {1, 0, 0}, {1, 0, 0});
+        REQUIRE(out.exit == Model::Exit::leaves);
+        CHECK(out.surfaces == std::vector<int>{1, 2});
+        CHECK(out.entered == std::vector<int>{m.cell_index(3)});
+        Result want =
+            exact::intersect(sphere(1 + 0x1p-52), Line{{1, 0, 0}, {1, 0, 0}, Range::ray}, {});
+        REQUIRE(want.count == 1);
+        CHECK(test::same_bits(out.t, want.hits[0].t));
+    }
+}
+
+TEST_CASE("cells: a union's inner surface is not a boundary", "[cells]") {
+    // Two overlapping unit balls, centred at x = 0 and x = 1, as one cell.
+    Quadric right{{1, 1, 1, 0, 0, 0, -2, 0, 0, 0}}; // (x - 1)^2 + y^2 + z^2 - 1
+    Model m = build({{1, sphere(1)}, {2, right}}, {{1, "lens", "-1 | -2"}, {2, "rest", "1 2"}});
+    Model::Crossing c = m.next_crossing(0, {-0.5, 0, 0}, {1, 0, 0});
+    REQUIRE(c.exit == Model::Exit::leaves);
+    CHECK(c.t == 2.5); // crosses sphere 1 at x = 1 inside ball 2, leaves at x = 2
+    CHECK(c.surfaces == std::vector<int>{1});
+    CHECK(c.entered == std::vector<int>{1});
+}
+
+TEST_CASE("cells: a particle moving along a surface its cell rests on is named, not tracked",
+          "[cells]") {
+    Model m = build({{1, plane_x(1)}, {2, sphere(4)}}, {{1, "", "-1 -2"}, {2, "", "1 -2"}});
+    CHECK(m.next_crossing(0, {1, 0, 0}, {0, 1, 0}).exit == Model::Exit::along);
+    Model::Crossing bad = m.next_crossing(0, {0, 0, 0}, {0, 0, 0});
+    CHECK(bad.exit == Model::Exit::error);
+    CHECK(bad.error.code == ErrorCode::zero_direction);
+}
+
+TEST_CASE("cells: the textbook tracker, graded against the exact track", "[cells]") {
+    // examples/models/spheres.json: radii 1, 2 and 4.
+    Model m = build({{1, sphere(1)}, {2, sphere(4)}, {3, sphere(16)}}, {{10, "core", "-1"},
+                                                                        {20, "shell", "1 -2"},
+                                                                        {30, "moderator", "2 -3"},
+                                                                        {40, "outside", "3"}});
+    SECTION("a generic ray: every cell right, distances within a few ulps") {
+        Vec3 p{0.25, -0.375, 0.125}, u{0.3, 0.7, -0.1};
+        Model::Track exact = m.track(p, u, 100);
+        REQUIRE(exact.error.ok());
+        REQUIRE(exact.steps.size() == 3); // core -> shell -> moderator -> outside
+        TrackerRun run = textbook_track(m, p, u, 100);
+        GradedTrack g = grade_track(m, exact, run);
+        CHECK(g.outcome == TrackOutcome::right);
+        CHECK(g.steps == 3);
+        // The textbook's distance is a sum of rounded steps, each from a rounded position: a
+        // few ulps of t, far below the 2^-20 a wrong root would cost.
+        CHECK(g.max_t_ulps < 0x1p20);
+    }
+    SECTION("a source 2^26 away: the textbook's quadratic cancels and misses the model") {
+        // The audit's first failing far-source ray on examples/models/spheres.json.
+        Vec3 p{-0x1.0d0f7f70f97acp+26, -0x1.4f1a232b3dd4bp+24, 0x1.ab78c3c766d0cp+26};
+        Vec3 u{0x1.5a350fd1c6a96p+0, 0x1.af2f45fecaaa6p-2, -0x1.1305035327346p+1};
+        Model::Track exact = m.track(p, u, 100);
+        REQUIRE(exact.error.ok());
+        REQUIRE(exact.start == std::vector<int>{3});
+        CHECK(exact.steps.empty()); // it passes the spheres by, exactly
+        TrackerRun run = textbook_track(m, p, u, 100);
+        CHECK(!run.steps.empty()); // the textbook crosses the outer sphere all the same
+        GradedTrack g = grade_track(m, exact, run);
+        CHECK(g.outcome == TrackOutcome::extra);
+        CHECK(g.failed_step == 1);
+    }
+    SECTION("the grading names each way a tracker fails") {
+        Model::Track exact = m.track({0, 0, 0}, {1, 0, 0}, 100);
+        REQUIRE(exact.steps.size() == 3);
+        TrackerRun lost{0, {{1, 1, -1}}, false};
+        CHECK(grade_track(m, exact, lost).outcome == TrackOutcome::lost);
+        TrackerRun wrong{0, {{1, 1, 2}}, false};
+        CHECK(grade_track(m, exact, wrong).outcome == TrackOutcome::wrong_cell);
+        TrackerRun missed{0, {{1, 1, 1}}, true};
+        GradedTrack g = grade_track(m, exact, missed);
+        CHECK(g.outcome == TrackOutcome::missed);
+        CHECK(g.failed_step == 2);
+        TrackerRun extra{0, {{1, 1, 1}, {2, 1, 2}, {4, 2, 3}, {5, 1, 2}}, false};
+        CHECK(grade_track(m, exact, extra).outcome == TrackOutcome::extra);
+        TrackerRun right{0, {{1, 1, 1}, {2, 1, 2}, {4, 2, 3}}, true};
+        GradedTrack ok = grade_track(m, exact, right);
+        CHECK(ok.outcome == TrackOutcome::right);
+        CHECK(ok.steps == 3);
+        CHECK(ok.max_t_ulps == 0);
+        TrackerRun wrong_start{1, {}, false};
+        CHECK(grade_track(m, exact, wrong_start).outcome == TrackOutcome::wrong_cell);
+    }
+}
+
+TEST_CASE("cells: the CLI answers queries on a model file and refuses a bad one by name",
+          "[cells]") {
+    namespace fs = std::filesystem;
+    fs::path dir = test::scratch("cells_cli");
+    fs::path model = fs::path(LINEQUAD_SOURCE_DIR) / "examples/models/spheres.json";
+    {
+        std::ofstream q(dir / "q.jsonl");
+        q << R"({"id":1,"p":[0,0,0],"u":[1,0,0],"cell":10})"
+          << "\n"
+          << R"({"id":2,"p":[0,0,0],"u":[0,0,-1]})"
+          << "\n"
+          << R"({"id":3,"p":[0,0,0],"u":[0,0,0]})"
+          << "\n"
+          << R"({"id":4,"p":[0,0],"u":[1,0,0]})"
+          << "\n";
+    }
+    test::Ran r = test::program("cells '" + model.string() + "' q.jsonl", dir);
+    CHECK(r.status == 1); // line 4 is malformed
+    CHECK(r.out.find(R"({"id":1,"exit":"leaves","t":"0x1p+0","surfaces":[1],"entered":[20])") !=
+          std::string::npos);
+    CHECK(r.out.find(R"("steps":[{"t":"0x1p+0","surfaces":[1],"cells":[20])") != std::string::npos);
+    CHECK(r.out.find(R"({"id":3,"solver":"cells","error")") != std::string::npos);
+    CHECK(r.out.find("line 4: field \\\"p\\\": expected an array of 3 numbers") !=
+          std::string::npos);
+
+    std::ofstream(dir / "bad.json") << R"({"surfaces":[{"id":1,"shape":"plane","n":[1,0,0],"d":0}],
+        "cells":[{"id":1,"region":"-1 -2"}]})";
+    test::Ran bad = test::program("cells bad.json < /dev/null", dir);
+    CHECK(bad.status == 2);
+    CHECK(bad.err == "linequad cells: bad.json: cell 1: region \"-1 -2\" names surface 2, which "
+                     "the model does not define\n");
+    std::ofstream(dir / "typo.json") << R"({"surfaces":[{"id":1,"shape":"plane","n":[1,0,0]}],
+        "cells":[]})";
+    test::Ran typo = test::program("cells typo.json < /dev/null", dir);
+    CHECK(typo.status == 2);
+    CHECK(typo.err == "linequad cells: typo.json: surfaces[0]: field \"d\": missing\n");
+
+    test::Ran audit = test::program("cells '" + model.string() + "' --audit --rays 200", dir);
+    CHECK(audit.status == 0);
+    CHECK(audit.out.rfind("# Tracking audit: ", 0) == 0);
+    CHECK(audit.out.find("**The textbook tracker went wrong on ") != std::string::npos);
+    test::Ran no_box = test::program("cells bad.json --audit", dir);
+    CHECK(no_box.status == 2);
+}
