@@ -16,7 +16,9 @@ packages=(build-essential cmake pkg-config git
           valgrind time bc
           # The peer libraries the audit grades beside linequad (compare/peers/).
           libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev
-          libembree-dev libbullet-dev libode-dev libvecgeom-dev)
+          libembree-dev libbullet-dev libode-dev libvecgeom-dev
+          # OpenMC's geometry.xml, read into a model of cells (linequad cells).
+          libpugixml-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

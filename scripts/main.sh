@@ -53,6 +53,10 @@ for model in examples/models/*.json; do
   step "tracking audit: $name" "$reports/latest/cells_$name.log" \
     $linequad cells "$model" --audit --rays 20000 --markdown "$reports/latest/cells_$name.md"
 done
+# OpenMC's own file of the pin cell: a geometry.xml has no source box of its own.
+step "tracking audit: pin_cell_openmc" "$reports/latest/cells_pin_cell_openmc.log" \
+  $linequad cells examples/models/pin_cell_openmc.xml --audit --rays 20000 \
+  --box -0.625,-0.625,-1,0.625,0.625,1 --markdown "$reports/latest/cells_pin_cell_openmc.md"
 
 cat <<SUMMARY
 main job done in $((SECONDS - start)) s. Reports:

@@ -360,3 +360,65 @@ TEST_CASE("cells: the CLI answers queries on a model file and refuses a bad one 
     test::Ran no_box = test::program("cells bad.json --audit", dir);
     CHECK(no_box.status == 2);
 }
+
+TEST_CASE("cells: OpenMC's geometry.xml is read exactly, and what is not taken is named with its "
+          "line",
+          "[cells]") {
+    namespace fs = std::filesystem;
+    fs::path dir = test::scratch("cells_xml");
+    fs::path model = fs::path(LINEQUAD_SOURCE_DIR) / "examples/models/pin_cell_openmc.xml";
+    // Along +x from the pin's centre: the fuel's radius 0.375, the clad's 0.4375, the cell's
+    // reflective side at 0.625, each exact (R^2 is a double for these radii).
+    std::ofstream(dir / "q.jsonl") << R"({"id":1,"p":[0,0,0],"u":[1,0,0]})"
+                                   << "\n";
+    test::Ran r = test::program("cells '" + model.string() + "' q.jsonl", dir);
+    REQUIRE(r.status == 0);
+    CHECK(r.out == R"({"id":1,"start":[1],"start_undecided":[],"steps":[)"
+                   R"({"t":"0x1.8p-2","surfaces":[1],"cells":[2],"undecided":[]},)"
+                   R"({"t":"0x1.cp-2","surfaces":[2],"cells":[3],"undecided":[]},)"
+                   R"({"t":"0x1.4p-1","surfaces":[4],"cells":[4],"undecided":[]}],)"
+                   R"("truncated":false})"
+                   "\n");
+    test::Ran audit = test::program("cells '" + model.string() +
+                                        "' --audit --rays 100 --box -0.625,-0.625,-1,0.625,0.625,1",
+                                    dir);
+    CHECK(audit.status == 0);
+
+    struct Bad {
+        const char* xml;
+        const char* error;
+    };
+    const Bad bad[] = {
+        {"<geometry>\n<surface id=\"1\" type=\"sphere\" coeffs=\"0 0 0 0.39218\"/>\n</geometry>",
+         "line 2: surface 1 (sphere): coeffs \"0 0 0 0.39218\": its general-quadric coefficient K "
+         "is not a double, and linequad poses a surface exactly, never rounded (such centred "
+         "surfaces are not taken yet)"},
+        {"<geometry>\n\n<surface id=\"4\" type=\"x-torus\" coeffs=\"0 0 0 1 1 1\"/>\n</geometry>",
+         "line 3: surface 4 (x-torus): a surface type linequad does not pose (it poses plane, "
+         "x-/y-/z-plane, sphere, x-/y-/z-cylinder, x-/y-/z-cone and quadric)"},
+        {"<geometry>\n<cell id=\"1\" fill=\"2\" region=\"-1\"/>\n</geometry>",
+         "line 2: cell 1: fill is not taken yet (only cells of the root universe, each filled "
+         "with a material)"},
+        {"<geometry>\n<cell id=\"1\" universe=\"3\" region=\"-1\"/>\n</geometry>",
+         "line 2: cell 1: universe 3 is not taken yet (only the root universe, 0)"},
+        {"<geometry>\n<cell id=\"1\" material=\"1\"/>\n</geometry>",
+         "line 2: cell 1: has no region (an infinite cell is not taken)"},
+        {"<geometry>\n<lattice id=\"3\"/>\n</geometry>",
+         "line 2: <lattice> is not taken yet (linequad reads surfaces and the root universe's "
+         "cells)"},
+        {"<geometry>\n<surface id=\"1\" type=\"z-plane\" coeffs=\"1 2\"/>\n</geometry>",
+         "line 2: surface 1 (z-plane): coeffs \"1 2\": expected 1 coefficient"},
+        {"<geometry>\n<surface id=\"x\" type=\"z-plane\" coeffs=\"1\"/>\n</geometry>",
+         "line 2: surface with id \"x\": expected a positive integer id"},
+        {"<geometry>\n<surface id=\"1\" type=\"plane\" coeffs=\"1 0 0 1\"/>\n"
+         "<cell id=\"1\" region=\"-1 -2\"/>\n</geometry>",
+         "cell 1: region \"-1 -2\" names surface 2, which the model does not define"},
+    };
+    for (const Bad& b : bad) {
+        std::ofstream(dir / "bad.xml") << b.xml;
+        test::Ran ran = test::program("cells bad.xml < /dev/null", dir);
+        INFO(b.xml);
+        CHECK(ran.status == 2);
+        CHECK(ran.err == std::string("linequad cells: bad.xml: ") + b.error + "\n");
+    }
+}

@@ -65,8 +65,10 @@ GradedTrack grade_track(const Model& m, const Model::Track& exact, const Tracker
 
 // The ray families the audit runs on a model: where its box (the region sources are drawn from)
 // is given.
-enum class TrackFamily : std::uint8_t { generic, far_source, axis_parallel, along_plane };
-inline constexpr int track_family_count = 4;
+// corner: aimed, from a point of the box, exactly through a point where three of the model's
+// axis-aligned planes meet (a lattice cell's corner), or starting there.
+enum class TrackFamily : std::uint8_t { generic, far_source, axis_parallel, along_plane, corner };
+inline constexpr int track_family_count = 5;
 const char* track_family_name(TrackFamily f);
 
 struct TrackRay {

@@ -1,6 +1,7 @@
 // linequad cells: a model of cells (linequad/cells.hpp) read from its JSON file; particles'
 // exact tracks through it, or the tracking audit of the tracker transport codes write.
 #include "cli/cli.hpp"
+#include "cli/openmc_geometry.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/tracking_audit.hpp"
 
@@ -8,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -18,9 +20,26 @@ namespace {
 
 struct CellsArgs {
     std::string model, queries = "-", rays = "1000", seed = "1", max_steps = "1000",
-                       max_model_bytes = "268435456", markdown;
+                       max_model_bytes = "268435456", markdown, box;
     bool audit = false;
 };
+
+// --box x0,y0,z0,x1,y1,z1: where the audit draws its sources.
+std::array<Vec3, 2> parse_box(const std::string& text) {
+    std::vector<std::string> parts = split_list(text);
+    double c[6];
+    bool ok = parts.size() == 6;
+    for (std::size_t i = 0; ok && i < 6; ++i) {
+        char* end = nullptr;
+        c[i] = std::strtod(parts[i].c_str(), &end);
+        ok = !parts[i].empty() && *end == 0 && std::isfinite(c[i]);
+    }
+    if (!ok || !(c[0] < c[3] && c[1] < c[4] && c[2] < c[5]))
+        throw std::runtime_error("--box " + text +
+                                 ": expected x0,y0,z0,x1,y1,z1, finite, each corner below the "
+                                 "other");
+    return {Vec3{c[0], c[1], c[2]}, Vec3{c[3], c[4], c[5]}};
+}
 
 struct Loaded {
     Model model;
@@ -32,7 +51,11 @@ Loaded load(const CellsArgs& a) {
         jsonl::read_file(a.model, std::size_t(to_whole(a.max_model_bytes)), "--max-model-bytes");
     ModelFile file;
     std::string why;
-    if (!parse_model(text, &file, &why)) throw std::runtime_error(a.model + ": " + why);
+    std::size_t first = text.find_first_not_of(" \t\r\n");
+    bool xml = first != std::string::npos && text[first] == '<'; // OpenMC's geometry.xml
+    if (!(xml ? parse_openmc_geometry(text, &file, &why) : parse_model(text, &file, &why)))
+        throw std::runtime_error(a.model + ": " + why);
+    if (!a.box.empty()) file.box = parse_box(a.box);
     std::optional<Model> m = Model::build(std::move(file.surfaces), file.cells, why);
     if (!m) throw std::runtime_error(a.model + ": " + why);
     return {std::move(*m), file.box};
@@ -255,7 +278,8 @@ Command cells_command(CLI::App& app) {
     CLI::App* s = app.add_subcommand(
         "cells",
         "Particles through a model of cells over planes and quadrics (a JSON file: "
-        "{\"surfaces\": [...], \"cells\": [{\"id\", \"region\"}], \"box\"}): each query line "
+        "{\"surfaces\": [...], \"cells\": [{\"id\", \"region\"}], \"box\"}, or OpenMC's "
+        "geometry.xml): each query line "
         "{\"id\", \"p\", \"u\"} gets the exact track (the cells at p, then each point where "
         "they change), {\"id\", \"p\", \"u\", \"cell\"} the next crossing out of that cell. "
         "With --audit, the tracker transport codes write, graded against the exact tracks.");
@@ -276,6 +300,10 @@ Command cells_command(CLI::App& app) {
     s->add_option("--max-model-bytes", a->max_model_bytes, "the largest model file read")
         ->check(WholeNumber(1024, std::uint64_t(1) << 34))
         ->type_name("N");
+    s->add_option("--box", a->box,
+                  "where the audit draws its sources, x0,y0,z0,x1,y1,z1 (a geometry.xml has "
+                  "none; a JSON model's own \"box\" is replaced)")
+        ->type_name("BOX");
     s->add_option("--markdown", a->markdown, "write the audit's summary here (default: stdout)")
         ->type_name("FILE");
     return {s,

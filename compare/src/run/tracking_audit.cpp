@@ -117,6 +117,22 @@ double solver_distance(S s, Vec3 p, Vec3 u, bool coincident, TrackerDistances d)
     return infinity;
 }
 
+// The model's planes perpendicular to a coordinate axis whose coordinate there is a double
+// exactly: (axis, coordinate).
+std::vector<std::pair<int, double>> axis_planes(const Model& m) {
+    std::vector<std::pair<int, double>> planes;
+    for (const Model::Surface& s : m.surfaces())
+        if (const Plane* pl = std::get_if<Plane>(&s.shape)) {
+            int nonzero = (pl->n.x != 0) + (pl->n.y != 0) + (pl->n.z != 0);
+            if (nonzero != 1) continue;
+            int axis = pl->n.x != 0 ? 0 : pl->n.y != 0 ? 1 : 2;
+            double n = axis == 0 ? pl->n.x : axis == 1 ? pl->n.y : pl->n.z;
+            double x = pl->d / n;
+            if (std::fma(x, n, -pl->d) == 0) planes.push_back({axis, x});
+        }
+    return planes;
+}
+
 } // namespace
 
 const char* tracker_distances_name(TrackerDistances d) {
@@ -175,7 +191,8 @@ const char* track_outcome_name(TrackOutcome o) {
     return names[int(o)];
 }
 const char* track_family_name(TrackFamily f) {
-    static const char* const names[] = {"generic", "far_source", "axis_parallel", "along_plane"};
+    static const char* const names[] = {"generic", "far_source", "axis_parallel", "along_plane",
+                                        "corner"};
     return names[int(f)];
 }
 
@@ -261,22 +278,31 @@ std::optional<TrackRay> track_ray(const Model& m, Vec3 lo, Vec3 hi, TrackFamily 
     case TrackFamily::along_plane: {
         // On an axis-aligned plane of the model (its coordinate there exactly the plane's),
         // moving within it.
-        std::vector<std::pair<int, double>> planes; // axis, coordinate
-        for (const Model::Surface& s : m.surfaces())
-            if (const Plane* pl = std::get_if<Plane>(&s.shape)) {
-                int nonzero = (pl->n.x != 0) + (pl->n.y != 0) + (pl->n.z != 0);
-                if (nonzero != 1) continue;
-                int axis = pl->n.x != 0 ? 0 : pl->n.y != 0 ? 1 : 2;
-                double n = axis == 0 ? pl->n.x : axis == 1 ? pl->n.y : pl->n.z;
-                double x = pl->d / n;
-                if (std::fma(x, n, -pl->d) == 0) planes.push_back({axis, x});
-            }
+        std::vector<std::pair<int, double>> planes = axis_planes(m);
         if (planes.empty()) return std::nullopt;
         auto [axis, at] = planes[i % planes.size()];
         Vec3 p = point(), u = direction();
         if (axis == 0) p.x = at, u.x = 0;
         if (axis == 1) p.y = at, u.y = 0;
         if (axis == 2) p.z = at, u.z = 0;
+        return TrackRay{p, u};
+    }
+    case TrackFamily::corner: {
+        // Through a corner of three axis-aligned planes, exactly: from a point of the box whose
+        // difference to the corner is exact (u = corner - p, so p + 1 u is the corner), or from
+        // the corner itself (every other ray), outwards or inwards at random.
+        std::vector<double> at[3];
+        for (auto [axis, x] : axis_planes(m))
+            at[axis].push_back(x);
+        if (at[0].empty() || at[1].empty() || at[2].empty()) return std::nullopt;
+        Vec3 corner{at[0][rng() % at[0].size()], at[1][rng() % at[1].size()],
+                    at[2][rng() % at[2].size()]};
+        if (i % 2) return TrackRay{corner, direction()};
+        Vec3 p = point();
+        Vec3 u{corner.x - p.x, corner.y - p.y, corner.z - p.z};
+        bool exact = std::isfinite(u.x + u.y + u.z) && p.x + u.x == corner.x &&
+                     p.y + u.y == corner.y && p.z + u.z == corner.z && !(u == Vec3{});
+        if (!exact) return TrackRay{corner, direction()};
         return TrackRay{p, u};
     }
     }

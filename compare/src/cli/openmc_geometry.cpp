@@ -1,0 +1,254 @@
+// OpenMC's geometry.xml (docs.openmc.org, "Geometry Specification"), read with pugixml.
+#include "cli/openmc_geometry.hpp"
+
+#include <pugixml.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace linequad::cli {
+
+namespace {
+
+// A double computed without rounding, or the reason it is not one.
+struct Exact {
+    double v;
+    bool ok;
+};
+Exact exactly(double x) {
+    return {x, std::isfinite(x)};
+}
+// a b, where the product is a double (fma shows the residual; a product below 2^-969 may have
+// lost bits fma cannot show, and is refused).
+Exact operator*(Exact a, Exact b) {
+    double p = a.v * b.v;
+    bool tiny = p != 0 && std::fabs(p) < 0x1p-969;
+    return {p, a.ok && b.ok && std::isfinite(p) && !tiny && std::fma(a.v, b.v, -p) == 0};
+}
+Exact operator+(Exact a, Exact b) {
+    double s = a.v + b.v, bb = s - a.v, err = (a.v - (s - bb)) + (b.v - bb); // two_sum
+    return {s, a.ok && b.ok && std::isfinite(s) && err == 0};
+}
+Exact operator-(Exact a) {
+    return {-a.v, a.ok};
+}
+
+class Reader {
+  public:
+    Reader(std::string_view xml, std::string* why) : xml_(xml), why_(why) {}
+
+    // "line 12: surface 3 (x-torus): ..." with the element's line.
+    bool fail(const pugi::xml_node& node, const std::string& what) {
+        long line = 1;
+        std::ptrdiff_t at = node.offset_debug();
+        if (at >= 0)
+            line += long(std::count(
+                xml_.begin(), xml_.begin() + std::min<std::size_t>(std::size_t(at), xml_.size()),
+                '\n'));
+        *why_ = "line " + std::to_string(line) + ": " + what;
+        return false;
+    }
+
+    // An id attribute: a positive integer.
+    bool id(const pugi::xml_node& node, const char* what, std::int64_t* out) {
+        const char* text = node.attribute("id").value();
+        char* end = nullptr;
+        errno = 0;
+        long long v = std::strtoll(text, &end, 10);
+        if (*text == 0 || *end != 0 || errno != 0 || v < 1)
+            return fail(node, std::string(what) + " with id \"" + text +
+                                  "\": expected a positive integer id");
+        *out = v;
+        return true;
+    }
+
+    // The coefficients: whitespace-separated numbers, exactly `count` of them, each read
+    // correctly rounded.
+    bool coeffs(const pugi::xml_node& node, const std::string& where, std::size_t count,
+                std::vector<double>* out) {
+        std::string text = node.attribute("coeffs").value();
+        out->clear();
+        const char* p = text.c_str();
+        for (;;) {
+            while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')
+                ++p;
+            if (*p == 0) break;
+            char* end = nullptr;
+            double x = std::strtod(p, &end);
+            if (end == p ||
+                !(*end == 0 || *end == ' ' || *end == '\t' || *end == '\n' || *end == '\r') ||
+                !std::isfinite(x))
+                return fail(node, where + ": coeffs \"" + text + "\": not finite numbers");
+            out->push_back(x);
+            p = end;
+        }
+        if (out->size() != count)
+            return fail(node, where + ": coeffs \"" + text + "\": expected " +
+                                  std::to_string(count) +
+                                  (count == 1 ? " coefficient" : " coefficients"));
+        return true;
+    }
+
+  private:
+    std::string_view xml_;
+    std::string* why_;
+};
+
+// The ten coefficients of a centred type, each a double exactly, or the first that is not.
+struct Expanded {
+    std::array<Exact, 10> q;
+    const char* names[10] = {"A", "B", "C", "D", "E", "F", "G", "H", "J", "K"};
+};
+
+// x0, y0, z0 the centre (one of them unused for a cylinder), s the scale of each squared
+// coordinate (1, or -R2 for a cone's axis), K0 the constant beyond the centre's terms (-R^2).
+// f = sum_i s_i (x_i - c_i)^2 + K0 = sum s_i x_i^2 - 2 s_i c_i x_i + (sum s_i c_i^2 + K0).
+Expanded centred(const std::array<Exact, 3>& s, const std::array<Exact, 3>& c, Exact K0) {
+    Expanded e;
+    Exact zero = exactly(0), two = exactly(2);
+    for (int i = 0; i < 3; ++i) {
+        e.q[std::size_t(i)] = s[std::size_t(i)];
+        e.q[std::size_t(3 + i)] = zero;
+        e.q[std::size_t(6 + i)] = -(two * s[std::size_t(i)] * c[std::size_t(i)]);
+    }
+    Exact K = K0;
+    for (int i = 0; i < 3; ++i)
+        K = K + s[std::size_t(i)] * c[std::size_t(i)] * c[std::size_t(i)];
+    e.q[9] = K;
+    return e;
+}
+
+bool surface(Reader& r, const pugi::xml_node& node, Model::Surface* out) {
+    if (!r.id(node, "surface", &out->id)) return false;
+    std::string type = node.attribute("type").value();
+    std::string where = "surface " + std::to_string(out->id) + " (" + type + ")";
+    std::vector<double> c;
+    auto planes = [&](int axis) {
+        if (!r.coeffs(node, where, 1, &c)) return false;
+        Vec3 n{double(axis == 0), double(axis == 1), double(axis == 2)};
+        out->shape = Plane{n, c[0]};
+        return true;
+    };
+    if (type == "x-plane") return planes(0);
+    if (type == "y-plane") return planes(1);
+    if (type == "z-plane") return planes(2);
+    if (type == "plane") {
+        if (!r.coeffs(node, where, 4, &c)) return false;
+        out->shape = Plane{{c[0], c[1], c[2]}, c[3]};
+        return true;
+    }
+    if (type == "quadric") {
+        if (!r.coeffs(node, where, 10, &c)) return false;
+        Quadric q;
+        std::copy(c.begin(), c.end(), q.q.begin());
+        out->shape = q;
+        return true;
+    }
+    Exact one = exactly(1), zero = exactly(0);
+    Expanded e;
+    if (type == "sphere") {
+        if (!r.coeffs(node, where, 4, &c)) return false;
+        Exact R = exactly(c[3]);
+        e = centred({one, one, one}, {exactly(c[0]), exactly(c[1]), exactly(c[2])}, -(R * R));
+    } else if (type == "x-cylinder" || type == "y-cylinder" || type == "z-cylinder") {
+        if (!r.coeffs(node, where, 3, &c)) return false;
+        int axis = type[0] - 'x';
+        std::array<Exact, 3> s{one, one, one}, centre{};
+        s[std::size_t(axis)] = zero;
+        for (int i = 0, k = 0; i < 3; ++i)
+            centre[std::size_t(i)] = i == axis ? zero : exactly(c[std::size_t(k++)]);
+        Exact R = exactly(c[2]);
+        e = centred(s, centre, -(R * R));
+    } else if (type == "x-cone" || type == "y-cone" || type == "z-cone") {
+        // (x_i - c_i)^2 summed over the other axes, less R2 (x_axis - c_axis)^2: R2 is OpenMC's
+        // coefficient itself (the squared tangent), not a square to round.
+        if (!r.coeffs(node, where, 4, &c)) return false;
+        int axis = type[0] - 'x';
+        std::array<Exact, 3> s{one, one, one};
+        s[std::size_t(axis)] = -exactly(c[3]);
+        e = centred(s, {exactly(c[0]), exactly(c[1]), exactly(c[2])}, zero);
+    } else {
+        return r.fail(node, where + ": a surface type linequad does not pose (it poses plane, "
+                                    "x-/y-/z-plane, sphere, x-/y-/z-cylinder, x-/y-/z-cone and "
+                                    "quadric)");
+    }
+    Quadric q;
+    for (int i = 0; i < 10; ++i) {
+        if (!e.q[std::size_t(i)].ok)
+            return r.fail(node, where + ": coeffs \"" + node.attribute("coeffs").value() +
+                                    "\": its general-quadric coefficient " + e.names[i] +
+                                    " is not a double, and linequad poses a surface exactly, "
+                                    "never rounded (such centred surfaces are not taken yet)");
+        q.q[std::size_t(i)] = e.q[std::size_t(i)].v;
+    }
+    out->shape = q;
+    return true;
+}
+
+bool cell(Reader& r, const pugi::xml_node& node, Model::CellSource* out) {
+    if (!r.id(node, "cell", &out->id)) return false;
+    std::string where = "cell " + std::to_string(out->id);
+    for (const char* refused : {"fill", "rotation", "translation"})
+        if (node.attribute(refused))
+            return r.fail(node, where + ": " + refused +
+                                    " is not taken yet (only cells of the root universe, each "
+                                    "filled with a material)");
+    pugi::xml_attribute universe = node.attribute("universe");
+    if (universe && std::string(universe.value()) != "0")
+        return r.fail(node, where + ": universe " + universe.value() +
+                                " is not taken yet (only the root universe, 0)");
+    pugi::xml_attribute region = node.attribute("region");
+    if (!region || std::string(region.value()).find_first_not_of(" \t\r\n") == std::string::npos)
+        return r.fail(node, where + ": has no region (an infinite cell is not taken)");
+    out->region = region.value();
+    out->name = node.attribute("name").value();
+    return true;
+}
+
+} // namespace
+
+bool openmc_geometry_available() {
+    return true;
+}
+
+bool parse_openmc_geometry(std::string_view xml, ModelFile* out, std::string* why) {
+    *out = ModelFile{};
+    pugi::xml_document doc;
+    pugi::xml_parse_result parsed = doc.load_buffer(xml.data(), xml.size());
+    if (!parsed) {
+        long line = 1 + long(std::count(xml.begin(),
+                                        xml.begin() + std::min<std::size_t>(
+                                                          std::size_t(parsed.offset), xml.size()),
+                                        '\n'));
+        *why = "line " + std::to_string(line) + ": not well-formed XML: " + parsed.description();
+        return false;
+    }
+    pugi::xml_node geometry = doc.child("geometry");
+    Reader r(xml, why);
+    if (!geometry) return r.fail(doc.first_child(), "expected a <geometry> element");
+    for (pugi::xml_node node : geometry.children()) {
+        if (node.type() != pugi::node_element) continue;
+        std::string name = node.name();
+        if (name == "surface") {
+            Model::Surface s{};
+            if (!surface(r, node, &s)) return false;
+            out->surfaces.push_back(s);
+        } else if (name == "cell") {
+            Model::CellSource c{};
+            if (!cell(r, node, &c)) return false;
+            out->cells.push_back(std::move(c));
+        } else {
+            return r.fail(node, "<" + name +
+                                    "> is not taken yet (linequad reads surfaces and the root "
+                                    "universe's cells)");
+        }
+    }
+    return true;
+}
+
+} // namespace linequad::cli
