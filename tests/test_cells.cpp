@@ -103,6 +103,13 @@ TEST_CASE("cells: a malformed region is refused, naming what and the column", "[
         CHECK(!Region::parse(b.text, error));
         CHECK(error == b.error);
     }
+    // Nesting is bounded, not left to exhaust the stack.
+    std::string error;
+    CHECK(!Region::parse(std::string(1000000, '~') + "1", error));
+    CHECK(error == "complements nested too deep at column 1001");
+    CHECK(!Region::parse(std::string(100000, '(') + "1" + std::string(100000, ')'), error));
+    CHECK(error == "parentheses nested too deep at column 1001");
+    CHECK(Region::parse(std::string(999, '~') + "1", error));
 }
 
 TEST_CASE("cells: a model with a problem is refused, naming the surface or cell", "[cells]") {

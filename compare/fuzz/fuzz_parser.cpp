@@ -5,10 +5,12 @@
 //   every double is exact, so equal text is equal bits); a scene's record (header, shape, line)
 //   likewise, and of the same kind;
 // - a result line and a report: format(parse(x)) is a fixed point of format(parse(.));
-// - a scene file (many lines): read, written and read again, it is written the same.
+// - a scene file (many lines): read, written and read again, it is written the same;
+// - a region and a model file: refused with a reason, or read into a model that answers.
 // A failure aborts with the input and what broke.
 #include "linequad/audit.hpp"
 #include "linequad/case_io.hpp"
+#include "linequad/cells.hpp"
 #include "linequad/scene_audit.hpp"
 
 #include "io/jsonl.hpp"
@@ -102,6 +104,35 @@ void scenes_round_trip(std::string_view text) {
     if (audit::format_scenes(b) != once) broken("scenes are not a fixed point", text, once);
 }
 
+// A region's text and a model file: whatever the bytes, a refusal that says why, or a region in
+// proper postfix and a model whose track answers, its steps in order along the ray.
+void model_reads(std::string_view text) {
+    std::string why;
+    if (std::optional<Region> r = Region::parse(text, why)) {
+        int operands = 0;
+        for (const Region::Token& t : r->tokens()) {
+            operands += t.op == Region::Op::half_space   ? 1
+                        : t.op == Region::Op::complement ? 0
+                                                         : -1;
+            if (operands < 1) broken("a region's postfix lacks an operand", text, "");
+        }
+        if (operands != 1) broken("a region's postfix leaves other than one value", text, "");
+    } else if (why.empty()) {
+        broken("a region refused without a reason", text, "");
+    }
+    ModelFile file;
+    why.clear();
+    if (!parse_model(text, &file, &why)) {
+        if (why.empty()) broken("a model refused without a reason", text, "");
+        return;
+    }
+    std::optional<Model> m = Model::build(std::move(file.surfaces), file.cells, why);
+    if (!m) return;
+    Model::Track t = m->track({0.25, 0.5, 0.125}, {1, 0.375, -0.25}, 100);
+    for (std::size_t k = 1; k < t.steps.size(); ++k)
+        if (!(t.steps[k - 1].t <= t.steps[k].t)) broken("a track's steps out of order", text, "");
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -112,5 +143,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     result_round_trip(text);
     report_round_trip(text);
     scenes_round_trip(text);
+    model_reads(text);
     return 0;
 }

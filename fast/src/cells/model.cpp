@@ -142,19 +142,7 @@ std::optional<std::vector<Sense>> Model::senses_at(Vec3 p, Vec3 u, Error& error)
         }
         senses.push_back(r.sense);
     }
-    if (surfaces_.empty()) { // no sense() call checked p and u
-        for (const auto& [x, field] : {std::pair{p, "p"}, std::pair{u, "u"}})
-            for (double c : {x.x, x.y, x.z})
-                if (!std::isfinite(c)) {
-                    error = {std::isnan(c) ? ErrorCode::not_a_number : ErrorCode::infinite, field};
-                    return std::nullopt;
-                }
-        if (u == Vec3{}) {
-            error = {ErrorCode::zero_direction, "u"};
-            return std::nullopt;
-        }
-    }
-    return senses;
+    return senses; // a model has a surface (every region names one): sense() checked p and u
 }
 
 Model::Location Model::locate(Vec3 p, Vec3 u) const {

@@ -30,6 +30,8 @@ class Parser {
     }
 
   private:
+    // Nesting is recursion here: bounded, so that hostile text cannot exhaust the stack.
+    static constexpr int max_depth = 1000;
     std::string_view text_;
     std::size_t at_ = 0;
     int depth_ = 0;
@@ -77,15 +79,17 @@ class Parser {
         if (at_end()) return fail("the region ends where a surface or '(' was expected", error);
         char c = peek();
         if (c == '~') {
+            if (++depth_ > max_depth) return fail("complements nested too deep", error);
             ++at_;
             if (!unary(error)) return false;
+            --depth_;
             out_->push_back({Region::Op::complement});
             return true;
         }
         if (c == '(') {
+            if (++depth_ > max_depth) return fail("parentheses nested too deep", error);
             std::size_t open = at_;
             ++at_;
-            if (++depth_ > 1000) return fail("parentheses nested more than 1000 deep", error);
             skip_space();
             if (!at_end() && peek() == ')') return fail("'()' holds no region", error);
             if (!union_(error)) return false;
