@@ -284,6 +284,10 @@ def instructions():
     return verbatim(LATEST / "instructions.txt")
 
 
+def tracking_instructions():
+    return verbatim(LATEST / "tracking_instructions.txt")
+
+
 def instructions_closed():
     """Each shape open and closed by its discs: correct, its hit test and stable, and the ratio."""
     path = LATEST / "instructions_closed.txt"
@@ -373,7 +377,7 @@ def plugin():
     return out
 
 
-TABLES = {f.__name__: f for f in [solvers, bench, rungs, headline, peers, vecgeom, peer_instructions, instructions,
+TABLES = {f.__name__: f for f in [solvers, bench, rungs, headline, peers, vecgeom, peer_instructions, instructions, tracking_instructions,
                                   instructions_closed, instructions_lanes, correct_vs_exact,
                                   family_instructions, time_per_instruction, batch, scenes, plugin]}
 BEGIN = re.compile(r"^<!-- table: (\w+) -->$")
