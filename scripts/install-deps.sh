@@ -18,7 +18,9 @@ packages=(build-essential cmake pkg-config git
           libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev
           libembree-dev libbullet-dev libode-dev libvecgeom-dev
           # OpenMC's geometry.xml, read into a model of cells (linequad cells).
-          libpugixml-dev)
+          libpugixml-dev
+          # The Python module (python/) and its tests.
+          pybind11-dev python3-dev python3-numpy python3-pytest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -32,6 +32,11 @@ step() {
 step "install and build" "$reports/build.log" bash scripts/build.sh
 linequad=./build/compare/linequad
 $linequad --version
+# The Python module, where Debian's python3 finds it (import linequad; docs/python.md).
+if [ -d build/python/linequad ]; then
+  step "install the Python module" "$reports/python_install.log" \
+    cmake --install build --component python
+fi
 
 # The shipped examples, every solver: a result line per case and solver (a peer library's
 # "unrepresented" is an answer: that library has no such shape).

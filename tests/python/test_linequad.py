@@ -1,0 +1,126 @@
+"""The Python module (python/), run by CTest with pytest: its answers are the C++ library's, bit
+for bit, the same as the linequad program's on the same cases; bad input raises, naming the field."""
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import linequad
+
+LINEQUAD = os.environ["LINEQUAD_BIN"]
+
+
+def same(a, b):
+    """Bit for bit: equal, and the same sign for zeros (NaN never occurs here)."""
+    return a == b and math.copysign(1.0, a) == math.copysign(1.0, b)
+
+
+def number(x):
+    return float.fromhex(x) if isinstance(x, str) and "0x" in x else float(x)
+
+
+def cases(families, shapes, n):
+    out = subprocess.run([LINEQUAD, "cases", "--families", families, "--shapes", shapes,
+                          "--cases", str(n), "--seed", "7"], check=True, capture_output=True,
+                         text=True).stdout
+    return [line for line in out.splitlines() if line]
+
+
+def shape_of(case):
+    """A case line's shape, through linequad.shape and the case's own fields."""
+    skip = {"id", "shape", "L0", "v", "range", "t0", "t1", "family", "k", "note", "precision"}
+    fields = {}
+    for key, value in case.items():
+        if key in skip:
+            continue
+        if isinstance(value, list):
+            value = [number(x) for x in value]
+        elif isinstance(value, str):
+            value = number(value)
+        fields[key] = value
+    return linequad.shape(case["shape"], **fields)
+
+
+@pytest.mark.parametrize("solver", ["correct", "exact"])
+def test_correct_and_exact_equal_the_program(solver, tmp_path):
+    lines = cases("generic,near_tangent,far_origin,axis_parallel",
+                  "cylinder,elliptic_cone,sphere,capsule,plane,quadric", 8)
+    path = tmp_path / "cases.jsonl"
+    path.write_text("\n".join(lines) + "\n")
+    answers = subprocess.run([LINEQUAD, "solve", "--solver", solver, str(path)], check=True,
+                             capture_output=True, text=True).stdout.splitlines()
+    assert len(answers) == len(lines)
+    compared = 0
+    for line, answer in zip(lines, answers):
+        case, want = json.loads(line), json.loads(answer)
+        if "error" in want or case.get("range", "line") != "line" or "t0" in case:
+            continue  # the module's range is t0, t1 alone; these cases are lines
+        L0 = np.array([[number(x) for x in case["L0"]]])
+        v = np.array([[number(x) for x in case["v"]]])
+        got = linequad.intersect(shape_of(case), L0, v, solver=solver)[0]
+        assert got["error"] == 0
+        assert bool(got["on_surface"]) == (want["on_surface"] is not None), line
+        assert got["count"] == len(want["hits"]), line
+        for k, hit in enumerate(want["hits"]):
+            assert same(got["t"][k], number(hit["t"])), line
+            assert linequad.hit_kinds[got["kind"][k]] == hit["kind"], line
+            assert linequad.parts[got["part"][k]] == hit["part"], line
+            for j in range(3):
+                assert same(got["p"][k][j], number(hit["p"][j])), line
+        compared += 1
+    assert compared > 100
+
+
+def test_float32_rays_are_answered_in_float():
+    cyl = linequad.shape("cylinder", C=(0, 0, 0), H=(0, 0, 10), r=5)
+    L0 = np.array([[-10, 4, 2], [-10, 0.1, 3]], dtype=np.float32)
+    v = np.array([[1, 0, 0], [1, 0.3, 0]], dtype=np.float32)
+    got = linequad.intersect(cyl, L0, v)
+    want = linequad.intersect(cyl, L0, v, solver="exact")
+    assert (got["count"] == 2).all()
+    for row, ref in zip(got, want):
+        for k in range(2):
+            assert same(row["t"][k], ref["t"][k])
+            assert row["t"][k] == float(np.float32(row["t"][k]))  # a float, held in a double
+
+
+def test_bad_input_raises_naming_the_field():
+    with pytest.raises(ValueError, match='field "rr": not a field of a cylinder case'):
+        linequad.shape("cylinder", C=(0, 0, 0), H=(0, 0, 1), rr=1)
+    with pytest.raises(ValueError, match="radius r"):
+        linequad.shape("cylinder", C=(0, 0, 0), H=(0, 0, 1), r=-1)
+    with pytest.raises(ValueError, match='field "C": expected an array of 3 numbers'):
+        linequad.shape("cylinder", C=(0, 0), H=(0, 0, 1), r=1)
+    with pytest.raises(ValueError, match='field "q"'):
+        linequad.shape("quadric", q=[1, 2, 3])
+    with pytest.raises(ValueError, match="not a name"):
+        linequad.shape("cyl inder", r=1)
+    cyl = linequad.shape("cylinder", C=(0, 0, 0), H=(0, 0, 1), r=1)
+    with pytest.raises(ValueError, match=r"origins: expected an \(N, 3\) array"):
+        linequad.intersect(cyl, np.zeros((2, 2)), np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="origins and directions: 2 rows against 3"):
+        linequad.intersect(cyl, np.zeros((2, 3)), np.zeros((3, 3)))
+    with pytest.raises(ValueError, match='solver "nope"'):
+        linequad.intersect(cyl, np.zeros((1, 3)), np.ones((1, 3)), solver="nope")
+    with pytest.raises(ValueError, match='need "some"'):
+        linequad.intersect(cyl, np.zeros((1, 3)), np.ones((1, 3)), need="some")
+    with pytest.raises(TypeError):
+        linequad.intersect(cyl, np.zeros((1, 3), dtype=np.int64), np.ones((1, 3)))
+    # A bad line is an answer with its error, not an exception: the other rows stand.
+    rows = linequad.intersect(cyl, np.array([[0.0, 0, 0.5], [np.nan, 0, 0]]),
+                              np.array([[1.0, 0, 0], [1.0, 0, 0]]))
+    assert rows["error"][0] == 0 and rows["count"][0] == 2  # a line through the axis
+    assert linequad.error_codes[rows["error"][1]] == "not_a_number"
+
+
+def test_a_line_on_the_surface_and_a_miss():
+    plane = linequad.shape("plane", n=(0, 0, 1), d=1)
+    rows = linequad.intersect(plane, np.array([[0.0, 0, 1], [0, 0, 0]]),
+                              np.array([[1.0, 0, 0], [1.0, 0, 0]]))
+    assert rows["on_surface"][0] == 1 and rows["count"][0] == 0
+    assert rows["s0"][0] == -math.inf and rows["s1"][0] == math.inf
+    assert rows["on_surface"][1] == 0 and rows["count"][1] == 0
+    assert rows["t"][1][0] == math.inf and math.isnan(rows["p"][1][0][0])
