@@ -34,8 +34,10 @@ linequad=./build/compare/linequad
 $linequad --version
 # The Python module, where Debian's python3 finds it (import linequad; docs/python.md).
 if [ -d build/python/linequad ]; then
+  sudo=""
+  [ "$(id -u)" = 0 ] || sudo="sudo"
   step "install the Python module" "$reports/python_install.log" \
-    cmake --install build --component python
+    $sudo cmake --install build --component python
 fi
 
 # The shipped examples, every solver: a result line per case and solver (a peer library's
