@@ -625,21 +625,21 @@ bool parse_model(std::string_view text, ModelFile* out, std::string* why) {
         return true;
     });
     return surfaces_read && each(*c, "cells", [&](Reader& r, const Json& obj) {
-        Model::CellSource cell{};
-        if (!only_fields(r, obj, {"id", "name", "region", "note"}, "a model's cell") ||
-            !read_id(r, &cell.id))
-            return false;
-        const Json* region = r.need("region");
-        if (!region) return false;
-        if (!region->is_string()) return r.fail("region", "expected a string");
-        cell.region = region->get<std::string>();
-        if (const Json* name = r.find("name")) {
-            if (!name->is_string()) return r.fail("name", "expected a string");
-            cell.name = name->get<std::string>();
-        }
-        cells->push_back(std::move(cell));
-        return true;
-    });
+               Model::CellSource cell{};
+               if (!only_fields(r, obj, {"id", "name", "region", "note"}, "a model's cell") ||
+                   !read_id(r, &cell.id))
+                   return false;
+               const Json* region = r.need("region");
+               if (!region) return false;
+               if (!region->is_string()) return r.fail("region", "expected a string");
+               cell.region = region->get<std::string>();
+               if (const Json* name = r.find("name")) {
+                   if (!name->is_string()) return r.fail("name", "expected a string");
+                   cell.name = name->get<std::string>();
+               }
+               cells->push_back(std::move(cell));
+               return true;
+           });
 }
 
 bool parse_sense_query(std::string_view line, SenseQuery* q, std::string* why) {
