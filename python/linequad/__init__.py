@@ -9,6 +9,7 @@ docs/python.md in the repository says more.
 """
 from ._linequad import (  # noqa: F401
     Shape,
+    cases,
     error_codes,
     hit_kinds,
     intersect,

@@ -2,6 +2,7 @@
 // keyword fields, read by the case format's own reader so that a bad field is named as it is in a
 // case file; intersect() on (N, 3) numpy arrays, every line solved in C++ with the GIL released,
 // the answers in a structured array; and the exact oracle as one more solver.
+#include "linequad/audit.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/exact.hpp"
 #include "linequad/solvers.hpp"
@@ -32,7 +33,7 @@ struct Row {
 
 struct PyShape {
     Shape shape;
-    std::string kind, call; // repr: the call that made it
+    std::string kind, call; // repr: the call that made it (empty: a campaign's case)
 };
 
 // A name that is a case-format word (a shape kind, a field): letters, digits and underscores.
@@ -176,6 +177,64 @@ py::array intersect(const PyShape& s, const py::array& origins, const py::array&
                          "arrays (float32 rays are answered by the float solvers)");
 }
 
+// The index in Shape of the shape named `name`, or the variant's size.
+template <std::size_t I = 0>
+std::size_t shape_kind(const std::string& name) {
+    if constexpr (I < std::variant_size_v<Shape>) {
+        if (name == shape_name(Shape(std::variant_alternative_t<I, Shape>{}))) return I;
+        return shape_kind<I + 1>(name);
+    } else {
+        return I;
+    }
+}
+
+// A campaign's cases, as `linequad cases` writes them: the same cases in the same order.
+py::dict cases(const std::vector<std::string>& families, const std::vector<std::string>& shapes,
+               std::uint64_t n, std::uint64_t seed, const std::string& precision) {
+    audit::Options o;
+    o.seed = seed, o.cases_per_group = n;
+    if (n < 1 || n > 1000000) throw py::value_error("n: expected 1 to 1000000 cases a group");
+    for (const std::string& name : families) {
+        Family f;
+        if (!parse_family(name, &f)) throw py::value_error("family \"" + name + "\": unknown");
+        o.families.push_back(f);
+    }
+    for (const std::string& name : shapes) {
+        std::size_t k = shape_kind(name);
+        if (k == std::variant_size_v<Shape>)
+            throw py::value_error("shape \"" + name + "\": unknown");
+        o.shapes.push_back(int(k));
+    }
+    if (precision != "binary64" && precision != "binary32")
+        throw py::value_error("precision \"" + precision + "\": expected binary64 or binary32");
+    o.precision = precision == "binary32" ? Precision::binary32 : Precision::binary64;
+    std::vector<Case> all;
+    {
+        py::gil_scoped_release released;
+        audit::for_each_case(o, [&](const Case& c) { all.push_back(c); });
+    }
+    py::ssize_t count = py::ssize_t(all.size());
+    py::array_t<double> L0({count, py::ssize_t(3)}), v({count, py::ssize_t(3)}), t0(count),
+        t1(count);
+    py::array_t<int> k(count);
+    py::list made, ids, family;
+    for (py::ssize_t i = 0; i < count; ++i) {
+        const Case& c = all[std::size_t(i)];
+        for (int j = 0; j < 3; ++j) {
+            L0.mutable_at(i, j) = c.line.L0[j];
+            v.mutable_at(i, j) = c.line.v[j];
+        }
+        t0.mutable_at(i) = c.line.range.t0, t1.mutable_at(i) = c.line.range.t1;
+        k.mutable_at(i) = c.k;
+        made.append(PyShape{c.shape, shape_name(c.shape), ""});
+        ids.append(c.id), family.append(c.family);
+    }
+    py::dict out;
+    out["shapes"] = made, out["origins"] = L0, out["directions"] = v, out["t0"] = t0;
+    out["t1"] = t1, out["family"] = family, out["k"] = k, out["id"] = ids;
+    return out;
+}
+
 } // namespace
 
 PYBIND11_MODULE(_linequad, m) {
@@ -183,8 +242,10 @@ PYBIND11_MODULE(_linequad, m) {
     PYBIND11_NUMPY_DTYPE(Row, count, on_surface, certain, error, t, kind, part, p, s0, s1);
     py::class_<PyShape>(m, "Shape")
         .def_property_readonly("kind", [](const PyShape& s) { return s.kind; })
-        .def("__repr__",
-             [](const PyShape& s) { return "linequad.shape(\"" + s.kind + "\"" + s.call + ")"; });
+        .def("__repr__", [](const PyShape& s) {
+            if (s.call.empty()) return "<linequad.Shape " + s.kind + ">"; // a campaign's case
+            return "linequad.shape(\"" + s.kind + "\"" + s.call + ")";
+        });
     m.def("shape", &make_shape, py::arg("kind"),
           "A shape from its case-format fields: shape(\"cylinder\", C=(0, 0, 0), H=(0, 0, 1), "
           "r=1, caps=True). A bad field raises ValueError naming it.");
@@ -196,6 +257,12 @@ PYBIND11_MODULE(_linequad, m) {
           "per line (count, on_surface, certain, error, t[4], kind[4], part[4], p[4][3], s0, "
           "s1). float64 rays are answered by the named solver, float32 rays by its float one "
           "(correct32 for correct); solver=\"exact\" is the oracle.");
+    m.def("cases", &cases, py::arg("families") = std::vector<std::string>{},
+          py::arg("shapes") = std::vector<std::string>{}, py::arg("n") = 100, py::arg("seed") = 1,
+          py::arg("precision") = "binary64",
+          "A campaign's cases, the same as `linequad cases` writes (families and shapes: names, "
+          "empty for all; n cases per family, shape and range): a dict of shapes (a list), "
+          "origins and directions ((N, 3) arrays), t0, t1, family, k and id.");
     py::list names;
     for (const Solver& s : fast_solvers())
         if (s.precision == Precision::binary64) names.append(std::string(s.name));

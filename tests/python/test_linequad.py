@@ -124,3 +124,27 @@ def test_a_line_on_the_surface_and_a_miss():
     assert rows["s0"][0] == -math.inf and rows["s1"][0] == math.inf
     assert rows["on_surface"][1] == 0 and rows["count"][1] == 0
     assert rows["t"][1][0] == math.inf and math.isnan(rows["p"][1][0][0])
+
+
+def test_cases_are_the_programs():
+    got = linequad.cases(families=["generic", "far_origin"], shapes=["cylinder", "quadric"], n=3,
+                         seed=5)
+    lines = subprocess.run([LINEQUAD, "cases", "--families", "generic,far_origin", "--shapes",
+                            "cylinder,quadric", "--cases", "3", "--seed", "5"], check=True,
+                           capture_output=True, text=True).stdout.splitlines()
+    assert len(got["shapes"]) == len(lines) == got["origins"].shape[0]
+    for i, line in enumerate(lines):
+        case = json.loads(line)
+        assert got["shapes"][i].kind == case["shape"]
+        assert got["family"][i] == case["family"] and got["k"][i] == case["k"]
+        for j in range(3):
+            assert same(got["origins"][i][j], number(case["L0"][j]))
+            assert same(got["directions"][i][j], number(case["v"][j]))
+        # Each case's shape answers as the program answers that case.
+        row = linequad.intersect(got["shapes"][i], got["origins"][i:i + 1],
+                                 got["directions"][i:i + 1], t0=got["t0"][i], t1=got["t1"][i])
+        assert row["error"][0] == 0
+    with pytest.raises(ValueError, match='family "nope"'):
+        linequad.cases(families=["nope"])
+    with pytest.raises(ValueError, match='shape "cube"'):
+        linequad.cases(shapes=["cube"])
