@@ -48,8 +48,12 @@ std::string word(const std::string& name, const char* what) {
 }
 
 // A Python value as the case format's JSON: numbers as exact hex-floats, sequences of them,
-// booleans and integers as they are.
-std::string json_value(const py::handle& v, const std::string& field) {
+// booleans and integers as they are. No field nests deeper than a list of numbers: `depth`
+// bounds the recursion whatever a caller passes.
+std::string json_value(const py::handle& v, const std::string& field, int depth = 0) {
+    if (depth > 2)
+        throw py::value_error("field \"" + field +
+                              "\": expected a number or a sequence of numbers");
     if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
     if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
     if (py::isinstance<py::str>(v) || py::isinstance<py::bytes>(v))
@@ -58,7 +62,7 @@ std::string json_value(const py::handle& v, const std::string& field) {
         std::string out = "[";
         bool first = true;
         for (py::handle x : v) {
-            out += (first ? "" : ",") + json_value(x, field);
+            out += (first ? "" : ",") + json_value(x, field, depth + 1);
             first = false;
         }
         return out + "]";

@@ -96,6 +96,8 @@ def test_bad_input_raises_naming_the_field():
         linequad.shape("cylinder", C=(0, 0), H=(0, 0, 1), r=1)
     with pytest.raises(ValueError, match='field "q"'):
         linequad.shape("quadric", q=[1, 2, 3])
+    with pytest.raises(ValueError, match='field "C": expected a number or a sequence'):
+        linequad.shape("cylinder", C=[[[[0]]]], H=(0, 0, 1), r=1)
     with pytest.raises(ValueError, match="not a name"):
         linequad.shape("cyl inder", r=1)
     cyl = linequad.shape("cylinder", C=(0, 0, 0), H=(0, 0, 1), r=1)
