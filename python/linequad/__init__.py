@@ -17,3 +17,21 @@ from ._linequad import (  # noqa: F401
     shape,
     solvers,
 )
+from ._audit import audit  # noqa: F401
+
+
+def _fields(self):
+    """The shape's fields, as the case format names them: numbers and tuples of three."""
+    import json
+
+    def value(x):
+        if isinstance(x, list):
+            return tuple(value(y) for y in x)
+        return float.fromhex(x) if isinstance(x, str) else x
+
+    case = json.loads(self._case_text)
+    skip = {"id", "shape", "L0", "v", "range", "t0", "t1"}
+    return {k: value(v) for k, v in case.items() if k not in skip}
+
+
+Shape.fields = property(_fields)

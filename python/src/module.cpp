@@ -221,7 +221,7 @@ py::dict cases(const std::vector<std::string>& families, const std::vector<std::
     py::array_t<double> L0({count, py::ssize_t(3)}), v({count, py::ssize_t(3)}), t0(count),
         t1(count);
     py::array_t<int> k(count);
-    py::list made, ids, family;
+    py::list made, ids, family, lines;
     for (py::ssize_t i = 0; i < count; ++i) {
         const Case& c = all[std::size_t(i)];
         for (int j = 0; j < 3; ++j) {
@@ -231,12 +231,31 @@ py::dict cases(const std::vector<std::string>& families, const std::vector<std::
         t0.mutable_at(i) = c.line.range.t0, t1.mutable_at(i) = c.line.range.t1;
         k.mutable_at(i) = c.k;
         made.append(PyShape{c.shape, shape_name(c.shape), ""});
-        ids.append(c.id), family.append(c.family);
+        ids.append(c.id), family.append(c.family), lines.append(format_case(c));
     }
     py::dict out;
     out["shapes"] = made, out["origins"] = L0, out["directions"] = v, out["t0"] = t0;
     out["t1"] = t1, out["family"] = family, out["k"] = k, out["id"] = ids;
+    out["lines"] = lines; // the case format's lines, as `linequad cases` writes them
     return out;
+}
+
+// A results file graded against its cases file by the audit (its --cases-file --results path):
+// the verdict lines and report.json's text; report.md and figures written into out_dir.
+py::tuple grade(const std::string& cases_file, const std::string& results_file,
+                const std::string& out_dir) {
+    audit::Options o;
+    o.cases_file = cases_file, o.results_file = results_file, o.out_dir = out_dir;
+    o.command = "linequad.audit (Python)";
+    audit::Report r;
+    {
+        py::gil_scoped_release released;
+        r = audit::run(o);
+    }
+    py::list lines;
+    for (const audit::Verdict& v : audit::verdicts(r))
+        lines.append(audit::verdict_line(v));
+    return py::make_tuple(lines, audit::to_json(r));
 }
 
 } // namespace
@@ -246,6 +265,13 @@ PYBIND11_MODULE(_linequad, m) {
     PYBIND11_NUMPY_DTYPE(Row, count, on_surface, certain, error, t, kind, part, p, s0, s1);
     py::class_<PyShape>(m, "Shape")
         .def_property_readonly("kind", [](const PyShape& s) { return s.kind; })
+        .def_property_readonly(
+            "_case_text",
+            [](const PyShape& s) {
+                Case c;
+                c.shape = s.shape, c.line = Line{{}, {1, 0, 0}, Range::line};
+                return format_case(c);
+            })
         .def("__repr__", [](const PyShape& s) {
             if (s.call.empty()) return "<linequad.Shape " + s.kind + ">"; // a campaign's case
             return "linequad.shape(\"" + s.kind + "\"" + s.call + ")";
@@ -266,7 +292,9 @@ PYBIND11_MODULE(_linequad, m) {
           py::arg("precision") = "binary64",
           "A campaign's cases, the same as `linequad cases` writes (families and shapes: names, "
           "empty for all; n cases per family, shape and range): a dict of shapes (a list), "
-          "origins and directions ((N, 3) arrays), t0, t1, family, k and id.");
+          "origins and directions ((N, 3) arrays), t0, t1, family, k, id and lines (the case "
+          "format's).");
+    m.def("_grade", &grade, py::arg("cases_file"), py::arg("results_file"), py::arg("out_dir"));
     py::list names;
     for (const Solver& s : fast_solvers())
         if (s.precision == Precision::binary64) names.append(std::string(s.name));

@@ -150,3 +150,37 @@ def test_cases_are_the_programs():
         linequad.cases(families=["nope"])
     with pytest.raises(ValueError, match='shape "cube"'):
         linequad.cases(shapes=["cube"])
+
+
+def test_audit_grades_a_python_solver_and_charges_its_failures_to_the_chunk(tmp_path):
+    def exact(shapes, L0, v, t0, t1):  # linequad's own oracle as the solver under audit
+        t = np.full((len(shapes), 4), np.inf)
+        for i, s in enumerate(shapes):
+            row = linequad.intersect(s, L0[i:i + 1], v[i:i + 1], solver="exact", t0=t0[i],
+                                     t1=t1[i])[0]
+            t[i, :row["count"]] = row["t"][:row["count"]]
+        return t
+
+    got = linequad.audit(exact, families=["generic", "far_origin"], shapes=["sphere"], n=20,
+                         out=str(tmp_path / "report"))
+    assert got["verdict"] == ["python: 100 % right of 120; t error 0 bits at worst, 0 at p99"]
+    assert (tmp_path / "report" / "report.json").exists()
+    assert got["report"]["status"] == "complete"
+
+    calls = []
+
+    def flaky(shapes, L0, v, t0, t1):
+        calls.append(len(shapes))
+        if len(calls) == 2:
+            raise RuntimeError("the second chunk fails")
+        return exact(shapes, L0, v, t0, t1)
+
+    got = linequad.audit(flaky, families=["generic"], shapes=["sphere"], n=20, chunk=15)
+    assert calls == [15, 15, 15, 15]  # 60 cases: every chunk asked, the run not ended
+    assert got["verdict"][0].startswith("python: 75.0 % right of 60")
+
+    def wrong_shape(shapes, L0, v, t0, t1):
+        return np.zeros((len(shapes) + 1, 2))
+
+    got = linequad.audit(wrong_shape, families=["generic"], shapes=["sphere"], n=5)
+    assert got["verdict"][0].startswith("python: 0 % right of 15")
