@@ -265,13 +265,12 @@ PYBIND11_MODULE(_linequad, m) {
     PYBIND11_NUMPY_DTYPE(Row, count, on_surface, certain, error, t, kind, part, p, s0, s1);
     py::class_<PyShape>(m, "Shape")
         .def_property_readonly("kind", [](const PyShape& s) { return s.kind; })
-        .def_property_readonly(
-            "_case_text",
-            [](const PyShape& s) {
-                Case c;
-                c.shape = s.shape, c.line = Line{{}, {1, 0, 0}, Range::line};
-                return format_case(c);
-            })
+        .def_property_readonly("_case_text",
+                               [](const PyShape& s) {
+                                   Case c;
+                                   c.shape = s.shape, c.line = Line{{}, {1, 0, 0}, Range::line};
+                                   return format_case(c);
+                               })
         .def("__repr__", [](const PyShape& s) {
             if (s.call.empty()) return "<linequad.Shape " + s.kind + ">"; // a campaign's case
             return "linequad.shape(\"" + s.kind + "\"" + s.call + ")";
