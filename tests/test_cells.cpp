@@ -279,7 +279,7 @@ TEST_CASE("cells: the textbook tracker, graded against the exact track", "[cells
         REQUIRE(exact.error.ok());
         REQUIRE(exact.steps.size() == 3); // core -> shell -> moderator -> outside
         TrackerRun run = textbook_track(m, p, u, 100);
-        GradedTrack g = grade_track(m, exact, run);
+        GradedTrack g = grade_track(exact, run);
         CHECK(g.outcome == TrackOutcome::right);
         CHECK(g.steps == 3);
         // The textbook's distance is a sum of rounded steps, each from a rounded position: a
@@ -296,7 +296,7 @@ TEST_CASE("cells: the textbook tracker, graded against the exact track", "[cells
         CHECK(exact.steps.empty()); // it passes the spheres by, exactly
         TrackerRun run = textbook_track(m, p, u, 100);
         CHECK(!run.steps.empty()); // the textbook crosses the outer sphere all the same
-        GradedTrack g = grade_track(m, exact, run);
+        GradedTrack g = grade_track(exact, run);
         CHECK(g.outcome == TrackOutcome::extra);
         CHECK(g.failed_step == 1);
     }
@@ -304,22 +304,22 @@ TEST_CASE("cells: the textbook tracker, graded against the exact track", "[cells
         Model::Track exact = m.track({0, 0, 0}, {1, 0, 0}, 100);
         REQUIRE(exact.steps.size() == 3);
         TrackerRun lost{0, {{1, 1, -1}}, false};
-        CHECK(grade_track(m, exact, lost).outcome == TrackOutcome::lost);
+        CHECK(grade_track(exact, lost).outcome == TrackOutcome::lost);
         TrackerRun wrong{0, {{1, 1, 2}}, false};
-        CHECK(grade_track(m, exact, wrong).outcome == TrackOutcome::wrong_cell);
+        CHECK(grade_track(exact, wrong).outcome == TrackOutcome::wrong_cell);
         TrackerRun missed{0, {{1, 1, 1}}, true};
-        GradedTrack g = grade_track(m, exact, missed);
+        GradedTrack g = grade_track(exact, missed);
         CHECK(g.outcome == TrackOutcome::missed);
         CHECK(g.failed_step == 2);
         TrackerRun extra{0, {{1, 1, 1}, {2, 1, 2}, {4, 2, 3}, {5, 1, 2}}, false};
-        CHECK(grade_track(m, exact, extra).outcome == TrackOutcome::extra);
+        CHECK(grade_track(exact, extra).outcome == TrackOutcome::extra);
         TrackerRun right{0, {{1, 1, 1}, {2, 1, 2}, {4, 2, 3}}, true};
-        GradedTrack ok = grade_track(m, exact, right);
+        GradedTrack ok = grade_track(exact, right);
         CHECK(ok.outcome == TrackOutcome::right);
         CHECK(ok.steps == 3);
         CHECK(ok.max_t_ulps == 0);
         TrackerRun wrong_start{1, {}, false};
-        CHECK(grade_track(m, exact, wrong_start).outcome == TrackOutcome::wrong_cell);
+        CHECK(grade_track(exact, wrong_start).outcome == TrackOutcome::wrong_cell);
     }
 }
 

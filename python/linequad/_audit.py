@@ -41,8 +41,8 @@ def audit(fn, families=(), shapes=(), n=100, seed=1, out=None, chunk=4096, name=
         except Exception as e:  # the solver's fault, charged to its chunk
             why = f"cases {start} to {stop - 1}: {type(e).__name__}: {e}"
             for i in range(start, stop):
-                results.append(json.dumps({"solver": name, "error": why, "code": "foreign"})
-                               .replace("{", '{"id":' + c["id"][i] + ",", 1))
+                results.append('{"id":' + c["id"][i] + ',"solver":' + json.dumps(name) +
+                               ',"error":' + json.dumps(why) + ',"code":"foreign"}')
             continue
         for i, row in zip(range(start, stop), t):
             hits = sorted(x for x in row if math.isfinite(x))

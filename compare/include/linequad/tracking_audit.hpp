@@ -61,7 +61,7 @@ struct GradedTrack {
     double max_t_ulps = 0;     // the largest |t - exact t| over the graded steps, in ulps of t
     int zero_length_steps = 0; // steps shorter than 1e-12, the codes' coincidence tolerance
 };
-GradedTrack grade_track(const Model& m, const Model::Track& exact, const TrackerRun& run);
+GradedTrack grade_track(const Model::Track& exact, const TrackerRun& run);
 
 // The ray families the audit runs on a model: where its box (the region sources are drawn from)
 // is given.

@@ -185,7 +185,7 @@ int run_audit(const CellsArgs& a) {
             for (int d = 0; d < tracker_distances_count; ++d) {
                 TrackerRun run =
                     textbook_track(l.model, ray->p, ray->u, max_steps, TrackerDistances(d));
-                GradedTrack g = grade_track(l.model, exact, run);
+                GradedTrack g = grade_track(exact, run);
                 TrackingTally& t = tally[std::size_t(d)];
                 ++t.rays;
                 t.steps += std::uint64_t(g.steps);

@@ -196,7 +196,7 @@ const char* track_family_name(TrackFamily f) {
     return names[int(f)];
 }
 
-GradedTrack grade_track(const Model&, const Model::Track& exact, const TrackerRun& run) {
+GradedTrack grade_track(const Model::Track& exact, const TrackerRun& run) {
     GradedTrack g;
     auto fail = [&](TrackOutcome o, int step) {
         g.outcome = o, g.failed_step = step;

@@ -12,10 +12,8 @@
 #include "linequad/solvers.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <map>
-#include <memory>
 #include <set>
 
 namespace linequad {
@@ -47,14 +45,13 @@ struct Event {
 class ExactRootsOnRay {
   public:
     ExactRootsOnRay(const std::vector<Model::Surface>& surfaces, const Line& ray)
-        : surfaces_(surfaces), ray_(ray) {}
+        : surfaces_(surfaces), ray_(ray), formed_(surfaces.size()) {}
     const detail::ExactRoots& of(int surface) {
-        auto found = cache_.find(surface);
-        if (found != cache_.end()) return *found->second;
-        auto roots = std::make_unique<detail::ExactRoots>(
-            std::visit([&](const auto& s) { return detail::exact_roots(prepare(s), ray_); },
-                       surfaces_[std::size_t(surface)].shape));
-        return *cache_.emplace(surface, std::move(roots)).first->second;
+        std::optional<detail::ExactRoots>& roots = formed_[std::size_t(surface)];
+        if (!roots)
+            roots = std::visit([&](const auto& s) { return detail::exact_roots(prepare(s), ray_); },
+                               surfaces_[std::size_t(surface)].shape);
+        return *roots;
     }
     // sgn(t_a - t_b), exactly.
     int compare(const Event& a, const Event& b) {
@@ -67,7 +64,7 @@ class ExactRootsOnRay {
   private:
     const std::vector<Model::Surface>& surfaces_;
     Line ray_;
-    std::map<int, std::unique_ptr<detail::ExactRoots>> cache_;
+    std::vector<std::optional<detail::ExactRoots>> formed_; // a slot per surface, filled when asked
 };
 
 } // namespace

@@ -1203,37 +1203,6 @@ bool solve(const LineForm& f, const Unit& unit, const Line& caller, Query query,
     return true;
 }
 
-// ---- A surface without extent ----
-
-// A quadric (QuadricNewtonForm): the same proof from its own local quadratic, without the extent
-// and the discs. A tangency, a root at the range's end, or a bound too wide: the next rungs.
-template <class Target>
-bool surface_solve(const QuadricNewtonForm& f, const Unit& unit, const Line& caller, Query query,
-                   Result& r, const ExtentEnds* ends) {
-    Leading<double> A = f.leading();
-    bool linear = A.A == 0 && A.e == 0; // no quadratic part: one root
-    if (!linear && !(std::fabs(A.A) > A.e)) return false;
-    QuadricNewtonForm::Estimates est = f.estimates(A);
-    if (!est.real) // no root, where g keeps its sign at its vertex
-        return !linear && std::isfinite(est.vertex) &&
-               newton::no_root_proven(A, est.vertex, f.local_at(est.vertex));
-    for (int i = 0; i < est.count; ++i) {
-        double c = est.root[i];
-        Local<double> L = f.local_at(c);
-        std::optional<Enclosure<double>> en = root_near(L, A, c);
-        if (en && !(en->e <= 0x1p-88 * std::fabs(en->c)))
-            if (std::optional<Enclosure<double>> tight = root_near_tight(L, A, c))
-                if (tight->e < en->e) en = tight;
-        if (!en || (!linear && en->smaller != (i == 0))) return false;
-        Kept<double> k = in_range(unit, *en);
-        if (k.outside) continue;
-        if (!k.inside) return false;
-        if (!add_hit<Target>(*en, Part::lateral, unit, caller, query, r, {}, ends)) return false;
-        if (query.need != Need::all) break; // the smaller root first: also the nearest
-    }
-    return true;
-}
-
 // ---- The hit test ----
 
 // A convex solid closed by discs whose lateral roots were proven but none inside the extent and
@@ -1332,11 +1301,37 @@ bool newton_rung(const LineForm& f, const Unit& unit, const Line& caller, Query 
     });
 }
 
+// ---- A surface without extent ----
+
+// A quadric (QuadricNewtonForm): the same proof from its own local quadratic, without the extent
+// and the discs. A tangency, a root at the range's end, or a bound too wide: the next rungs.
 template <class Target>
 bool surface_newton_rung(const QuadricNewtonForm& f, const Unit& unit, const Line& caller,
                          Query query, Result& r, const ExtentEnds* ends) {
-    return surface_solve<Target>(f, unit, caller, query, r, ends);
+    Leading<double> A = f.leading();
+    bool linear = A.A == 0 && A.e == 0; // no quadratic part: one root
+    if (!linear && !(std::fabs(A.A) > A.e)) return false;
+    QuadricNewtonForm::Estimates est = f.estimates(A);
+    if (!est.real) // no root, where g keeps its sign at its vertex
+        return !linear && std::isfinite(est.vertex) &&
+               newton::no_root_proven(A, est.vertex, f.local_at(est.vertex));
+    for (int i = 0; i < est.count; ++i) {
+        double c = est.root[i];
+        Local<double> L = f.local_at(c);
+        std::optional<Enclosure<double>> en = root_near(L, A, c);
+        if (en && !(en->e <= 0x1p-88 * std::fabs(en->c)))
+            if (std::optional<Enclosure<double>> tight = root_near_tight(L, A, c))
+                if (tight->e < en->e) en = tight;
+        if (!en || (!linear && en->smaller != (i == 0))) return false;
+        Kept<double> k = in_range(unit, *en);
+        if (k.outside) continue;
+        if (!k.inside) return false;
+        if (!add_hit<Target>(*en, Part::lateral, unit, caller, query, r, {}, ends)) return false;
+        if (query.need != Need::all) break; // the smaller root first: also the nearest
+    }
+    return true;
 }
+
 template bool surface_newton_rung<Binary64>(const QuadricNewtonForm&, const Unit&, const Line&,
                                             Query, Result&, const ExtentEnds*);
 template bool surface_newton_rung<Binary32>(const QuadricNewtonForm&, const Unit&, const Line&,
