@@ -288,6 +288,10 @@ def tracking_instructions():
     return verbatim(LATEST / "tracking_instructions.txt")
 
 
+def python_throughput():
+    return verbatim(LATEST / "python_throughput.txt")
+
+
 def instructions_closed():
     """Each shape open and closed by its discs: correct, its hit test and stable, and the ratio."""
     path = LATEST / "instructions_closed.txt"
@@ -378,6 +382,7 @@ def plugin():
 
 
 TABLES = {f.__name__: f for f in [solvers, bench, rungs, headline, peers, vecgeom, peer_instructions, instructions, tracking_instructions,
+                                  python_throughput,
                                   instructions_closed, instructions_lanes, correct_vs_exact,
                                   family_instructions, time_per_instruction, batch, scenes, plugin]}
 BEGIN = re.compile(r"^<!-- table: (\w+) -->$")

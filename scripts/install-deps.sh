@@ -19,8 +19,9 @@ packages=(build-essential cmake pkg-config git
           libembree-dev libbullet-dev libode-dev libvecgeom-dev
           # OpenMC's geometry.xml, read into a model of cells (linequad cells).
           libpugixml-dev
-          # The Python module (python/) and its tests.
-          pybind11-dev python3-dev python3-numpy python3-pytest)
+          # The Python module (python/) and its tests; PyTorch for the float32 example that the
+          # docs' test runs (examples/python/torch_sphere.py).
+          pybind11-dev python3-dev python3-numpy python3-pytest python3-torch)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

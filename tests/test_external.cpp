@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cfenv>
 #include <cstdlib>
 
 using namespace linequad;
@@ -168,6 +169,38 @@ TEST_CASE("an external solver that answers exactly what it declares grades perfe
     // The segment solver cannot take lines and rays: a third of the cases.
     CHECK(r.total("nearest_segment_infinite").unrepresented > 0);
     CHECK(r.external.at("nearest_unit_closed").answers == std::string("nearest hit"));
+}
+
+TEST_CASE("a solver that answers a chunk at a time is graded as one that answers a case",
+          "[external]") {
+    using namespace audit;
+    ExternalSolver e;
+    e.name = "chunks";
+    e.answers = Answers::nearest;
+    e.worker_shapes = 1u << 0; // the cylinder alone
+    std::vector<std::size_t> sizes;
+    e.chunk = [&](const std::vector<Case>& posed, std::vector<ExternalAnswer>& out) {
+        sizes.push_back(posed.size());
+        for (std::size_t j = 0; j < posed.size(); ++j)
+            out[j].result =
+                correct::intersect(posed[j].shape, posed[j].line, {Need::nearest, true});
+        if (sizes.size() == 1) std::fesetround(FE_UPWARD); // left so: put back, and noted
+    };
+    Options o;
+    o.cases_per_group = 300;
+    o.families = {Family::generic, Family::near_tangent};
+    o.shapes = {0, 4}; // the sphere is not its shape: not asked
+    o.solvers = {"chunks"};
+    o.threads = 1;
+    Report r = run(o, {e});
+    Row t = r.total("chunks");
+    CHECK(t.cases == 1800);
+    CHECK(t.cases_mismatched == 0);
+    CHECK(t.t_max == 0);
+    CHECK(sizes == std::vector<std::size_t>(6, 300)); // one call a group: 2 families, 3 ranges
+    CHECK(std::fegetround() == FE_TONEAREST);
+    REQUIRE(t.environment.size() == 1);
+    CHECK(t.environment.begin()->second == 300); // the first chunk's cases
 }
 
 TEST_CASE("a solver that aborts is counted as crashed, and the run goes on", "[external]") {

@@ -87,6 +87,49 @@ def test_float32_rays_are_answered_in_float():
             assert row["t"][k] == float(np.float32(row["t"][k]))  # a float, held in a double
 
 
+def bits(rows):
+    """Each field's raw bytes (not the padding between fields): equal arrays hold equal bits,
+    signs of zeros and NaN payloads included."""
+    return [np.ascontiguousarray(rows[name]).tobytes() for name in rows.dtype.names]
+
+
+def test_many_rays_in_one_call_are_the_batch_and_equal_one_at_a_time():
+    # Rays at one cylinder from a box around it (the batch's lanes), some grazing the side.
+    rng = np.random.default_rng(11)
+    cyl = linequad.shape("cylinder", C=(0, 0, 0), H=(0, 0, 2), r=1, caps=True)
+    L0 = rng.uniform(-4, 4, (999, 3))
+    v = rng.uniform(-0.5, 0.5, (999, 3)) + [0, 0, 1] - L0
+    v[::7, 0], v[::7, 1], L0[::7, 0] = 0, 1, 1  # tangent to the side (x = r), along y
+    for solver in ["stable", "correct"]:
+        many = linequad.intersect(cyl, L0, v, solver=solver)
+        one = np.concatenate([linequad.intersect(cyl, L0[i:i + 1], v[i:i + 1], solver=solver)
+                              for i in range(len(L0))])
+        assert bits(many) == bits(one), solver
+    assert bits(linequad.intersect(cyl, L0, v)) == bits(
+        linequad.intersect(cyl, L0, v, solver="exact"))
+    f32, d32 = L0.astype(np.float32), v.astype(np.float32)
+    many = linequad.intersect(cyl, f32, d32, solver="stable")
+    one = np.concatenate([linequad.intersect(cyl, f32[i:i + 1], d32[i:i + 1], solver="stable")
+                          for i in range(len(L0))])
+    assert bits(many) == bits(one)
+
+
+def test_out_is_answered_into_and_returned():
+    cyl = linequad.shape("cylinder", C=(0, 0, 0), H=(0, 0, 2), r=1)
+    L0, v = np.array([[-3.0, 0, 1], [-3.0, 5, 1]]), np.array([[1.0, 0, 0], [1.0, 0, 0]])
+    rows = linequad.intersect(cyl, L0[::-1], v)  # other answers, to be overwritten
+    got = linequad.intersect(cyl, L0, v, out=rows)
+    assert got is rows
+    assert bits(rows) == bits(linequad.intersect(cyl, L0, v))
+    with pytest.raises(ValueError, match="out: expected a writeable array .* of 2 rows"):
+        linequad.intersect(cyl, L0, v, out=rows[:1])
+    with pytest.raises(ValueError, match="out: expected"):
+        linequad.intersect(cyl, L0, v, out=np.zeros(2))
+    rows.flags.writeable = False
+    with pytest.raises(ValueError, match="out: expected a writeable"):
+        linequad.intersect(cyl, L0, v, out=rows)
+
+
 def test_bad_input_raises_naming_the_field():
     with pytest.raises(ValueError, match='field "rr": not a field of a cylinder case'):
         linequad.shape("cylinder", C=(0, 0, 0), H=(0, 0, 1), rr=1)
@@ -175,12 +218,59 @@ def test_audit_grades_a_python_solver_and_charges_its_failures_to_the_chunk(tmp_
             raise RuntimeError("the second chunk fails")
         return exact(shapes, L0, v, t0, t1)
 
-    got = linequad.audit(flaky, families=["generic"], shapes=["sphere"], n=20, chunk=15)
-    assert calls == [15, 15, 15, 15]  # 60 cases: every chunk asked, the run not ended
-    assert got["verdict"][0].startswith("python: 75.0 % right of 60")
+    # 20 cases a group (family, shape, range), a chunk a group: every chunk asked, the run goes on.
+    got = linequad.audit(flaky, families=["generic"], shapes=["sphere"], n=20)
+    assert calls == [20, 20, 20]
+    assert got["verdict"][0].startswith("python: 66.7 % right of 60")
 
     def wrong_shape(shapes, L0, v, t0, t1):
         return np.zeros((len(shapes) + 1, 2))
 
     got = linequad.audit(wrong_shape, families=["generic"], shapes=["sphere"], n=5)
     assert got["verdict"][0].startswith("python: 0 % right of 15")
+
+
+def nearest_exact(shapes, L0, v, t0, t1):
+    """The oracle's nearest hit: what a ray caster answers, right."""
+    t = np.full(len(shapes), np.inf)
+    for i, s in enumerate(shapes):
+        row = linequad.intersect(s, L0[i:i + 1].astype(np.float64),
+                                 v[i:i + 1].astype(np.float64), solver="exact", need="nearest",
+                                 t0=t0[i], t1=t1[i])[0]
+        if row["count"]:
+            t[i] = row["t"][0]
+    return t
+
+
+def test_audit_grades_what_the_solver_declares():
+    # Right for what it declares (the nearest hit), wrong read as every hit.
+    kw = dict(families=["generic"], shapes=["cylinder", "sphere"], n=10)
+    got = linequad.audit(nearest_exact, answers="nearest", **kw)
+    assert got["verdict"] == ["python: 100 % right of 60; t error 0 bits at worst, 0 at p99"]
+    assert got["report"]["external"] == [{
+        "solver": "python", "answers": "nearest hit", "parametrisation": "t along v",
+        "surface": "as posed", "plugin": "",
+        "mapping": "a Python callable, fn(shapes, origins, directions, t0, t1) -> t's, a chunk "
+                   "of cases a call"}]
+    assert not linequad.audit(nearest_exact, **kw)["verdict"][0].startswith("python: 100 %")
+    # A float32 solver is handed float32 arrays and graded in float.
+    seen = set()
+
+    def in_float(shapes, L0, v, t0, t1):
+        seen.update({L0.dtype, v.dtype, t0.dtype, t1.dtype})
+        return nearest_exact(shapes, L0, v, t0, t1)
+
+    got = linequad.audit(in_float, precision="binary32", answers="nearest", **kw)
+    assert seen == {np.dtype(np.float32)}
+    assert got["verdict"][0].startswith("python: 100 % right of 60")  # t's errors: in doubles
+    # A declaration out of range, or an unknown one, is named.
+    with pytest.raises(ValueError, match='answers "closest": expected all, nearest'):
+        linequad.audit(nearest_exact, answers="closest", **kw)
+    with pytest.raises(ValueError, match="tolerance_absolute must be finite and at least 0"):
+        linequad.audit(nearest_exact, answers="nearest", tolerance=(-1, 0), **kw)
+    with pytest.raises(ValueError, match="inside .* is for nearest or first-entry answers"):
+        linequad.audit(nearest_exact, inside="no_hit", **kw)
+    with pytest.raises(ValueError, match="has a character other than"):
+        linequad.audit(nearest_exact, name="my solver", **kw)
+    with pytest.raises(TypeError, match="fn: expected a callable"):
+        linequad.audit(3, **kw)

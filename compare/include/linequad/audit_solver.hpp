@@ -178,7 +178,16 @@ struct ExternalSolver {
     // A plugin's solver: its worker process and its index there; the callables are then empty.
     std::shared_ptr<PluginWorker> worker;
     int worker_index = -1;
-    unsigned worker_shapes = 0; // bit k: takes the shape of index k in linequad::Shape
+    unsigned worker_shapes = 0; // bit k: takes the shape of index k in linequad::Shape (a
+                                // plugin's, or a chunk callable's)
+    // Or a callable answering a chunk of posed cases at once (a Python solver, through
+    // linequad.audit: one call a chunk, not a case), one answer a case into `out` (sized for
+    // them); it takes the shapes in worker_shapes, and answers what it cannot as failures of
+    // those cases (it throws nothing). The floating-point environment is checked and put back
+    // around each call, as for the callables.
+    using ChunkCallable =
+        std::function<void(const std::vector<Case>& posed, std::vector<ExternalAnswer>& out)>;
+    ChunkCallable chunk;
 
     // Whether it takes this shape, or the shape of this index in linequad::Shape.
     bool takes(const Shape& s) const;

@@ -187,7 +187,7 @@ void OwnOutput::clear() {
 }
 
 bool ExternalSolver::takes_shape(std::size_t index) const {
-    if (worker) return (worker_shapes >> index) & 1u;
+    if (worker || chunk) return (worker_shapes >> index) & 1u;
     return with_shape_type(index,
                            [&](auto tag) { return bool(on<typename decltype(tag)::type>()); });
 }
@@ -196,8 +196,26 @@ bool ExternalSolver::takes(const Shape& s) const {
     return takes_shape(s.index());
 }
 
+namespace {
+// A chunk callable's answers, the floating-point environment put back after the call (and noted
+// on each answer, as a call of the per-shape callables is).
+void answer_chunk(const ExternalSolver::ChunkCallable& chunk, const std::vector<Case>& posed,
+                  std::vector<ExternalAnswer>& out) {
+    out.assign(posed.size(), ExternalAnswer{});
+    numeric::FpState before = numeric::fp_state();
+    chunk(posed, out);
+    numeric::FpState after = numeric::fp_state();
+    if (after != before) {
+        const char* change = interned(numeric::fp_change(before, after));
+        for (ExternalAnswer& a : out)
+            a.environment = change;
+        numeric::set_fp_state(before);
+    }
+}
+} // namespace
+
 ExternalAnswer ExternalSolver::answer(const Shape& s, const Line& l) const {
-    if (worker) {
+    if (worker || chunk) {
         Case c;
         c.shape = s, c.line = l, c.precision = precision;
         std::vector<ExternalAnswer> out;
@@ -225,6 +243,13 @@ ExternalAnswer ExternalSolver::answer(const Shape& s, const Line& l) const {
 bool ExternalSolver::answer_all(const std::vector<Case>& posed, std::vector<ExternalAnswer>& out,
                                 double* ns) const {
     if (worker) return worker->answer(worker_index, posed, out, ns);
+    if (chunk) {
+        auto t0 = std::chrono::steady_clock::now();
+        answer_chunk(chunk, posed, out);
+        auto t1 = std::chrono::steady_clock::now();
+        if (ns) *ns = std::chrono::duration<double, std::nano>(t1 - t0).count();
+        return true;
+    }
     out.resize(posed.size());
     CrashGuard guard; // installed once for all of them, outside the timing
     auto t0 = std::chrono::steady_clock::now();
@@ -548,6 +573,7 @@ std::string conventions_text(const ExternalSolver& s) {
 
 std::string declaration_problem(const ExternalSolver& s) {
     std::string which = "solver '" + s.name + "'";
+    if (std::string p = solver_name_problem(s.name); !p.empty()) return which + " " + p;
     auto length = [&](const char* field, double x) -> std::string {
         if (std::isfinite(x) && x >= 0) return "";
         char text[64];
