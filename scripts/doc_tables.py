@@ -292,6 +292,19 @@ def python_throughput():
     return verbatim(LATEST / "python_throughput.txt")
 
 
+def cells_audits():
+    """Each shipped model's tracking audit: its table of rays gone wrong by tracker and family."""
+    out = []
+    for path in sorted((LATEST / "cells").glob("*/report.md")):
+        lines = path.read_text(encoding="utf-8").splitlines()
+        start = next(i for i, l in enumerate(lines) if l.startswith("| rays gone wrong |"))
+        end = next(i for i in range(start, len(lines)) if not lines[i].startswith("|"))
+        command = next(l for l in lines if l.startswith("Command: "))
+        out += [f"From `{relative(path)}` ({command[len('Command: '):]}):", ""]
+        out += lines[start:end] + [""]
+    return out[:-1]
+
+
 def instructions_closed():
     """Each shape open and closed by its discs: correct, its hit test and stable, and the ratio."""
     path = LATEST / "instructions_closed.txt"
@@ -382,7 +395,7 @@ def plugin():
 
 
 TABLES = {f.__name__: f for f in [solvers, bench, rungs, headline, peers, vecgeom, peer_instructions, instructions, tracking_instructions,
-                                  python_throughput,
+                                  python_throughput, cells_audits,
                                   instructions_closed, instructions_lanes, correct_vs_exact,
                                   family_instructions, time_per_instruction, batch, scenes, plugin]}
 BEGIN = re.compile(r"^<!-- table: (\w+) -->$")

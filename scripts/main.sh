@@ -55,15 +55,16 @@ step "scene audit" "$reports/latest/scenes.log" \
 step "peer libraries' audit" "$reports/peers.log" env OUT="$reports/peers" bash scripts/peers.sh
 # The tracking audit on each shipped model: the tracker transport codes write, graded against
 # the exact tracks.
+mkdir -p "$reports/latest/cells"
 for model in examples/models/*.json; do
   name=$(basename "$model" .json)
-  step "tracking audit: $name" "$reports/latest/cells_$name.log" \
-    $linequad cells "$model" --audit --rays 20000 --markdown "$reports/latest/cells_$name.md"
+  step "tracking audit: $name" "$reports/latest/cells/$name.log" \
+    $linequad cells "$model" --audit --rays 20000 --out "$reports/latest/cells/$name"
 done
 # OpenMC's own file of the pin cell: a geometry.xml has no source box of its own.
-step "tracking audit: pin_cell_openmc" "$reports/latest/cells_pin_cell_openmc.log" \
+step "tracking audit: pin_cell_openmc" "$reports/latest/cells/pin_cell_openmc.log" \
   $linequad cells examples/models/pin_cell_openmc.xml --audit --rays 20000 \
-  --box -0.625,-0.625,-1,0.625,0.625,1 --markdown "$reports/latest/cells_pin_cell_openmc.md"
+  --box -0.625,-0.625,-1,0.625,0.625,1 --out "$reports/latest/cells/pin_cell_openmc"
 
 cat <<SUMMARY
 main job done in $((SECONDS - start)) s. Reports:
@@ -71,5 +72,5 @@ main job done in $((SECONDS - start)) s. Reports:
   $reports/latest/spawn.md      rays leaving a hit
   $reports/latest/scenes.md     scenes
   $reports/peers/report.html    five other libraries beside linequad's correct
-  $reports/latest/cells_*.md    particles tracked through the shipped models (examples/models/)
+  $reports/latest/cells/*/report.html   particles tracked through the shipped models (examples/models/)
 SUMMARY

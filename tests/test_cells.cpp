@@ -2,6 +2,7 @@
 // exact queries a tracker asks, on models whose answers are known exactly.
 #include "support.hpp"
 
+#include "linequad/case_io.hpp"
 #include "linequad/cells.hpp"
 #include "linequad/exact.hpp"
 #include "linequad/tracking_audit.hpp"
@@ -9,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -323,6 +325,108 @@ TEST_CASE("cells: the textbook tracker, graded against the exact track", "[cells
     }
 }
 
+TEST_CASE("cells: linequad's tracks are the oracle's bit for bit on every shipped model and family",
+          "[cells]") {
+    namespace fs = std::filesystem;
+    int models = 0;
+    for (const fs::directory_entry& e :
+         fs::directory_iterator(fs::path(LINEQUAD_SOURCE_DIR) / "examples/models")) {
+        if (e.path().extension() != ".json") continue;
+        ++models;
+        std::ifstream in(e.path());
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        ModelFile file;
+        std::string why;
+        INFO(e.path().string() << ": " << why);
+        REQUIRE(parse_model(text, &file, &why));
+        REQUIRE(file.box);
+        std::optional<Model> m = Model::build(file.surfaces, file.cells, why);
+        REQUIRE(m);
+        for (int f = 0; f < track_family_count; ++f) {
+            int rays = 0, steps = 0;
+            for (std::uint64_t i = 0; i < 150; ++i) {
+                std::optional<TrackRay> ray =
+                    track_ray(*m, (*file.box)[0], (*file.box)[1], TrackFamily(f), 7, i);
+                if (!ray) break;
+                Model::Track oracle = exact::track(*m, ray->p, ray->u, 1000);
+                GradedTrack g = grade_linequad_track(oracle, m->track(ray->p, ray->u, 1000));
+                INFO(track_family_name(TrackFamily(f))
+                     << " ray " << i << ": " << track_outcome_name(g.outcome) << " at step "
+                     << g.failed_step);
+                CHECK(g.outcome == TrackOutcome::right);
+                ++rays, steps += int(oracle.steps.size());
+            }
+            // Each family applies to some model: the two with planes and curved surfaces.
+            if (e.path().filename() == "pin_cell.json") {
+                INFO(track_family_name(TrackFamily(f)));
+                CHECK(rays == 150);
+                CHECK(steps > 0);
+            }
+        }
+    }
+    CHECK(models >= 5);
+}
+
+TEST_CASE("cells: the grading of linequad's tracks names each difference from the oracle's",
+          "[cells]") {
+    Model m = spheres();
+    Model::Track oracle = m.track({0, 0, 0}, {1, 0, 0}, 100);
+    REQUIRE(oracle.steps.size() == 2);
+    CHECK(grade_linequad_track(oracle, oracle).outcome == TrackOutcome::right);
+    Model::Track t = oracle;
+    t.steps[1].t = std::nextafter(t.steps[1].t, 3.0); // an ulp off
+    GradedTrack g = grade_linequad_track(oracle, t);
+    CHECK(g.outcome == TrackOutcome::inexact);
+    CHECK(g.failed_step == 2);
+    CHECK(g.max_t_ulps == 1);
+    t = oracle, t.steps[0].surfaces = {0, 1};
+    CHECK(grade_linequad_track(oracle, t).outcome == TrackOutcome::inexact);
+    t = oracle, t.steps[0].cells = {2};
+    CHECK(grade_linequad_track(oracle, t).outcome == TrackOutcome::wrong_cell);
+    t = oracle, t.steps[0].cells = {};
+    CHECK(grade_linequad_track(oracle, t).outcome == TrackOutcome::lost);
+    t = oracle, t.steps.pop_back();
+    CHECK(grade_linequad_track(oracle, t).outcome == TrackOutcome::missed);
+    t = oracle, t.steps.push_back(t.steps.back());
+    CHECK(grade_linequad_track(oracle, t).outcome == TrackOutcome::extra);
+    t = oracle, t.start = {1};
+    CHECK(grade_linequad_track(oracle, t).outcome == TrackOutcome::wrong_cell);
+}
+
+TEST_CASE("cells: points in two cells or in none are found, named and replayable", "[cells]") {
+    // Cells 10 and 20 overlap in the unit ball's half x < 0; cell 30, the outside for x > 0
+    // only, leaves a gap outside the ball where x < 0.
+    Model m =
+        build({{1, sphere(1)}, {2, plane_x(0)}},
+              {{10, "ball", "-1"}, {20, "left half ball", "-1 -2"}, {30, "outside, right", "1 2"}});
+    PointSample s = sample_points(m, {-1, -1, -1}, {1, 1, 1}, 3, 4000);
+    CHECK(s.points == 4000);
+    REQUIRE(s.overlaps.size() == 1);
+    CHECK(s.overlaps[0].first == std::vector<int>{0, 1});
+    // Each share is a volume's over the box's 8: the ball's left half pi/12 of it, the box's
+    // left half outside the ball 1/2 - pi/12.
+    // 4000 draws: a share within 5 standard deviations (at most sqrt(0.25/4000) each).
+    double half_ball = std::acos(-1.0) / 12;
+    CHECK(std::fabs(double(s.overlaps[0].second) / 4000 - half_ball) < 5 * 0.0080);
+    CHECK(std::fabs(double(s.in_none) / 4000 - (0.5 - half_ball)) < 5 * 0.0080);
+    // The first overlapping point's query line locates to both cells.
+    REQUIRE(!s.first_overlap.empty());
+    auto number = [&](const std::string& key, int k) {
+        std::size_t at = s.first_overlap.find("\"" + key + "\":[");
+        for (int i = 0; i <= k; ++i)
+            at = s.first_overlap.find('"', s.first_overlap.find('"', at + key.size() + 4) + 1);
+        std::size_t open = s.first_overlap.rfind('"', at - 1);
+        return std::strtod(s.first_overlap.substr(open + 1, at - open - 1).c_str(), nullptr);
+    };
+    Vec3 p{number("p", 0), number("p", 1), number("p", 2)};
+    Vec3 u{number("u", 0), number("u", 1), number("u", 2)};
+    CHECK(m.locate(p, u).cells == std::vector<int>{0, 1});
+    // A model without overlaps or gaps: none found.
+    PointSample clean = sample_points(spheres(), {-3, -3, -3}, {3, 3, 3}, 3, 2000);
+    CHECK(clean.overlaps.empty());
+    CHECK(clean.in_none == 0);
+}
+
 TEST_CASE("cells: the CLI answers queries on a model file and refuses a bad one by name",
           "[cells]") {
     namespace fs = std::filesystem;
@@ -366,6 +470,18 @@ TEST_CASE("cells: the CLI answers queries on a model file and refuses a bad one 
     CHECK(audit.out.find("**The textbook tracker went wrong on ") != std::string::npos);
     test::Ran no_box = test::program("cells bad.json --audit", dir);
     CHECK(no_box.status == 2);
+    // --out: report.md and the page made from it, each replay a command with a copy button.
+    test::Ran out = test::program(
+        "cells '" + model.string() + "' --audit --rays 100 --points 100 --out rep", dir);
+    CHECK(out.status == 0);
+    std::ifstream md(dir / "rep/report.md"), html(dir / "rep/report.html");
+    std::string md_text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>()),
+        html_text((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+    CHECK(md_text.find("**linequad's cells went wrong on 0**") != std::string::npos);
+    CHECK(md_text.find("| linequad cells | grazing | 100 | 100 |") != std::string::npos);
+    CHECK(md_text.find("`echo '{\"id\":\"far_source/") != std::string::npos);
+    CHECK(html_text.find("linequad (replay|cells) ") != std::string::npos);
+    CHECK(html_text.find("<h1") != std::string::npos);
 }
 
 TEST_CASE("cells: OpenMC's geometry.xml is read exactly, and what is not taken is named with its "

@@ -748,6 +748,73 @@ void intersect(const std::vector<Shape>& shapes, const Line& line, Query query, 
     }
 }
 
+Model::Track track(const Model& m, Vec3 p, Vec3 u, int max_steps) {
+    numeric::StandardEnvironmentT<true> standard;
+    Model::Track out;
+    Line ray{p, u, Interval(0, std::numeric_limits<double>::infinity())};
+    if (Error e = detail::check_line(ray); !e.ok()) return out.error = e, out;
+    const std::vector<Model::Surface>& surfaces = m.surfaces();
+    std::vector<Sense> senses;
+    for (const Model::Surface& s : surfaces) {
+        SenseResult r = std::visit([&](const auto& x) { return exact::sense(x, p, u); }, s.shape);
+        if (!r.ok()) return out.error = r.error, out;
+        senses.push_back(r.sense);
+    }
+    auto holding = [&](std::vector<int>& in, std::vector<int>& undecided) {
+        for (std::size_t c = 0; c < m.cells().size(); ++c) {
+            std::optional<bool> holds = m.cells()[c].region.contains(senses);
+            if (!holds)
+                undecided.push_back(int(c));
+            else if (*holds)
+                in.push_back(int(c));
+        }
+    };
+    holding(out.start, out.start_undecided);
+    // Every crossing beyond p (t > 0; a root at p is in its sense already) of every surface the
+    // ray does not lie in, in the order of its exact t, and runs of equal exact t crossed at once.
+    std::vector<ExactHit> hits;
+    for (std::size_t s = 0; s < surfaces.size(); ++s) {
+        if (senses[s] == Sense::on) continue;
+        std::visit(
+            [&](const auto& x) {
+                if (Error e = validate(x, ray); !e.ok()) return void(out.error = e);
+                shape_hits(x, std::uint32_t(s), ray, false, hits);
+            },
+            surfaces[s].shape);
+        if (!out.error.ok()) return out;
+    }
+    hits.erase(std::remove_if(hits.begin(), hits.end(),
+                              [](const ExactHit& h) {
+                                  return !(h.hit.hit.t > 0) || h.hit.hit.kind != HitKind::cross;
+                              }),
+               hits.end());
+    std::sort(hits.begin(), hits.end(), [](const ExactHit& a, const ExactHit& b) {
+        int c = compare(a.t, b.t);
+        return c < 0 || (c == 0 && a.hit.shape < b.hit.shape);
+    });
+    std::vector<int> before = out.start, before_undecided = out.start_undecided;
+    for (std::size_t i = 0; i < hits.size();) {
+        std::size_t j = i;
+        std::vector<int> crossed;
+        for (; j < hits.size() && compare(hits[j].t, hits[i].t) == 0; ++j) {
+            std::size_t s = hits[j].hit.shape;
+            senses[s] = senses[s] == Sense::positive ? Sense::negative : Sense::positive;
+            crossed.push_back(int(s));
+        }
+        Model::Step step{hits[i].hit.hit.t, crossed, {}, {}};
+        i = j;
+        holding(step.cells, step.undecided);
+        if (step.cells == before && step.undecided == before_undecided) continue;
+        before = step.cells, before_undecided = step.undecided;
+        out.steps.push_back(std::move(step));
+        if (int(out.steps.size()) >= max_steps) {
+            out.truncated = true;
+            break;
+        }
+    }
+    return out;
+}
+
 template <class S, if_solvable<S>>
 Result intersect(const S& shape, const Line& l, Query q, Precision p) {
     numeric::StandardEnvironmentT<true> standard;

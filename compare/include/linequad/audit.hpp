@@ -384,6 +384,8 @@ Row family_total(const Report& r, const std::string& family, const std::string& 
 int breaks_at(const Report& r, const std::string& family, const std::string& solver);
 // Text for people: "0.12 %", "< 0.01 %", "100 %"; "-" of nothing.
 std::string percent_of(std::uint64_t part, std::uint64_t whole);
+// A count as people read it: 21,600,000.
+std::string grouped(std::uint64_t n);
 // An error of t in bits, log2(1 + ulps), one decimal ("0" when there is none).
 std::string bits_text(double ulps);
 // The verdict in one line of words (the audit's closing summary).

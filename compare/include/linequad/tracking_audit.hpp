@@ -50,8 +50,10 @@ enum class TrackOutcome : std::uint8_t {
     overlap,    // the exact track is in several cells at once (the model's fault)
     undecided,  // the exact track runs along a surface: no step to grade
     stuck,      // more steps than max_steps (a run of steps of length ~0)
+    inexact,    // linequad's cells: every cell right, a distance or a surface crossed not the
+                // oracle's bits
 };
-inline constexpr int track_outcome_count = 8;
+inline constexpr int track_outcome_count = 9;
 const char* track_outcome_name(TrackOutcome o);
 
 struct GradedTrack {
@@ -63,12 +65,35 @@ struct GradedTrack {
 };
 GradedTrack grade_track(const Model::Track& exact, const TrackerRun& run);
 
+// linequad's own tracker (fast/'s Model::track, the correct solver's crossings in exact order)
+// graded against the oracle's track (exact::track in robust/): right only where the two are the
+// same bit for bit (every step's distance, surfaces and cells, the start, the truncation),
+// overlaps and undecided steps included.
+GradedTrack grade_linequad_track(const Model::Track& oracle, const Model::Track& fast);
+
+// The trackers the audit grades: the one transport codes write with its own distances, with
+// stable's and with correct's (TrackerDistances), and linequad's cells.
+inline constexpr int tracker_count = tracker_distances_count + 1;
+const char* tracker_name(int k); // "textbook", "+ stable distances", ..., "linequad cells"
+
 // The ray families the audit runs on a model: where its box (the region sources are drawn from)
 // is given.
 // corner: aimed, from a point of the box, exactly through a point where three of the model's
 // axis-aligned planes meet (a lattice cell's corner), or starting there.
-enum class TrackFamily : std::uint8_t { generic, far_source, axis_parallel, along_plane, corner };
-inline constexpr int track_family_count = 5;
+// grazing: tangent to one of the model's curved surfaces at a point of it (a line's correctly
+// rounded hit there), from up to a box size before it: a ray that skims the surface.
+// backscatter: from a point 2^-20 to 2^-50 box sizes past the first surface a generic ray
+// crosses, turned back towards it (a particle scattered just after a crossing).
+enum class TrackFamily : std::uint8_t {
+    generic,
+    far_source,
+    axis_parallel,
+    along_plane,
+    corner,
+    grazing,
+    backscatter
+};
+inline constexpr int track_family_count = 7;
 const char* track_family_name(TrackFamily f);
 
 struct TrackRay {
@@ -83,7 +108,24 @@ struct TrackingTally {
     std::uint64_t rays = 0, steps = 0, zero_length_steps = 0;
     std::array<std::uint64_t, track_outcome_count> outcomes{};
     double max_t_ulps = 0;
-    std::string worst; // the first failing ray, as a replayable query line
+    std::string worst;      // the first failing ray, as a query line (query_line)
+    std::string worst_what; // how it failed: "extra at step 1"
 };
+
+// A ray as a line of `linequad cells MODEL`'s queries, its numbers exact: {"id", "p", "u"}.
+std::string query_line(const std::string& id, Vec3 p, Vec3 u);
+
+// Points drawn uniformly in the box and located exactly (each with a direction of its own, which
+// decides a point on a surface): those in two cells or more (an overlap, the model's fault) and
+// those in none (a gap, or a box reaching beyond the model), OpenMC's --geometry-debug asked at
+// points rather than where particles happen to pass.
+struct PointSample {
+    std::uint64_t points = 0, in_none = 0, undecided = 0;
+    // Overlaps by the cells holding the point (indices, in order), how many points each.
+    std::vector<std::pair<std::vector<int>, std::uint64_t>> overlaps;
+    std::string first_overlap, first_gap; // query lines
+};
+PointSample sample_points(const Model& m, Vec3 box_lo, Vec3 box_hi, std::uint64_t seed,
+                          std::uint64_t n);
 
 } // namespace linequad

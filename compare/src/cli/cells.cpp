@@ -2,14 +2,19 @@
 // exact tracks through it, or the tracking audit of the tracker transport codes write.
 #include "cli/cli.hpp"
 #include "cli/openmc_geometry.hpp"
+#include "linequad/audit.hpp"
 #include "linequad/case_io.hpp"
+#include "linequad/exact.hpp"
 #include "linequad/tracking_audit.hpp"
 
+#include "io/escape.hpp"
 #include "io/jsonl.hpp"
+#include "report/report_html.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -20,7 +25,7 @@ namespace {
 
 struct CellsArgs {
     std::string model, queries = "-", rays = "1000", seed = "1", max_steps = "1000",
-                       max_model_bytes = "268435456", markdown, box;
+                       max_model_bytes = "268435456", markdown, box, out, points = "20000";
     bool audit = false;
 };
 
@@ -156,117 +161,237 @@ int run_queries(const CellsArgs& a) {
     return malformed ? 1 : 0;
 }
 
-// The tracking audit: each family's rays through the model, the tracker transport codes write
-// (with its own distances, then linequad's stable and correct ones) graded against the exact
-// track. The summary, verdict first, in markdown.
-int run_audit(const CellsArgs& a) {
-    Loaded l = load(a);
-    if (!l.box)
-        throw std::runtime_error(a.model + ": the tracking audit needs the model's \"box\"");
-    std::uint64_t rays = to_whole(a.rays), seed = to_whole(a.seed);
-    int max_steps = int(to_whole(a.max_steps));
-    Vec3 lo = (*l.box)[0], hi = (*l.box)[1];
+// The tracking audit's tallies: each tracker's on each family, and their totals.
+struct TrackingRun {
     struct Row {
-        TrackerDistances tracker;
+        int tracker; // tracker_name
         TrackFamily family;
         TrackingTally tally;
     };
     std::vector<Row> rows;
-    std::array<TrackingTally, tracker_distances_count> totals{};
+    std::array<TrackingTally, tracker_count> totals{};
     std::uint64_t exact_steps = 0, exact_rays = 0;
+};
+
+void tally_ray(TrackingTally& t, const GradedTrack& g, TrackFamily f, std::uint64_t i,
+               const TrackRay& ray) {
+    ++t.rays;
+    t.steps += std::uint64_t(g.steps);
+    t.zero_length_steps += std::uint64_t(g.zero_length_steps);
+    ++t.outcomes[std::size_t(g.outcome)];
+    t.max_t_ulps = std::max(t.max_t_ulps, g.max_t_ulps);
+    bool fault = g.outcome != TrackOutcome::right && g.outcome != TrackOutcome::overlap &&
+                 g.outcome != TrackOutcome::undecided;
+    if (fault && t.worst.empty()) {
+        t.worst =
+            query_line(std::string(track_family_name(f)) + "/" + std::to_string(i), ray.p, ray.u);
+        t.worst_what = std::string(track_outcome_name(g.outcome)) + " at step " +
+                       std::to_string(g.failed_step);
+    }
+}
+
+// Each family's rays, the reference the oracle's exact track (robust/), each tracker graded
+// against it: the transport codes' loop with its three kinds of distances, and linequad's cells.
+TrackingRun track_families(const Model& m, Vec3 lo, Vec3 hi, std::uint64_t rays, std::uint64_t seed,
+                           int max_steps) {
+    TrackingRun out;
     for (int f = 0; f < track_family_count; ++f) {
-        std::array<TrackingTally, tracker_distances_count> tally{};
+        std::array<TrackingTally, tracker_count> tally{};
         for (std::uint64_t i = 0; i < rays; ++i) {
-            std::optional<TrackRay> ray = track_ray(l.model, lo, hi, TrackFamily(f), seed, i);
+            std::optional<TrackRay> ray = track_ray(m, lo, hi, TrackFamily(f), seed, i);
             if (!ray) break;
-            Model::Track exact = l.model.track(ray->p, ray->u, max_steps);
-            if (!exact.error.ok()) continue; // a ray a surface refuses (none in a valid model)
-            exact_steps += exact.steps.size(), ++exact_rays;
-            for (int d = 0; d < tracker_distances_count; ++d) {
-                TrackerRun run =
-                    textbook_track(l.model, ray->p, ray->u, max_steps, TrackerDistances(d));
-                GradedTrack g = grade_track(exact, run);
-                TrackingTally& t = tally[std::size_t(d)];
-                ++t.rays;
-                t.steps += std::uint64_t(g.steps);
-                t.zero_length_steps += std::uint64_t(g.zero_length_steps);
-                ++t.outcomes[std::size_t(g.outcome)];
-                t.max_t_ulps = std::max(t.max_t_ulps, g.max_t_ulps);
-                bool fault = g.outcome != TrackOutcome::right &&
-                             g.outcome != TrackOutcome::overlap &&
-                             g.outcome != TrackOutcome::undecided;
-                if (fault && t.worst.empty())
-                    t.worst = "{\"id\":\"" + std::string(track_family_name(TrackFamily(f))) + "/" +
-                              std::to_string(i) + "\",\"p\":[\"" + hex(ray->p.x) + "\",\"" +
-                              hex(ray->p.y) + "\",\"" + hex(ray->p.z) + "\"],\"u\":[\"" +
-                              hex(ray->u.x) + "\",\"" + hex(ray->u.y) + "\",\"" + hex(ray->u.z) +
-                              "\"]}  (" + track_outcome_name(g.outcome) + " at step " +
-                              std::to_string(g.failed_step) + ")";
-            }
+            Model::Track oracle = exact::track(m, ray->p, ray->u, max_steps);
+            if (!oracle.error.ok()) continue; // a ray a surface refuses (none in a valid model)
+            out.exact_steps += oracle.steps.size(), ++out.exact_rays;
+            for (int d = 0; d < tracker_distances_count; ++d)
+                tally_ray(tally[std::size_t(d)],
+                          grade_track(oracle, textbook_track(m, ray->p, ray->u, max_steps,
+                                                             TrackerDistances(d))),
+                          TrackFamily(f), i, *ray);
+            tally_ray(tally[tracker_distances_count],
+                      grade_linequad_track(oracle, m.track(ray->p, ray->u, max_steps)),
+                      TrackFamily(f), i, *ray);
         }
-        for (int d = 0; d < tracker_distances_count; ++d) {
+        for (int d = 0; d < tracker_count; ++d) {
             const TrackingTally& t = tally[std::size_t(d)];
-            TrackingTally& total = totals[std::size_t(d)];
+            TrackingTally& total = out.totals[std::size_t(d)];
             total.rays += t.rays, total.steps += t.steps;
             total.zero_length_steps += t.zero_length_steps;
             for (int o = 0; o < track_outcome_count; ++o)
                 total.outcomes[std::size_t(o)] += t.outcomes[std::size_t(o)];
             total.max_t_ulps = std::max(total.max_t_ulps, t.max_t_ulps);
-            if (total.worst.empty()) total.worst = t.worst;
-            rows.push_back({TrackerDistances(d), TrackFamily(f), t});
+            if (total.worst.empty()) total.worst = t.worst, total.worst_what = t.worst_what;
+            out.rows.push_back({d, TrackFamily(f), t});
         }
     }
-    auto count = [](const TrackingTally& t, TrackOutcome o) { return t.outcomes[std::size_t(o)]; };
-    auto failed = [&](const TrackingTally& t) {
-        return t.rays - count(t, TrackOutcome::right) - count(t, TrackOutcome::overlap) -
-               count(t, TrackOutcome::undecided);
-    };
-    const TrackingTally& textbook = totals[0];
+    return out;
+}
+
+std::uint64_t count(const TrackingTally& t, TrackOutcome o) {
+    return t.outcomes[std::size_t(o)];
+}
+// Rays the tracker took wrong (overlap and undecided rays are the model's, not graded).
+std::uint64_t failed(const TrackingTally& t) {
+    return t.rays - count(t, TrackOutcome::right) - count(t, TrackOutcome::overlap) -
+           count(t, TrackOutcome::undecided);
+}
+
+// The command that shows a query's exact answer, as a code span (report.html gives it a copy
+// button): the query's line on the standard input of `linequad cells MODEL`.
+std::string replay(const std::string& model, const std::string& query) {
+    return escape::markdown_code("echo " + escape::shell_word(query) + " | linequad cells " +
+                                 escape::shell_word(model));
+}
+
+std::string cells_list(const Model& m, const std::vector<int>& cells) {
+    std::string out;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+        const Model::Cell& c = m.cells()[std::size_t(cells[i])];
+        out += std::string(i == 0                  ? ""
+                           : i + 1 == cells.size() ? " and "
+                                                   : ", ") +
+               "cell " + std::to_string(c.id) + (c.name.empty() ? "" : " (" + c.name + ")");
+    }
+    return out;
+}
+
+// The report, verdict first: how each tracker did, the points in two cells or none, then each
+// failing tracker and family's first failing ray with its replay, the table by family.
+std::string tracking_markdown(const CellsArgs& a, const Model& m, const TrackingRun& run,
+                              const PointSample& points) {
+    using escape::markdown_text;
+    const TrackingTally& textbook = run.totals[0];
     std::ostringstream md;
-    md << "# Tracking audit: " << a.model << "\n\n";
-    md << "**The textbook tracker went wrong on " << failed(textbook) << " of " << textbook.rays
-       << " rays** (lost " << count(textbook, TrackOutcome::lost) << ", wrong cell "
-       << count(textbook, TrackOutcome::wrong_cell) << ", missed crossing "
-       << count(textbook, TrackOutcome::missed) << ", extra crossing "
-       << count(textbook, TrackOutcome::extra) << ", stuck " << count(textbook, TrackOutcome::stuck)
-       << "); with linequad's stable distances on " << failed(totals[1])
-       << ", with its correct distances on " << failed(totals[2])
-       << ". The reference is the model's exact track (" << exact_steps << " cell changes on "
-       << exact_rays << " rays), which linequad's cells follow exactly: each crossing's order "
-       << "exact, its distance correctly rounded.\n\n";
-    for (int d = 0; d < tracker_distances_count; ++d)
-        if (!totals[std::size_t(d)].worst.empty())
-            md << "First failing ray of the tracker with "
-               << tracker_distances_name(TrackerDistances(d))
-               << " distances (replay its exact track: `linequad cells " << a.model
-               << "` with this line on standard input):\n\n    " << totals[std::size_t(d)].worst
-               << "\n\n";
-    md << "| distances | family | rays | right | lost | wrong cell | missed | extra | stuck | "
-          "overlap | undecided | steps | steps < 1e-12 | max t error (ulps) |\n";
-    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    for (const Row& row : rows) {
+    md << "# Tracking audit: " << markdown_text(a.model) << "\n\n";
+    const TrackingTally& own = run.totals[tracker_distances_count];
+    using audit::grouped;
+    md << "**The textbook tracker went wrong on " << grouped(failed(textbook)) << " of "
+       << grouped(textbook.rays) << " rays** (lost " << grouped(count(textbook, TrackOutcome::lost))
+       << ", wrong cell " << grouped(count(textbook, TrackOutcome::wrong_cell))
+       << ", missed crossing " << grouped(count(textbook, TrackOutcome::missed))
+       << ", extra crossing " << grouped(count(textbook, TrackOutcome::extra)) << ", stuck "
+       << grouped(count(textbook, TrackOutcome::stuck))
+       << "); with linequad's stable distances in the same loop on "
+       << grouped(failed(run.totals[1])) << ", with its correct distances on "
+       << grouped(failed(run.totals[2])) << ". **linequad's cells went wrong on "
+       << grouped(failed(own)) << "**: its tracks are the oracle's bit for bit on "
+       << grouped(count(own, TrackOutcome::right) + count(own, TrackOutcome::overlap) +
+                  count(own, TrackOutcome::undecided))
+       << " of " << grouped(own.rays) << ". The reference is the oracle's exact track (robust/, "
+       << grouped(run.exact_steps) << " cell changes on " << grouped(run.exact_rays)
+       << " rays): each crossing ordered by its exact root, its distance correctly rounded.\n\n";
+    std::uint64_t overlapping = 0;
+    for (const auto& [cells, n] : points.overlaps)
+        overlapping += n;
+    md << "**Overlaps and gaps:** of " << audit::grouped(points.points)
+       << " points drawn in the box, " << audit::grouped(overlapping)
+       << " lie in two cells or more";
+    for (std::size_t k = 0; k < points.overlaps.size() && k < 3; ++k)
+        md << (k ? "; " : " (") << markdown_text(cells_list(m, points.overlaps[k].first)) << ": "
+           << points.overlaps[k].second;
+    md << (points.overlaps.empty() ? "" : ")") << ", " << audit::grouped(points.in_none)
+       << " in no cell (a gap, or the box reaching beyond the model)";
+    if (points.undecided) md << ", " << points.undecided << " on a surface, undecided";
+    md << ".\n\n";
+    if (!points.first_overlap.empty())
+        md << "The first point in two cells (its cells): " << replay(a.model, points.first_overlap)
+           << "\n\n";
+    if (!points.first_gap.empty())
+        md << "The first point in none: " << replay(a.model, points.first_gap) << "\n\n";
+    // Each tracker's share of rays gone wrong, family by family: where each one breaks.
+    md << "| rays gone wrong |";
+    for (int f = 0; f < track_family_count; ++f)
+        md << " " << markdown_text(track_family_name(TrackFamily(f))) << " |";
+    md << "\n|---|";
+    for (int f = 0; f < track_family_count; ++f)
+        md << "---:|";
+    md << "\n";
+    for (int k = 0; k < tracker_count; ++k) {
+        md << "| " << tracker_name(k) << " |";
+        for (const TrackingRun::Row& row : run.rows) {
+            if (row.tracker != k) continue;
+            std::uint64_t graded = row.tally.rays - count(row.tally, TrackOutcome::overlap) -
+                                   count(row.tally, TrackOutcome::undecided);
+            md << " "
+               << (!row.tally.rays ? "-"
+                   : graded        ? audit::percent_of(failed(row.tally), graded)
+                                   : "not graded")
+               << " |";
+        }
+        md << "\n";
+    }
+    md << "\nOf the rays each tracker is graded on, up to " << audit::grouped(to_whole(a.rays))
+       << " a family: lost, wrong cell, missed, extra, stuck or inexact, each counted in the "
+          "table by family below. \"-\": the family does not apply to this model; \"not "
+          "graded\": every exact track runs along a surface or through an overlap, which the "
+          "transport codes' loop is not graded on (linequad's cells are: their tracks must be "
+          "the oracle's there too).\n\n";
+    md << "## Failing rays\n\n";
+    bool any = false;
+    for (const TrackingRun::Row& row : run.rows) {
+        if (row.tally.worst.empty()) continue;
+        any = true;
+        md << "**" << tracker_name(row.tracker) << ", " << track_family_name(row.family)
+           << "**: " << audit::grouped(failed(row.tally)) << " of "
+           << audit::grouped(row.tally.rays) << " rays; the first, " << row.tally.worst_what
+           << " (its exact track): " << replay(a.model, row.tally.worst) << "\n\n";
+    }
+    if (!any) md << "None: every tracker entered every cell the exact tracks enter.\n\n";
+    md << "## By family\n\n";
+    md << "| tracker | family | rays | right | lost | wrong cell | missed | extra | stuck | "
+          "inexact | overlap | undecided | steps | steps < 1e-12 | max t error (ulps) |\n";
+    md << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const TrackingRun::Row& row : run.rows) {
         const TrackingTally& t = row.tally;
-        md << "| " << tracker_distances_name(row.tracker) << " | " << track_family_name(row.family)
-           << " | " << t.rays;
-        for (TrackOutcome o : {TrackOutcome::right, TrackOutcome::lost, TrackOutcome::wrong_cell,
-                               TrackOutcome::missed, TrackOutcome::extra, TrackOutcome::stuck,
-                               TrackOutcome::overlap, TrackOutcome::undecided})
+        md << "| " << tracker_name(row.tracker) << " | "
+           << markdown_text(track_family_name(row.family)) << " | " << t.rays;
+        for (TrackOutcome o :
+             {TrackOutcome::right, TrackOutcome::lost, TrackOutcome::wrong_cell,
+              TrackOutcome::missed, TrackOutcome::extra, TrackOutcome::stuck, TrackOutcome::inexact,
+              TrackOutcome::overlap, TrackOutcome::undecided})
             md << " | " << count(t, o);
         char ulps[32];
         std::snprintf(ulps, sizeof ulps, "%.3g", t.max_t_ulps);
         md << " | " << t.steps << " | " << t.zero_length_steps << " | " << ulps << " |\n";
     }
     md << "\nRight: every step into the cell the exact track enters; overlap and undecided rays "
-          "(the exact track in two cells, or moving along a surface) are not graded. The t error "
-          "is the tracker's summed distance against the exact crossing's, over right steps.\n";
-    md << "\nCommand: `linequad cells " << a.model << " --audit --rays " << a.rays << " --seed "
-       << a.seed << "`\n";
-    if (a.markdown.empty()) {
+          "(the exact track in two cells, or moving along a surface) are not graded, but for "
+          "linequad's cells, right only where its track is the oracle's bit for bit. The t error "
+          "is the tracker's summed distance against the exact crossing's, over right steps. A "
+          "family with no rays does not apply to the model (no axis-aligned planes, no curved "
+          "surface).\n";
+    md << "\nCommand: "
+       << escape::markdown_code("linequad cells " + escape::shell_word(a.model) +
+                                " --audit --rays " + a.rays + " --points " + a.points + " --seed " +
+                                a.seed)
+       << "\n";
+    return md.str();
+}
+
+// The tracking audit: each family's rays through the model, the tracker transport codes write
+// (with its own distances, then linequad's stable and correct ones) graded against the exact
+// track; and points sampled in the box for overlaps and gaps.
+int run_audit(const CellsArgs& a) {
+    Loaded l = load(a);
+    if (!l.box)
+        throw std::runtime_error(a.model + ": the tracking audit needs the model's \"box\"");
+    Vec3 lo = (*l.box)[0], hi = (*l.box)[1];
+    std::uint64_t seed = to_whole(a.seed);
+    TrackingRun run =
+        track_families(l.model, lo, hi, to_whole(a.rays), seed, int(to_whole(a.max_steps)));
+    PointSample points = sample_points(l.model, lo, hi, seed, to_whole(a.points));
+    std::string md = tracking_markdown(a, l.model, run, points);
+    if (!a.out.empty()) {
+        std::filesystem::create_directories(a.out);
+        jsonl::write_file(a.out + "/report.md", md);
+        audit::write_report_html(a.out);
+        std::fprintf(stderr, "cells: %s/report.md and report.html\n", a.out.c_str());
+    }
+    if (!a.markdown.empty()) jsonl::write_file(a.markdown, md);
+    if (a.out.empty() && a.markdown.empty()) {
         jsonl::Output out;
-        out.text(md.str());
+        out.text(md);
         out.finish();
-    } else {
-        jsonl::write_file(a.markdown, md.str());
     }
     return 0;
 }
@@ -304,8 +429,14 @@ Command cells_command(CLI::App& app) {
                   "where the audit draws its sources, x0,y0,z0,x1,y1,z1 (a geometry.xml has "
                   "none; a JSON model's own \"box\" is replaced)")
         ->type_name("BOX");
-    s->add_option("--markdown", a->markdown, "write the audit's summary here (default: stdout)")
+    s->add_option("--points", a->points,
+                  "points drawn in the box and located, for overlaps and gaps (--audit)")
+        ->check(WholeNumber(0, 100000000))
+        ->type_name("N");
+    s->add_option("--markdown", a->markdown, "write the audit's report here (default: stdout)")
         ->type_name("FILE");
+    s->add_option("--out", a->out, "write the audit's report.md and report.html into DIR")
+        ->type_name("DIR");
     return {s,
             [a](const std::string&) {
                 try {

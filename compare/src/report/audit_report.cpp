@@ -61,15 +61,6 @@ std::string fmt_ulps(std::uint64_t u) {
 std::string with_share(std::uint64_t n, std::uint64_t cases) {
     return n ? std::to_string(n) + " (" + percent_of(n, cases) + ")" : "0";
 }
-// A count as people read it: 21,600,000.
-std::string grouped(std::uint64_t n) {
-    std::string digits = std::to_string(n), out;
-    for (std::size_t i = 0; i < digits.size(); ++i) {
-        if (i && (digits.size() - i) % 3 == 0) out += ',';
-        out += digits[i];
-    }
-    return out;
-}
 
 // A library's output as a person reads it: a line repeated in a run (ODE repeats its internal
 // error once per crash) shown once, with how many times it came; a last line cut off where the

@@ -267,7 +267,7 @@ document.querySelectorAll("#verdict h3").forEach(h => {
   });
 });
 document.querySelectorAll("p > code").forEach(code => {
-  if (/^echo '.*' \| linequad replay /.test(code.textContent)) addCopyButton(code);
+  if (/^echo '.*' \| linequad (replay|cells) /.test(code.textContent)) addCopyButton(code);
 });
 </script>
 </body>

@@ -81,6 +81,15 @@ std::string bits_text(double ulps) {
     return ulps == 0 ? "0" : number(bits(ulps), "%.1f");
 }
 
+std::string grouped(std::uint64_t n) {
+    std::string digits = std::to_string(n), out;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i && (digits.size() - i) % 3 == 0) out += ',';
+        out += digits[i];
+    }
+    return out;
+}
+
 std::string percent_of(std::uint64_t part, std::uint64_t whole) {
     if (whole == 0) return "-";
     if (part == 0) return "0 %";

@@ -2,10 +2,13 @@
 // model's exact track, and the ray families.
 #include "linequad/tracking_audit.hpp"
 
+#include "linequad/case_io.hpp"
 #include "linequad/solvers.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <random>
 
@@ -186,13 +189,45 @@ TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
 }
 
 const char* track_outcome_name(TrackOutcome o) {
-    static const char* const names[] = {"right", "lost",    "wrong_cell", "missed",
-                                        "extra", "overlap", "undecided",  "stuck"};
+    static const char* const names[] = {"right",   "lost",      "wrong_cell", "missed", "extra",
+                                        "overlap", "undecided", "stuck",      "inexact"};
     return names[int(o)];
+}
+
+const char* tracker_name(int k) {
+    static const char* const names[] = {"textbook", "textbook, stable distances",
+                                        "textbook, correct distances", "linequad cells"};
+    return names[k];
+}
+
+GradedTrack grade_linequad_track(const Model::Track& oracle, const Model::Track& fast) {
+    GradedTrack g;
+    auto fail = [&](TrackOutcome o, int step) {
+        g.outcome = o, g.failed_step = step;
+        return g;
+    };
+    if (fast.start != oracle.start || fast.start_undecided != oracle.start_undecided)
+        return fail(fast.start.empty() ? TrackOutcome::lost : TrackOutcome::wrong_cell, 0);
+    for (std::size_t k = 0; k < oracle.steps.size() || k < fast.steps.size(); ++k) {
+        int step = int(k) + 1;
+        if (k >= fast.steps.size()) return fail(TrackOutcome::missed, step);
+        if (k >= oracle.steps.size()) return fail(TrackOutcome::extra, step);
+        const Model::Step &e = oracle.steps[k], &f = fast.steps[k];
+        ++g.steps;
+        double ulp = std::nextafter(std::fabs(e.t), infinity) - std::fabs(e.t);
+        g.max_t_ulps = std::max(g.max_t_ulps, std::fabs(f.t - e.t) / ulp);
+        if (f.cells != e.cells || f.undecided != e.undecided)
+            return fail(f.cells.empty() ? TrackOutcome::lost : TrackOutcome::wrong_cell, step);
+        if (!(f.t == e.t && std::signbit(f.t) == std::signbit(e.t)) || f.surfaces != e.surfaces)
+            return fail(TrackOutcome::inexact, step);
+    }
+    if (fast.truncated != oracle.truncated || fast.error.code != oracle.error.code)
+        return fail(TrackOutcome::inexact, int(oracle.steps.size()));
+    return g;
 }
 const char* track_family_name(TrackFamily f) {
     static const char* const names[] = {"generic", "far_source", "axis_parallel", "along_plane",
-                                        "corner"};
+                                        "corner",  "grazing",    "backscatter"};
     return names[int(f)];
 }
 
@@ -256,13 +291,13 @@ std::optional<TrackRay> track_ray(const Model& m, Vec3 lo, Vec3 hi, TrackFamily 
             if (std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z) > 1e-3) return d;
         }
     };
+    const double size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     switch (f) {
     case TrackFamily::generic:
         return TrackRay{point(), direction()};
     case TrackFamily::far_source: {
         // Aimed at a point of the box from 2^10 to 2^40 box sizes away.
         Vec3 target = point(), d = direction();
-        double size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
         double far = std::ldexp(size, 10 + int(i % 31));
         double len = std::sqrt(dot3(d, d));
         Vec3 p{target.x - far * d.x / len, target.y - far * d.y / len, target.z - far * d.z / len};
@@ -305,8 +340,87 @@ std::optional<TrackRay> track_ray(const Model& m, Vec3 lo, Vec3 hi, TrackFamily 
         if (!exact) return TrackRay{corner, direction()};
         return TrackRay{p, u};
     }
+    case TrackFamily::grazing: {
+        std::vector<const Quadric*> curved;
+        for (const Model::Surface& s : m.surfaces())
+            if (const Quadric* q = std::get_if<Quadric>(&s.shape))
+                if (q->q[0] != 0 || q->q[1] != 0 || q->q[2] != 0 || q->q[3] != 0 || q->q[4] != 0 ||
+                    q->q[5] != 0)
+                    curved.push_back(q);
+        if (curved.empty()) return std::nullopt;
+        const Quadric& q = *curved[i % curved.size()];
+        for (int attempt = 0; attempt < 1000; ++attempt) {
+            Result r = correct::intersect(q, Line{point(), direction(), Range::line});
+            if (r.count == 0) continue;
+            Vec3 at = r.hits[rng() % r.count].p, n = normal(q, at), w = direction();
+            double nn = dot3(n, n);
+            if (!(nn > 0) || !std::isfinite(nn)) continue;
+            double along = dot3(w, n) / nn;
+            Vec3 u{w.x - along * n.x, w.y - along * n.y, w.z - along * n.z};
+            double len = std::sqrt(dot3(u, u));
+            if (!(len > 1e-3)) continue;
+            double back = uniform(0, size) / len;
+            return TrackRay{{at.x - back * u.x, at.y - back * u.y, at.z - back * u.z}, u};
+        }
+        return std::nullopt; // no line of 1,000 met the surface in the box
+    }
+    case TrackFamily::backscatter: {
+        for (int attempt = 0; attempt < 1000; ++attempt) {
+            Vec3 p = point(), d = direction();
+            Model::Track t = m.track(p, d, 1);
+            if (t.steps.empty()) continue;
+            double len = std::sqrt(dot3(d, d));
+            double past = t.steps[0].t + std::ldexp(size, -20 - int(i % 31)) / len;
+            Vec3 at{p.x + past * d.x, p.y + past * d.y, p.z + past * d.z}, w = direction();
+            // Turned back: against d, by up to a right angle.
+            double into = dot3(w, d);
+            if (into > 0)
+                w = {w.x - 2 * into / (len * len) * d.x, w.y - 2 * into / (len * len) * d.y,
+                     w.z - 2 * into / (len * len) * d.z};
+            if (!(dot3(w, d) < 0)) continue;
+            return TrackRay{at, w};
+        }
+        return std::nullopt;
+    }
     }
     return std::nullopt;
+}
+
+std::string query_line(const std::string& id, Vec3 p, Vec3 u) {
+    return "{\"id\":\"" + id + "\",\"p\":[\"" + hex(p.x) + "\",\"" + hex(p.y) + "\",\"" + hex(p.z) +
+           "\"],\"u\":[\"" + hex(u.x) + "\",\"" + hex(u.y) + "\",\"" + hex(u.z) + "\"]}";
+}
+
+PointSample sample_points(const Model& m, Vec3 lo, Vec3 hi, std::uint64_t seed, std::uint64_t n) {
+    PointSample out;
+    std::map<std::vector<int>, std::uint64_t> overlaps;
+    for (std::uint64_t i = 0; i < n; ++i) {
+        std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ull + 0x5eed0000ull + i);
+        auto uniform = [&](double a, double b) {
+            return std::uniform_real_distribution<double>(a, b)(rng);
+        };
+        Vec3 p{uniform(lo.x, hi.x), uniform(lo.y, hi.y), uniform(lo.z, hi.z)};
+        std::normal_distribution<double> normal_value;
+        Vec3 u{normal_value(rng), normal_value(rng), normal_value(rng)};
+        if (u == Vec3{}) u = {0, 0, 1};
+        Model::Location at = m.locate(p, u);
+        if (!at.error.ok()) continue;
+        ++out.points;
+        if (!at.undecided.empty()) {
+            ++out.undecided;
+        } else if (at.cells.size() > 1) {
+            if (out.first_overlap.empty())
+                out.first_overlap = query_line("overlap/" + std::to_string(i), p, u);
+            ++overlaps[at.cells];
+        } else if (at.cells.empty()) {
+            if (out.first_gap.empty()) out.first_gap = query_line("gap/" + std::to_string(i), p, u);
+            ++out.in_none;
+        }
+    }
+    out.overlaps.assign(overlaps.begin(), overlaps.end());
+    std::sort(out.overlaps.begin(), out.overlaps.end(),
+              [](const auto& a, const auto& b) { return a.second > b.second; });
+    return out;
 }
 
 } // namespace linequad

@@ -11,6 +11,7 @@
 // inputs (else not_binary32).
 #pragma once
 
+#include "linequad/cells.hpp"
 #include "linequad/scene.hpp"
 #include "linequad/solvers.hpp"
 #include "linequad/surfaces.hpp"
@@ -44,6 +45,12 @@ SenseResult sense(const Plane& s, Vec3 p);
 SenseResult sense(const Quadric& s, Vec3 p);
 SenseResult sense(const Plane& s, Vec3 p, Vec3 u);
 SenseResult sense(const Quadric& s, Vec3 p, Vec3 u);
+
+// The oracle for a model of cells (linequad/cells.hpp): the exact track Model::track defines,
+// from exact senses (above), each surface's crossings solved exactly and ordered by their exact
+// roots (a run of equal roots crossed at once, a tie), the distances correctly rounded. What
+// fast/'s Model::track must give bit for bit.
+Model::Track track(const Model& m, Vec3 p, Vec3 u, int max_steps);
 
 // The oracle as a named solver ("exact") for the CLI and the audit, answering in p.
 const Solver& solver(Precision p = Precision::binary64);
