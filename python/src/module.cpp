@@ -226,30 +226,34 @@ py::array solve(const PyShape& s, const py::array& origins, const py::array& dir
     py::array_t<Row> out = rows_for(n, out_arg);
     Row* rows_out = out.mutable_data();
     const T *o = L0.data(), *d = v.data();
-    py::gil_scoped_release released;
-    if (call != BatchCall::none) {
-        // Kept from call to call (a thread's own: the GIL is released): a caller answering
-        // 4,096 rays a call would otherwise pay for the buffer's first touch every time.
-        thread_local Chunk<T> kept;
-        Chunk<T>& chunk = kept;
-        const Row blank = blank_row();
-        for (std::size_t start = 0; start < n; start += Chunk<T>::size) {
-            std::size_t m = std::min(Chunk<T>::size, n - start);
-            chunk.solve(call, s.shape, chunk.lines(o + 3 * start, d + 3 * start, m, range), q);
-            const Result* answers = chunk.out.data();
-            for (std::size_t j = 0; j < m; ++j)
-                fill(rows_out[start + j], answers[j], q, blank);
-        }
-        return out;
-    }
     const Row blank = blank_row();
-    for (std::size_t i = 0; i < n; ++i) {
-        Line l{{double(o[3 * i]), double(o[3 * i + 1]), double(o[3 * i + 2])},
-               {double(d[3 * i]), double(d[3 * i + 1]), double(d[3 * i + 2])},
-               range};
-        Result r = fast ? fast->solve(s.shape, l, q) : exact::intersect(s.shape, l, q, precision);
-        if (!fast && r.ok()) r.certainty = Certainty::certain; // the oracle's answer is exact
-        fill(rows_out[i], r, q, blank);
+    {
+        // Released for the solving alone: the arrays' references are taken and dropped with it
+        // held (another thread may hold `out` too).
+        py::gil_scoped_release released;
+        if (call != BatchCall::none) {
+            // Kept from call to call (a thread's own: the GIL is released): a caller answering
+            // 4,096 rays a call would otherwise pay for the buffer's first touch every time.
+            thread_local Chunk<T> kept;
+            Chunk<T>& chunk = kept;
+            for (std::size_t start = 0; start < n; start += Chunk<T>::size) {
+                std::size_t m = std::min(Chunk<T>::size, n - start);
+                chunk.solve(call, s.shape, chunk.lines(o + 3 * start, d + 3 * start, m, range), q);
+                const Result* answers = chunk.out.data();
+                for (std::size_t j = 0; j < m; ++j)
+                    fill(rows_out[start + j], answers[j], q, blank);
+            }
+        } else {
+            for (std::size_t i = 0; i < n; ++i) {
+                Line l{{double(o[3 * i]), double(o[3 * i + 1]), double(o[3 * i + 2])},
+                       {double(d[3 * i]), double(d[3 * i + 1]), double(d[3 * i + 2])},
+                       range};
+                Result r =
+                    fast ? fast->solve(s.shape, l, q) : exact::intersect(s.shape, l, q, precision);
+                if (!fast && r.ok()) r.certainty = Certainty::certain; // the oracle's is exact
+                fill(rows_out[i], r, q, blank);
+            }
+        }
     }
     return out;
 }
@@ -421,7 +425,7 @@ Result answer_of(const double* t, py::ssize_t slots) {
 // A chunk of posed cases handed to fn as arrays (in the cases' precision), its t's read back.
 // Whatever fn raises or returns that is not one row of t's a case is charged to every case of
 // the chunk, with what it was; the audit goes on.
-void answer_in_python(const py::object& fn, Precision precision, const std::vector<Case>& posed,
+void answer_in_python(py::handle fn, Precision precision, const std::vector<Case>& posed,
                       std::vector<audit::ExternalAnswer>& out) {
     py::gil_scoped_acquire gil;
     py::ssize_t m = py::ssize_t(posed.size());
@@ -514,8 +518,10 @@ py::tuple run_audit(const py::object& fn, const std::vector<std::string>& famili
         e.worker_shapes |= 1u << k;
     if (o.shapes.empty()) e.worker_shapes = (1u << std::variant_size_v<Shape>)-1;
     if (std::string p = declaration_problem(e); !p.empty()) throw py::value_error(p);
-    e.chunk = [fn, precision = e.precision](const std::vector<Case>& posed,
-                                            std::vector<ExternalAnswer>& out) {
+    // fn borrowed, not owned: the audit copies its solvers with the GIL released, and a
+    // handle's copy touches no reference count (the caller holds fn until run() returns).
+    e.chunk = [fn = py::handle(fn), precision = e.precision](const std::vector<Case>& posed,
+                                                             std::vector<ExternalAnswer>& out) {
         answer_in_python(fn, precision, posed, out);
     };
     Report r;

@@ -199,7 +199,7 @@ TrackingRun track_families(const Model& m, Vec3 lo, Vec3 hi, std::uint64_t rays,
         std::array<TrackingTally, tracker_count> tally{};
         for (std::uint64_t i = 0; i < rays; ++i) {
             std::optional<TrackRay> ray = track_ray(m, lo, hi, TrackFamily(f), seed, i);
-            if (!ray) break;
+            if (!ray) continue; // the family does not apply, or no such ray came of this draw
             Model::Track oracle = exact::track(m, ray->p, ray->u, max_steps);
             if (!oracle.error.ok()) continue; // a ray a surface refuses (none in a valid model)
             out.exact_steps += oracle.steps.size(), ++out.exact_rays;

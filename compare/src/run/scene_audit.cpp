@@ -172,19 +172,10 @@ std::string percent(std::uint64_t n, std::uint64_t of) {
     return buf;
 }
 
-std::string count(std::uint64_t n) {
-    std::string s = std::to_string(n), out;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-        if (i && (s.size() - i) % 3 == 0) out += ',';
-        out += s[i];
-    }
-    return out;
-}
-
 // A histogram's quantile (its bucket's upper edge, at most the largest seen), as a whole number.
 std::string quantile(const Histogram& h, double q, std::uint64_t max) {
     if (h.total() == 0) return "–";
-    return count(std::uint64_t(std::min(h.quantile(q), double(max))));
+    return grouped(std::uint64_t(std::min(h.quantile(q), double(max))));
 }
 
 } // namespace
@@ -332,29 +323,29 @@ std::string scene_report_markdown(const std::vector<SceneRow>& rows, const Scene
         std::snprintf(buf, sizeof buf, "%.1f", t.scenes ? double(t.shapes) / double(t.scenes) : 0);
         std::string per_scene = buf;
         std::snprintf(buf, sizeof buf, "%.2f", t.lines ? double(t.solved) / double(t.lines) : 0);
-        md += "| " + escape::markdown_text(r.family) + " | " + count(t.scenes) + " | " +
-              count(t.lines) + " | " + per_scene + " | " + count(t.hits) + " | " +
-              percent(t.tie_lines, t.lines) + " | " + count(t.correct_differs_all) + " / " +
-              count(t.correct_differs_nearest) + " | " + percent(t.refined_all, t.lines) + " / " +
+        md += "| " + escape::markdown_text(r.family) + " | " + grouped(t.scenes) + " | " +
+              grouped(t.lines) + " | " + per_scene + " | " + grouped(t.hits) + " | " +
+              percent(t.tie_lines, t.lines) + " | " + grouped(t.correct_differs_all) + " / " +
+              grouped(t.correct_differs_nearest) + " | " + percent(t.refined_all, t.lines) + " / " +
               percent(t.refined_nearest, t.lines) + " | " + buf + " | " +
               percent(t.stable_wrong, t.lines) + " / " + percent(t.stable_missed, t.lines) + " / " +
               percent(t.stable_phantom, t.lines) + " | " +
               percent(t.stable_count_differs, t.lines) + " / " +
               percent(t.stable_misordered, t.lines) + " | " +
               quantile(t.stable_error, 0.5, t.stable_max_ulps) + " / " +
-              quantile(t.stable_error, 0.99, t.stable_max_ulps) + " / " + count(t.stable_max_ulps) +
-              " |\n";
+              quantile(t.stable_error, 0.99, t.stable_max_ulps) + " / " +
+              grouped(t.stable_max_ulps) + " |\n";
     }
     std::uint64_t refused = 0, stable_refused = 0, embree_lines = 0, embree_differs = 0;
     for (const SceneRow& r : rows) {
         refused += r.tally.correct_refused, stable_refused += r.tally.stable_refused;
         embree_lines += r.tally.embree_lines, embree_differs += r.tally.embree_differs;
     }
-    md += "\nRefused (out_of_range where the oracle answers): correct " + count(refused) +
-          " lines, stable " + count(stable_refused) + ".\n";
+    md += "\nRefused (out_of_range where the oracle answers): correct " + grouped(refused) +
+          " lines, stable " + grouped(stable_refused) + ".\n";
     if (embree_lines)
         md += "\nThe correct scene traversing Embree's BVH instead of its own: " +
-              count(embree_differs) + " of " + count(embree_lines) +
+              grouped(embree_differs) + " of " + grouped(embree_lines) +
               " lines answered otherwise than the oracle (need all and nearest).\n";
     else
         md += "\nBuilt without Embree: its traversal was not graded.\n";
