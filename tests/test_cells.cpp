@@ -2,9 +2,11 @@
 // exact queries a tracker asks, on models whose answers are known exactly.
 #include "support.hpp"
 
+#include "linequad/audit_solver.hpp"
 #include "linequad/case_io.hpp"
 #include "linequad/cells.hpp"
 #include "linequad/exact.hpp"
+#include "linequad/solvers.hpp"
 #include "linequad/tracking_audit.hpp"
 
 #include <catch2/catch.hpp>
@@ -427,6 +429,52 @@ TEST_CASE("cells: points in two cells or in none are found, named and replayable
     CHECK(clean.in_none == 0);
 }
 
+TEST_CASE("cells: the transport loop takes a user's distances as it takes linequad's", "[cells]") {
+    // An in-process solver answering with linequad's correct solver: the loop with its distances
+    // must run as the loop with correct distances does, step for step, whatever the family.
+    audit::ExternalSolver mine;
+    mine.name = "mine";
+    mine.on<Plane>() = [](const Plane& s, const Line& l) -> std::optional<Result> {
+        return correct::intersect(s, l, {Need::all, false});
+    };
+    mine.on<Quadric>() = [](const Quadric& s, const Line& l) -> std::optional<Result> {
+        return correct::intersect(s, l, {Need::all, false});
+    };
+    Model m =
+        build({{1, sphere(1)}, {2, sphere(4)}, {3, plane_x(0.5)}}, {{10, "core", "-1"},
+                                                                    {20, "shell, left", "1 -2 -3"},
+                                                                    {30, "shell, right", "1 -2 3"},
+                                                                    {40, "outside", "2"}});
+    CHECK(external_distances_problem(m, mine).empty());
+    int steps = 0;
+    for (int f = 0; f < track_family_count; ++f)
+        for (std::uint64_t i = 0; i < 200; ++i) {
+            std::optional<TrackRay> ray =
+                track_ray(m, {-3, -3, -3}, {3, 3, 3}, TrackFamily(f), 5, i);
+            if (!ray) break;
+            TrackerRun theirs = textbook_track(m, ray->p, ray->u, 100, mine),
+                       ours = textbook_track(m, ray->p, ray->u, 100, TrackerDistances::correct);
+            INFO(track_family_name(TrackFamily(f)) << " ray " << i);
+            CHECK(theirs.start == ours.start);
+            CHECK(theirs.escaped == ours.escaped);
+            REQUIRE(theirs.steps.size() == ours.steps.size());
+            for (std::size_t k = 0; k < ours.steps.size(); ++k) {
+                CHECK(theirs.steps[k].t == ours.steps[k].t);
+                CHECK(theirs.steps[k].cell == ours.steps[k].cell);
+            }
+            steps += int(ours.steps.size());
+        }
+    CHECK(steps > 1000);
+    // A solver without the model's planes, or taking its lines otherwise, cannot give them.
+    audit::ExternalSolver spheres_only = mine;
+    spheres_only.on<Plane>() = nullptr;
+    CHECK(external_distances_problem(m, spheres_only) ==
+          "solver 'mine' does not take the model's planes");
+    audit::ExternalSolver unit = mine;
+    unit.parametrisation = audit::Parametrisation::unit_direction;
+    CHECK(!external_distances_problem(m, unit).empty());
+}
+
 TEST_CASE("cells: the CLI answers queries on a model file and refuses a bad one by name",
           "[cells]") {
     namespace fs = std::filesystem;
@@ -482,6 +530,32 @@ TEST_CASE("cells: the CLI answers queries on a model file and refuses a bad one 
     CHECK(md_text.find("`echo '{\"id\":\"far_source/") != std::string::npos);
     CHECK(html_text.find("linequad (replay|cells) ") != std::string::npos);
     CHECK(html_text.find("<h1") != std::string::npos);
+    // A plugin's distances in the same loop, out of process: OpenMC's formulas without its
+    // 1e-12 rule (tests/plugins/transport_plugin.c) fail where the textbook's do on far sources.
+    std::string plugin = std::string(" --plugin '") + LINEQUAD_TRANSPORT_PLUGIN + "'";
+    test::Ran user = test::program("cells '" + model.string() +
+                                       "' --audit --rays 300 --points 10 --solvers "
+                                       "transport_textbook" +
+                                       plugin,
+                                   dir);
+    CHECK(user.status == 0);
+    std::string far = " | far\\_source | 300 | ";
+    auto row_of = [&](const std::string& tracker) {
+        std::size_t at = user.out.find("| " + tracker + far);
+        return at == std::string::npos ? std::string()
+                                       : user.out.substr(at + tracker.size() + far.size() + 2, 30);
+    };
+    CHECK(!row_of("textbook").empty());
+    CHECK(row_of("textbook\\, transport\\_textbook distances") == row_of("textbook"));
+    test::Ran own = test::program("cells '" + model.string() + "' --audit --solvers correct", dir);
+    CHECK(own.status == 2);
+    CHECK(own.err.find("'correct' is linequad's own") != std::string::npos);
+    test::Ran cylinders =
+        test::program("cells '" + model.string() + "' --audit --solvers textbook --plugin '" +
+                          LINEQUAD_EXAMPLE_PLUGIN + "'",
+                      dir);
+    CHECK(cylinders.status == 2);
+    CHECK(cylinders.err.find("does not take the model's quadrics") != std::string::npos);
 }
 
 TEST_CASE("cells: OpenMC's geometry.xml is read exactly, and what is not taken is named with its "

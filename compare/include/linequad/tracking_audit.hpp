@@ -2,6 +2,7 @@
 // codes write it, each step graded against the model's exact track. docs/cells.md says more.
 #pragma once
 
+#include "linequad/audit_solver.hpp"
 #include "linequad/cells.hpp"
 
 #include <array>
@@ -39,6 +40,16 @@ inline constexpr int tracker_distances_count = 3;
 const char* tracker_distances_name(TrackerDistances d);
 TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
                           TrackerDistances distances = TrackerDistances::textbook);
+// The same loop with a user's distances: a solver from outside (a plugin's, run in its worker)
+// that takes the model's planes and quadrics, asked once a step for the current cell's surfaces
+// (the one the particle sits on posed `coincident`, the ray from the particle's position), its
+// first hit beyond the particle taken as each one's distance. A refusal, a crash or a case it
+// cannot hold: no surface ahead.
+TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
+                          const audit::ExternalSolver& distances);
+// Why such a solver cannot give a model's distances (its lines not L0, v and t along v, its
+// surfaces not as posed, or a plane or a quadric it does not take); empty when it can.
+std::string external_distances_problem(const Model& m, const audit::ExternalSolver& s);
 
 // How a ray's track went against the exact one.
 enum class TrackOutcome : std::uint8_t {

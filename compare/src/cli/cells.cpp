@@ -25,7 +25,9 @@ namespace {
 
 struct CellsArgs {
     std::string model, queries = "-", rays = "1000", seed = "1", max_steps = "1000",
-                       max_model_bytes = "268435456", markdown, box, out, points = "20000";
+                       max_model_bytes = "268435456", markdown, box, out, points = "20000", solvers,
+                       timeout = "10";
+    std::vector<std::string> plugins;
     bool audit = false;
 };
 
@@ -164,12 +166,13 @@ int run_queries(const CellsArgs& a) {
 // The tracking audit's tallies: each tracker's on each family, and their totals.
 struct TrackingRun {
     struct Row {
-        int tracker; // tracker_name
+        int tracker; // its index in trackers
         TrackFamily family;
         TrackingTally tally;
     };
+    std::vector<std::string> trackers; // linequad's four (tracker_name), then a user's
     std::vector<Row> rows;
-    std::array<TrackingTally, tracker_count> totals{};
+    std::vector<TrackingTally> totals; // a tracker's
     std::uint64_t exact_steps = 0, exact_rays = 0;
 };
 
@@ -191,12 +194,20 @@ void tally_ray(TrackingTally& t, const GradedTrack& g, TrackFamily f, std::uint6
 }
 
 // Each family's rays, the reference the oracle's exact track (robust/), each tracker graded
-// against it: the transport codes' loop with its three kinds of distances, and linequad's cells.
+// against it: the transport codes' loop with its three kinds of distances, linequad's cells, and
+// the loop with each user's distances (`external`).
 TrackingRun track_families(const Model& m, Vec3 lo, Vec3 hi, std::uint64_t rays, std::uint64_t seed,
-                           int max_steps) {
+                           int max_steps,
+                           const std::vector<const audit::ExternalSolver*>& external) {
     TrackingRun out;
+    for (int k = 0; k < tracker_count; ++k)
+        out.trackers.push_back(tracker_name(k));
+    for (const audit::ExternalSolver* e : external)
+        out.trackers.push_back("textbook, " + e->name + " distances");
+    const std::size_t count = out.trackers.size();
+    out.totals.resize(count);
     for (int f = 0; f < track_family_count; ++f) {
-        std::array<TrackingTally, tracker_count> tally{};
+        std::vector<TrackingTally> tally(count);
         for (std::uint64_t i = 0; i < rays; ++i) {
             std::optional<TrackRay> ray = track_ray(m, lo, hi, TrackFamily(f), seed, i);
             if (!ray) continue; // the family does not apply, or no such ray came of this draw
@@ -211,17 +222,22 @@ TrackingRun track_families(const Model& m, Vec3 lo, Vec3 hi, std::uint64_t rays,
             tally_ray(tally[tracker_distances_count],
                       grade_linequad_track(oracle, m.track(ray->p, ray->u, max_steps)),
                       TrackFamily(f), i, *ray);
+            for (std::size_t x = 0; x < external.size(); ++x)
+                tally_ray(
+                    tally[tracker_count + x],
+                    grade_track(oracle, textbook_track(m, ray->p, ray->u, max_steps, *external[x])),
+                    TrackFamily(f), i, *ray);
         }
-        for (int d = 0; d < tracker_count; ++d) {
-            const TrackingTally& t = tally[std::size_t(d)];
-            TrackingTally& total = out.totals[std::size_t(d)];
+        for (std::size_t d = 0; d < count; ++d) {
+            const TrackingTally& t = tally[d];
+            TrackingTally& total = out.totals[d];
             total.rays += t.rays, total.steps += t.steps;
             total.zero_length_steps += t.zero_length_steps;
             for (int o = 0; o < track_outcome_count; ++o)
                 total.outcomes[std::size_t(o)] += t.outcomes[std::size_t(o)];
             total.max_t_ulps = std::max(total.max_t_ulps, t.max_t_ulps);
             if (total.worst.empty()) total.worst = t.worst, total.worst_what = t.worst_what;
-            out.rows.push_back({d, TrackFamily(f), t});
+            out.rows.push_back({int(d), TrackFamily(f), t});
         }
     }
     return out;
@@ -306,8 +322,8 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
     for (int f = 0; f < track_family_count; ++f)
         md << "---:|";
     md << "\n";
-    for (int k = 0; k < tracker_count; ++k) {
-        md << "| " << tracker_name(k) << " |";
+    for (int k = 0; k < int(run.trackers.size()); ++k) {
+        md << "| " << markdown_text(run.trackers[std::size_t(k)]) << " |";
         for (const TrackingRun::Row& row : run.rows) {
             if (row.tracker != k) continue;
             std::uint64_t graded = row.tally.rays - count(row.tally, TrackOutcome::overlap) -
@@ -331,8 +347,8 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
     for (const TrackingRun::Row& row : run.rows) {
         if (row.tally.worst.empty()) continue;
         any = true;
-        md << "**" << tracker_name(row.tracker) << ", " << track_family_name(row.family)
-           << "**: " << audit::grouped(failed(row.tally)) << " of "
+        md << "**" << markdown_text(run.trackers[std::size_t(row.tracker)]) << ", "
+           << track_family_name(row.family) << "**: " << audit::grouped(failed(row.tally)) << " of "
            << audit::grouped(row.tally.rays) << " rays; the first, " << row.tally.worst_what
            << " (its exact track): " << replay(a.model, row.tally.worst) << "\n\n";
     }
@@ -343,7 +359,7 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
     md << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const TrackingRun::Row& row : run.rows) {
         const TrackingTally& t = row.tally;
-        md << "| " << tracker_name(row.tracker) << " | "
+        md << "| " << markdown_text(run.trackers[std::size_t(row.tracker)]) << " | "
            << markdown_text(track_family_name(row.family)) << " | " << t.rays;
         for (TrackOutcome o :
              {TrackOutcome::right, TrackOutcome::lost, TrackOutcome::wrong_cell,
@@ -377,8 +393,31 @@ int run_audit(const CellsArgs& a) {
         throw std::runtime_error(a.model + ": the tracking audit needs the model's \"box\"");
     Vec3 lo = (*l.box)[0], hi = (*l.box)[1];
     std::uint64_t seed = to_whole(a.seed);
+    // A user's distances: the solvers named, a plugin's (in its worker) or a peer's.
+    std::vector<audit::ExternalSolver> ext;
+    std::vector<const audit::ExternalSolver*> users;
+    if (!a.solvers.empty()) {
+        std::vector<std::string> names = split_list(a.solvers);
+        ext = external_solvers(a.plugins, a.timeout, names);
+        for (const std::string& name : names) {
+            const audit::ExternalSolver* e = find_external(ext, name);
+            if (!e) {
+                std::string why = solver_error(name, false, ext);
+                throw std::runtime_error(
+                    "--solvers: " + (why.empty() ? "'" + name +
+                                                       "' is linequad's own: the loop with its "
+                                                       "stable and correct distances is graded "
+                                                       "already"
+                                                 : why));
+            }
+            if (std::string why = external_distances_problem(l.model, *e); !why.empty())
+                throw std::runtime_error("--solvers: " + why);
+            users.push_back(e);
+        }
+    }
     TrackingRun run =
-        track_families(l.model, lo, hi, to_whole(a.rays), seed, int(to_whole(a.max_steps)));
+        track_families(l.model, lo, hi, to_whole(a.rays), seed, int(to_whole(a.max_steps)), users);
+    report_plugin_output(ext);
     PointSample points = sample_points(l.model, lo, hi, seed, to_whole(a.points));
     std::string md = tracking_markdown(a, l.model, run, points);
     if (!a.out.empty()) {
@@ -433,6 +472,11 @@ Command cells_command(CLI::App& app) {
                   "points drawn in the box and located, for overlaps and gaps (--audit)")
         ->check(WholeNumber(0, 100000000))
         ->type_name("N");
+    s->add_option("--solvers", a->solvers,
+                  "(--audit) the transport loop again with each of these solvers' plane and "
+                  "quadric distances: a plugin's (--plugin) or a peer library's")
+        ->type_name("NAME,...");
+    add_plugin_options(s, a->plugins, a->timeout);
     s->add_option("--markdown", a->markdown, "write the audit's report here (default: stdout)")
         ->type_name("FILE");
     s->add_option("--out", a->out, "write the audit's report.md and report.html into DIR")

@@ -143,8 +143,13 @@ const char* tracker_distances_name(TrackerDistances d) {
     return names[int(d)];
 }
 
-TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
-                          TrackerDistances distances) {
+namespace {
+
+// The transport codes' loop (textbook_track's comment), its surface distances from `distances`:
+// begin(tokens, p, u, last) once a step, then distance(surface, on_it) for each surface the
+// current cell's region names.
+template <class Distances>
+TrackerRun transport_loop(const Model& m, Vec3 p, Vec3 u, int max_steps, Distances& distances) {
     TrackerRun run;
     int cell = run.start = find_cell(m, p, u, -1, Sense::on);
     if (cell < 0) return run;
@@ -153,16 +158,11 @@ TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
     while (int(run.steps.size()) < max_steps) {
         double d_min = infinity;
         int nearest = -1;
-        for (const Region::Token& tok : m.cells()[std::size_t(cell)].region.tokens()) {
+        const std::vector<Region::Token>& tokens = m.cells()[std::size_t(cell)].region.tokens();
+        distances.begin(tokens, p, u, last);
+        for (const Region::Token& tok : tokens) {
             if (tok.op != Region::Op::half_space) continue;
-            bool on_it = tok.surface == last;
-            double d = std::visit(
-                [&](const auto& x) {
-                    return distances == TrackerDistances::textbook
-                               ? distance(x, p, u, on_it)
-                               : solver_distance(x, p, u, on_it, distances);
-                },
-                m.surfaces()[std::size_t(tok.surface)].shape);
+            double d = distances.distance(tok.surface, tok.surface == last, p, u);
             if (d < d_min && (d_min == infinity || std::fabs(d - d_min) / d_min >= fp_precision))
                 d_min = d, nearest = tok.surface;
         }
@@ -186,6 +186,97 @@ TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
         if (cell < 0) return run;
     }
     return run;
+}
+
+// The textbook quadratic, or linequad's stable or correct solver, one surface at a time.
+struct OwnDistances {
+    const Model& m;
+    TrackerDistances kind;
+    void begin(const std::vector<Region::Token>&, Vec3, Vec3, int) {}
+    double distance(int surface, bool on_it, Vec3 p, Vec3 u) const {
+        return std::visit(
+            [&](const auto& x) {
+                return kind == TrackerDistances::textbook ? linequad::distance(x, p, u, on_it)
+                                                          : solver_distance(x, p, u, on_it, kind);
+            },
+            m.surfaces()[std::size_t(surface)].shape);
+    }
+};
+
+// A solver from outside (a plugin's, in its worker): each step's surfaces posed as one chunk of
+// cases (the surface the particle sits on `coincident`, the ray from p), asked at once.
+struct ExternalDistances {
+    const Model& m;
+    const audit::ExternalSolver& solver;
+    std::vector<Case> posed;
+    std::vector<int> surfaces;
+    std::vector<double> found;
+    std::vector<audit::ExternalAnswer> answers;
+
+    void begin(const std::vector<Region::Token>& tokens, Vec3 p, Vec3 u, int last) {
+        posed.clear(), surfaces.clear(), found.clear();
+        for (const Region::Token& tok : tokens) {
+            if (tok.op != Region::Op::half_space ||
+                std::find(surfaces.begin(), surfaces.end(), tok.surface) != surfaces.end())
+                continue;
+            Case c;
+            c.shape = std::visit(
+                [&](auto x) -> Shape {
+                    x.coincident = tok.surface == last;
+                    return x;
+                },
+                m.surfaces()[std::size_t(tok.surface)].shape);
+            c.line = Line{p, u, Range::ray};
+            posed.push_back(std::move(c));
+            surfaces.push_back(tok.surface);
+        }
+        if (!solver.answer_all(posed, answers, nullptr)) answers.assign(posed.size(), {});
+        for (const audit::ExternalAnswer& a : answers)
+            found.push_back(first_ahead(a));
+    }
+    // Its first hit beyond the particle; none (a refusal, a case it cannot hold): infinity,
+    // no surface ahead. Tangent touches are skipped where it reports kinds.
+    double first_ahead(const audit::ExternalAnswer& a) const {
+        if (!a.result || !a.result->ok()) return infinity;
+        double best = infinity;
+        for (int k = 0; k < a.result->count; ++k) {
+            const Hit& h = a.result->hits[k];
+            if (h.t > 0 && (!solver.kinds || h.kind == HitKind::cross)) best = std::min(best, h.t);
+        }
+        return best;
+    }
+    double distance(int surface, bool, Vec3, Vec3) const {
+        auto at = std::find(surfaces.begin(), surfaces.end(), surface);
+        return found[std::size_t(at - surfaces.begin())];
+    }
+};
+
+} // namespace
+
+TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
+                          TrackerDistances distances) {
+    OwnDistances own{m, distances};
+    return transport_loop(m, p, u, max_steps, own);
+}
+
+TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
+                          const audit::ExternalSolver& distances) {
+    ExternalDistances external{m, distances, {}, {}, {}, {}};
+    return transport_loop(m, p, u, max_steps, external);
+}
+
+std::string external_distances_problem(const Model& m, const audit::ExternalSolver& s) {
+    std::string why;
+    if (s.parametrisation != audit::Parametrisation::line || s.surface != audit::Surface::as_posed)
+        return "solver '" + s.name +
+               "' takes its lines as something else than L0, v and t along v, or its surfaces "
+               "other than as posed: a tracker's distances are t along u from p";
+    for (const Model::Surface& surface : m.surfaces())
+        if (!s.takes(std::visit([](const auto& x) -> Shape { return x; }, surface.shape)))
+            return "solver '" + s.name + "' does not take the model's " +
+                   std::string(std::holds_alternative<Plane>(surface.shape) ? "planes"
+                                                                            : "quadrics");
+    return "";
 }
 
 const char* track_outcome_name(TrackOutcome o) {
