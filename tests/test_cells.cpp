@@ -546,7 +546,7 @@ TEST_CASE("cells: the CLI answers queries on a model file and refuses a bad one 
                                        : user.out.substr(at + tracker.size() + far.size() + 2, 30);
     };
     CHECK(!row_of("textbook").empty());
-    CHECK(row_of("textbook\\, transport\\_textbook distances") == row_of("textbook"));
+    CHECK(row_of("textbook, transport\\_textbook distances") == row_of("textbook"));
     test::Ran own = test::program("cells '" + model.string() + "' --audit --solvers correct", dir);
     CHECK(own.status == 2);
     CHECK(own.err.find("'correct' is linequad's own") != std::string::npos);

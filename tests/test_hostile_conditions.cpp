@@ -282,6 +282,25 @@ TEST_CASE("signals: SIGTERM is honoured while a cases file is read", "[hostile][
     CHECK(slurp(dir / "b.err").find("endless: stopped") != std::string::npos);
 }
 
+TEST_CASE("signals: a tracking audit stopped writes what it tracked, a plugin's worker ended",
+          "[hostile][cli]") {
+    fs::path dir = scratch("sigterm_tracking");
+    std::string model = std::string(LINEQUAD_SOURCE_DIR) + "/examples/models/pin_cell.json";
+    // Ten million rays a family, with a plugin's distances: SIGTERM after a second.
+    int status = shell("timeout -k 10 -s TERM --preserve-status 1 " + bin() + " cells '" + model +
+                           "' --audit --rays 10000000 --out rep --solvers transport_textbook "
+                           "--plugin '" LINEQUAD_TRANSPORT_PLUGIN "' 2> err.txt",
+                       dir);
+    CHECK(status == 130);
+    CHECK(slurp(dir / "err.txt").find("stopped (SIGINT or SIGTERM) at ray ") != std::string::npos);
+    std::string md = slurp(dir / "rep/report.md");
+    CHECK(md.find("**Stopped** (SIGINT or SIGTERM) at ray ") != std::string::npos);
+    CHECK(md.find("**linequad's cells went wrong on 0**") != std::string::npos);
+    CHECK(fs::exists(dir / "rep/report.html"));
+    // The worker ended with the run.
+    CHECK(shell("pgrep -f 'plugin-worker " LINEQUAD_TRANSPORT_PLUGIN "' > /dev/null", dir) != 0);
+}
+
 TEST_CASE("memory: running out while reading an input names the input", "[hostile][cli]") {
     fs::path dir = scratch("memory");
     // An endless input under a 600 MB address-space limit: diff, merge and a cases file.

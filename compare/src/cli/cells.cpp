@@ -10,6 +10,7 @@
 #include "io/escape.hpp"
 #include "io/jsonl.hpp"
 #include "report/report_html.hpp"
+#include "run/stop.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -170,10 +171,11 @@ struct TrackingRun {
         TrackFamily family;
         TrackingTally tally;
     };
-    std::vector<std::string> trackers; // linequad's four (tracker_name), then a user's
+    std::vector<std::string> trackers; // linequad's four (tracker_name), then a user's: markdown
     std::vector<Row> rows;
     std::vector<TrackingTally> totals; // a tracker's
     std::uint64_t exact_steps = 0, exact_rays = 0;
+    std::string stopped; // where a stop request (SIGINT, SIGTERM) ended it, if one did
 };
 
 void tally_ray(TrackingTally& t, const GradedTrack& g, TrackFamily f, std::uint64_t i,
@@ -203,30 +205,34 @@ TrackingRun track_families(const Model& m, Vec3 lo, Vec3 hi, std::uint64_t rays,
     for (int k = 0; k < tracker_count; ++k)
         out.trackers.push_back(tracker_name(k));
     for (const audit::ExternalSolver* e : external)
-        out.trackers.push_back("textbook, " + e->name + " distances");
+        out.trackers.push_back("textbook, " + escape::markdown_text(e->name) + " distances");
     const std::size_t count = out.trackers.size();
     out.totals.resize(count);
     for (int f = 0; f < track_family_count; ++f) {
         std::vector<TrackingTally> tally(count);
-        for (std::uint64_t i = 0; i < rays; ++i) {
+        for (std::uint64_t i = 0; i < rays && out.stopped.empty(); ++i) {
+            if (audit::stop_requested()) {
+                out.stopped = "at ray " + std::to_string(i) + " of family " +
+                              track_family_name(TrackFamily(f));
+                break;
+            }
             std::optional<TrackRay> ray = track_ray(m, lo, hi, TrackFamily(f), seed, i);
             if (!ray) continue; // the family does not apply, or no such ray came of this draw
             Model::Track oracle = exact::track(m, ray->p, ray->u, max_steps);
             if (!oracle.error.ok()) continue; // a ray a surface refuses (none in a valid model)
-            out.exact_steps += oracle.steps.size(), ++out.exact_rays;
+            std::vector<GradedTrack> graded;
             for (int d = 0; d < tracker_distances_count; ++d)
-                tally_ray(tally[std::size_t(d)],
-                          grade_track(oracle, textbook_track(m, ray->p, ray->u, max_steps,
-                                                             TrackerDistances(d))),
-                          TrackFamily(f), i, *ray);
-            tally_ray(tally[tracker_distances_count],
-                      grade_linequad_track(oracle, m.track(ray->p, ray->u, max_steps)),
-                      TrackFamily(f), i, *ray);
-            for (std::size_t x = 0; x < external.size(); ++x)
-                tally_ray(
-                    tally[tracker_count + x],
-                    grade_track(oracle, textbook_track(m, ray->p, ray->u, max_steps, *external[x])),
-                    TrackFamily(f), i, *ray);
+                graded.push_back(grade_track(
+                    oracle, textbook_track(m, ray->p, ray->u, max_steps, TrackerDistances(d))));
+            graded.push_back(grade_linequad_track(oracle, m.track(ray->p, ray->u, max_steps)));
+            for (const audit::ExternalSolver* e : external)
+                graded.push_back(
+                    grade_track(oracle, textbook_track(m, ray->p, ray->u, max_steps, *e)));
+            // A stop while a plugin answered: its answers for this ray are not all there.
+            if (!external.empty() && audit::stop_requested()) continue;
+            out.exact_steps += oracle.steps.size(), ++out.exact_rays;
+            for (std::size_t d = 0; d < count; ++d)
+                tally_ray(tally[d], graded[d], TrackFamily(f), i, *ray);
         }
         for (std::size_t d = 0; d < count; ++d) {
             const TrackingTally& t = tally[d];
@@ -279,6 +285,9 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
     const TrackingTally& textbook = run.totals[0];
     std::ostringstream md;
     md << "# Tracking audit: " << markdown_text(a.model) << "\n\n";
+    if (!run.stopped.empty())
+        md << "**Stopped** (SIGINT or SIGTERM) " << markdown_text(run.stopped)
+           << ": what follows is what was tracked before.\n\n";
     const TrackingTally& own = run.totals[tracker_distances_count];
     using audit::grouped;
     md << "**The textbook tracker went wrong on " << grouped(failed(textbook)) << " of "
@@ -323,7 +332,7 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
         md << "---:|";
     md << "\n";
     for (int k = 0; k < int(run.trackers.size()); ++k) {
-        md << "| " << markdown_text(run.trackers[std::size_t(k)]) << " |";
+        md << "| " << run.trackers[std::size_t(k)] << " |";
         for (const TrackingRun::Row& row : run.rows) {
             if (row.tracker != k) continue;
             std::uint64_t graded = row.tally.rays - count(row.tally, TrackOutcome::overlap) -
@@ -347,7 +356,7 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
     for (const TrackingRun::Row& row : run.rows) {
         if (row.tally.worst.empty()) continue;
         any = true;
-        md << "**" << markdown_text(run.trackers[std::size_t(row.tracker)]) << ", "
+        md << "**" << run.trackers[std::size_t(row.tracker)] << ", "
            << track_family_name(row.family) << "**: " << audit::grouped(failed(row.tally)) << " of "
            << audit::grouped(row.tally.rays) << " rays; the first, " << row.tally.worst_what
            << " (its exact track): " << replay(a.model, row.tally.worst) << "\n\n";
@@ -359,7 +368,7 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
     md << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const TrackingRun::Row& row : run.rows) {
         const TrackingTally& t = row.tally;
-        md << "| " << markdown_text(run.trackers[std::size_t(row.tracker)]) << " | "
+        md << "| " << run.trackers[std::size_t(row.tracker)] << " | "
            << markdown_text(track_family_name(row.family)) << " | " << t.rays;
         for (TrackOutcome o :
              {TrackOutcome::right, TrackOutcome::lost, TrackOutcome::wrong_cell,
@@ -415,10 +424,15 @@ int run_audit(const CellsArgs& a) {
             users.push_back(e);
         }
     }
-    TrackingRun run =
-        track_families(l.model, lo, hi, to_whole(a.rays), seed, int(to_whole(a.max_steps)), users);
+    TrackingRun run;
+    PointSample points;
+    {
+        audit::StopOnSignal stop; // a stop ends the tracking early, its report written
+        run = track_families(l.model, lo, hi, to_whole(a.rays), seed, int(to_whole(a.max_steps)),
+                             users);
+        if (run.stopped.empty()) points = sample_points(l.model, lo, hi, seed, to_whole(a.points));
+    }
     report_plugin_output(ext);
-    PointSample points = sample_points(l.model, lo, hi, seed, to_whole(a.points));
     std::string md = tracking_markdown(a, l.model, run, points);
     if (!a.out.empty()) {
         std::filesystem::create_directories(a.out);
@@ -431,6 +445,13 @@ int run_audit(const CellsArgs& a) {
         jsonl::Output out;
         out.text(md);
         out.finish();
+    }
+    if (!run.stopped.empty()) {
+        std::fprintf(stderr,
+                     "linequad cells: stopped (SIGINT or SIGTERM) %s; the report holds what was "
+                     "tracked\n",
+                     run.stopped.c_str());
+        return 130;
     }
     return 0;
 }

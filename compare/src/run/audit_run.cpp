@@ -66,30 +66,26 @@ extern "C" void on_signal(int) {
     stop_flag = true;
 }
 
-// SIGINT and SIGTERM end the campaign early (with its report saved) while it runs. Without
-// SA_RESTART: a call blocked on input (opening a FIFO no one writes, reading an endless file)
-// returns EINTR, so that a stop is honoured there too; every loop on a system call retries on
-// EINTR where it must.
-class StopOnSignal {
-  public:
-    StopOnSignal() {
-        stop_flag = false, memory_low = false;
-        struct sigaction sa {};
-        sa.sa_handler = on_signal;
-        sigemptyset(&sa.sa_mask);
-        sa.sa_flags = 0;
-        sigaction(SIGINT, &sa, &old_int_);
-        sigaction(SIGTERM, &sa, &old_term_);
-    }
-    ~StopOnSignal() {
-        sigaction(SIGINT, &old_int_, nullptr);
-        sigaction(SIGTERM, &old_term_, nullptr);
-    }
+} // namespace
 
-  private:
-    struct sigaction old_int_ {
-    }, old_term_{};
-};
+// Without SA_RESTART: a call blocked on input (opening a FIFO no one writes, reading an endless
+// file) returns EINTR, so that a stop is honoured there too; every loop on a system call retries
+// on EINTR where it must.
+StopOnSignal::StopOnSignal() {
+    stop_flag = false, memory_low = false;
+    struct sigaction sa {};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = 0;
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+}
+StopOnSignal::~StopOnSignal() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+}
+
+namespace {
 
 // What git prints of the working tree, or "" (no git, not a repository).
 std::string git(const std::vector<std::string>& args) {
