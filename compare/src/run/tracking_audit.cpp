@@ -266,7 +266,6 @@ TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
 }
 
 std::string external_distances_problem(const Model& m, const audit::ExternalSolver& s) {
-    std::string why;
     if (s.parametrisation != audit::Parametrisation::line || s.surface != audit::Surface::as_posed)
         return "solver '" + s.name +
                "' takes its lines as something else than L0, v and t along v, or its surfaces "
