@@ -26,7 +26,7 @@ def audit(fn, families=(), shapes=(), n=100, seed=1, precision="binary64", out=N
     to the scene), negative_zero, contact_as_point.
 
     Returns {"verdict": the verdict lines, "report": report.json as a dict}; with `out`, the
-    report (report.md, report.json, figures) is written into that directory too.
+    report (report.html, report.md, report.json, figures) is written into that directory too.
     """
     absolute, relative = tolerance
     lines, report = _audit(fn, list(families), list(shapes), n, seed, precision, out or "",

@@ -8,6 +8,7 @@
 #include "linequad/case_io.hpp"
 #include "linequad/exact.hpp"
 #include "linequad/solvers.hpp"
+#include "report/report_html.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -479,6 +480,7 @@ py::tuple run_audit(const py::object& fn, const std::vector<std::string>& famili
     if (!PyCallable_Check(fn.ptr())) throw py::type_error("fn: expected a callable");
     Options o = campaign(families, shapes, n, seed, precision);
     o.out_dir = out_dir, o.plots = !out_dir.empty(), o.threads = 1;
+    if (!out_dir.empty()) o.finish_with = write_report_html;
     o.command = "linequad.audit (Python)";
     o.solvers = {name};
     ExternalSolver e;
@@ -514,6 +516,7 @@ py::tuple run_audit(const py::object& fn, const std::vector<std::string>& famili
     e.points = e.kinds = e.parts = false; // its answers are t's
     e.mapping = "a Python callable, fn(shapes, origins, directions, t0, t1) -> t's, a chunk of "
                 "cases a call";
+    e.not_replayable = "a Python callable: call it on the case to replay it";
     for (int k : o.shapes.empty() ? std::vector<int>{} : o.shapes)
         e.worker_shapes |= 1u << k;
     if (o.shapes.empty()) e.worker_shapes = (1u << std::variant_size_v<Shape>)-1;

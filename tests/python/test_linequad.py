@@ -208,6 +208,7 @@ def test_audit_grades_a_python_solver_and_charges_its_failures_to_the_chunk(tmp_
                          out=str(tmp_path / "report"))
     assert got["verdict"] == ["python: 100 % right of 120; t error 0 bits at worst, 0 at p99"]
     assert (tmp_path / "report" / "report.json").exists()
+    assert "<h1" in (tmp_path / "report" / "report.html").read_text(encoding="utf-8")
     assert got["report"]["status"] == "complete"
 
     calls = []
@@ -219,9 +220,14 @@ def test_audit_grades_a_python_solver_and_charges_its_failures_to_the_chunk(tmp_
         return exact(shapes, L0, v, t0, t1)
 
     # 20 cases a group (family, shape, range), a chunk a group: every chunk asked, the run goes on.
-    got = linequad.audit(flaky, families=["generic"], shapes=["sphere"], n=20)
+    got = linequad.audit(flaky, families=["generic"], shapes=["sphere"], n=20,
+                         out=str(tmp_path / "flaky"))
     assert calls == [20, 20, 20]
     assert got["verdict"][0].startswith("python: 66.7 % right of 60")
+    # Its worst cases replay the exact answer: linequad replay cannot run a Python callable.
+    md = (tmp_path / "flaky" / "report.md").read_text(encoding="utf-8")
+    assert "| linequad replay --solver 'exact'`" in md
+    assert "python cannot be run by `linequad replay` (a Python callable\\: call it" in md
 
     def wrong_shape(shapes, L0, v, t0, t1):
         return np.zeros((len(shapes) + 1, 2))
@@ -250,6 +256,7 @@ def test_audit_grades_what_the_solver_declares():
     assert got["report"]["external"] == [{
         "solver": "python", "answers": "nearest hit", "parametrisation": "t along v",
         "surface": "as posed", "plugin": "",
+        "not_replayable": "a Python callable: call it on the case to replay it",
         "mapping": "a Python callable, fn(shapes, origins, directions, t0, t1) -> t's, a chunk "
                    "of cases a call"}]
     assert not linequad.audit(nearest_exact, **kw)["verdict"][0].startswith("python: 100 %")

@@ -202,6 +202,7 @@ struct Report {
     // Solvers from outside linequad, by name: what they answer and how a case is handed over.
     struct External {
         std::string answers, parametrisation, surface, mapping, plugin;
+        std::string not_replayable;  // why `linequad replay` cannot run it (empty: it can)
         std::string inside, contact; // its conventions (empty: none)
         std::string conventions;     // all of its declared conventions, in words
         double tolerance_absolute = 0, tolerance_relative = 0; // as declared

@@ -161,6 +161,10 @@ struct ExternalSolver {
     bool points = true, kinds = true, parts = true;
     std::string mapping; // for the report: how a case is handed over, what cannot be represented
     std::string plugin;  // the shared library it came from (an absolute path), if any
+    // Why `linequad replay` cannot run it, if it cannot (a Python callable, a C++ callable of the
+    // caller's own): the report's replay commands then show the exact answer, and say this. Empty:
+    // it can (linequad's peers; a plugin, given with --plugin).
+    std::string not_replayable;
     // Where an in-process library's own messages go, if it has hooks for them (the peers'
     // adapters set it): counted in the report like a plugin's output. None: it writes nothing.
     std::shared_ptr<OwnOutput> own_output;

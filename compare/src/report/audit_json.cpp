@@ -362,6 +362,7 @@ void read_external(const Node& top, Report* r) {
             e.surface = x.at("surface").text();
             e.mapping = x.at("mapping").text();
             e.plugin = x.at("plugin").text();
+            if (x.find("not_replayable")) e.not_replayable = x.at("not_replayable").text();
             if (x.find("inside")) e.inside = x.at("inside").text();
             if (x.find("contact")) e.contact = x.at("contact").text();
             if (x.find("conventions")) e.conventions = x.at("conventions").text();
@@ -563,6 +564,7 @@ std::string to_json(const Report& r) {
                              {"mapping", e.mapping},
                              {"plugin", e.plugin}};
             // What only some solvers have is written only where it is.
+            if (!e.not_replayable.empty()) x["not_replayable"] = e.not_replayable;
             if (!e.inside.empty()) x["inside"] = e.inside;
             if (!e.contact.empty()) x["contact"] = e.contact;
             if (!e.conventions.empty()) x["conventions"] = e.conventions;

@@ -27,12 +27,16 @@ namespace linequad::audit {
 // The command that replays a worst case: the case as the solver saw it (for a solver from
 // outside, the posed case: replay does not pose it again), its answer and the reference its grade
 // used, as `linequad replay` prints them. Every word is quoted for the shell.
+// A solver `linequad replay` cannot run (a Python callable): the case's exact answer instead.
 std::string replay_command(const Report& r, const Worst& w, const std::string& solver) {
-    std::string plugin;
-    if (auto it = r.external.find(solver); it != r.external.end() && !it->second.plugin.empty())
-        plugin = " --plugin " + escape::shell_word(it->second.plugin);
+    std::string plugin, replayed = solver;
+    if (auto it = r.external.find(solver); it != r.external.end()) {
+        if (!it->second.plugin.empty())
+            plugin = " --plugin " + escape::shell_word(it->second.plugin);
+        if (!it->second.not_replayable.empty()) replayed = "exact";
+    }
     return "echo " + escape::shell_word(w.case_line()) + " | linequad replay" + plugin +
-           " --solver " + escape::shell_word(solver);
+           " --solver " + escape::shell_word(replayed);
 }
 
 namespace {
@@ -654,7 +658,13 @@ void write_solver(std::ostream& md, const Report& r, const std::string& solver) 
           "Each replays with the command under it: the case as the solver saw it, its answer "
           "and the reference its grade used, as above (the `linequad` on your `PATH`; in a "
           "clone, `export PATH=\"$PWD/build/compare:$PATH\"` first). Every row's worst cases are "
-          "in report.json.\n\n";
+          "in report.json.";
+    if (auto it = r.external.find(solver);
+        it != r.external.end() && !it->second.not_replayable.empty())
+        md << " " << markdown_text(solver) << " cannot be run by `linequad replay` ("
+           << markdown_text(it->second.not_replayable)
+           << "): its commands show the exact answer, and its own is in the table above.";
+    md << "\n\n";
     for (const auto& [key, w] : worst)
         write_worst_case(md, r, *key, *w);
 }

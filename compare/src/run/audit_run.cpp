@@ -227,6 +227,7 @@ Report::External describe(const ExternalSolver& e) {
     x.surface = surface_name(e.surface);
     x.mapping = e.mapping;
     x.plugin = e.plugin;
+    x.not_replayable = e.not_replayable;
     if (e.inside != StartInside::as_answers) x.inside = start_inside_name(e.inside);
     if (e.contact_as_point) x.contact = "first point";
     x.conventions = conventions_text(e);
