@@ -580,6 +580,52 @@ TEST_CASE("cells: OpenMC's geometry.xml is read exactly, and what is not taken i
                                         "' --audit --rays 100 --box -0.625,-0.625,-1,0.625,0.625,1",
                                     dir);
     CHECK(audit.status == 0);
+    // The same pin written as OpenMC users write it: a universe of fuel, clad and water filling
+    // the lattice cell. Flattened, its cells are the universe's within the filling cell's
+    // region: the same track, the universe's cells by their own ids.
+    std::ofstream(dir / "universe.xml") << R"xml(<geometry>
+  <cell id="1" universe="1" material="1" name="fuel" region="-1"/>
+  <cell id="2" universe="1" material="2" name="clad" region="1 -2"/>
+  <cell id="3" universe="1" material="3" name="water" region="2"/>
+  <cell id="10" fill="1" name="pin" region="3 -4 5 -6 7 -8"/>
+  <cell id="20" material="void" name="outside" region="~(3 -4 5 -6 7 -8)"/>
+  <surface coeffs="0.0 0.0 0.375" id="1" type="z-cylinder"/>
+  <surface coeffs="0.0 0.0 0.4375" id="2" type="z-cylinder"/>
+  <surface coeffs="-0.625" id="3" type="x-plane"/>
+  <surface coeffs="0.625" id="4" type="x-plane"/>
+  <surface coeffs="-0.625" id="5" type="y-plane"/>
+  <surface coeffs="0.625" id="6" type="y-plane"/>
+  <surface coeffs="-1.0" id="7" type="z-plane"/>
+  <surface coeffs="1.0" id="8" type="z-plane"/>
+</geometry>)xml";
+    test::Ran universe = test::program("cells universe.xml q.jsonl", dir);
+    REQUIRE(universe.status == 0);
+    CHECK(universe.out == R"({"id":1,"start":[1],"start_undecided":[],"steps":[)"
+                          R"({"t":"0x1.8p-2","surfaces":[1],"cells":[2],"undecided":[]},)"
+                          R"({"t":"0x1.cp-2","surfaces":[2],"cells":[3],"undecided":[]},)"
+                          R"({"t":"0x1.4p-1","surfaces":[4],"cells":[20],"undecided":[]}],)"
+                          R"("truncated":false})"
+                          "\n");
+    // Every ray of every family tracks exactly through it as through the file written flat
+    // (linequad's cells: the same rows; the textbook loop asks other surfaces of a cell, the
+    // filling cell's too, and may differ).
+    test::Ran flat_audit = test::program("cells '" + model.string() +
+                                             "' --audit --rays 200 --points 500 --box "
+                                             "-0.625,-0.625,-1,0.625,0.625,1",
+                                         dir),
+              universe_audit = test::program("cells universe.xml --audit --rays 200 --points 500 "
+                                             "--box -0.625,-0.625,-1,0.625,0.625,1",
+                                             dir);
+    REQUIRE(universe_audit.status == 0);
+    auto own_rows = [](const std::string& md) {
+        std::string rows;
+        for (std::size_t at = md.find("| linequad cells |"); at != std::string::npos;
+             at = md.find("| linequad cells |", at + 1))
+            rows += md.substr(at, md.find('\n', at) - at) + "\n";
+        return rows;
+    };
+    CHECK(!own_rows(flat_audit.out).empty());
+    CHECK(own_rows(universe_audit.out) == own_rows(flat_audit.out));
 
     struct Bad {
         const char* xml;
@@ -594,15 +640,25 @@ TEST_CASE("cells: OpenMC's geometry.xml is read exactly, and what is not taken i
          "line 3: surface 4 (x-torus): a surface type linequad does not pose (it poses plane, "
          "x-/y-/z-plane, sphere, x-/y-/z-cylinder, x-/y-/z-cone and quadric)"},
         {"<geometry>\n<cell id=\"1\" fill=\"2\" region=\"-1\"/>\n</geometry>",
-         "line 2: cell 1: fill is not taken yet (only cells of the root universe, each filled "
-         "with a material)"},
+         "line 2: cell 1: fill 2: no cell is in that universe"},
         {"<geometry>\n<cell id=\"1\" universe=\"3\" region=\"-1\"/>\n</geometry>",
-         "line 2: cell 1: universe 3 is not taken yet (only the root universe, 0)"},
+         "line 2: no cell is in the root universe (0)"},
         {"<geometry>\n<cell id=\"1\" material=\"1\"/>\n</geometry>",
-         "line 2: cell 1: has no region (an infinite cell is not taken)"},
+         "line 2: cell 1: has no region (an infinite cell is not taken in the root universe)"},
         {"<geometry>\n<lattice id=\"3\"/>\n</geometry>",
-         "line 2: <lattice> is not taken yet (linequad reads surfaces and the root universe's "
-         "cells)"},
+         "line 2: <lattice> is not taken yet (linequad reads surfaces, cells and the universes "
+         "that fill them)"},
+        {"<geometry>\n<cell id=\"1\" fill=\"2\" region=\"-1\"/>\n"
+         "<cell id=\"2\" universe=\"2\" fill=\"2\" region=\"-1\"/>\n</geometry>",
+         "line 3: cell 2: fill 2: the universe contains itself"},
+        {"<geometry>\n<cell id=\"1\" fill=\"2\" region=\"-1\"/>\n"
+         "<cell id=\"2\" fill=\"2\" region=\"1\"/>\n<cell id=\"3\" universe=\"2\"/>\n"
+         "</geometry>",
+         "line 3: cell 2: fill 2: the universe fills another cell too (a universe placed more "
+         "than once is not taken yet: its cells would need ids of their own)"},
+        {"<geometry>\n<cell id=\"1\" fill=\"2\" region=\"-1\" translation=\"1 0 0\"/>\n"
+         "</geometry>",
+         "line 2: cell 1: translation is not taken yet (a universe fills a cell as it is)"},
         {"<geometry>\n<surface id=\"1\" type=\"z-plane\" coeffs=\"1 2\"/>\n</geometry>",
          "line 2: surface 1 (z-plane): coeffs \"1 2\": expected 1 coefficient"},
         {"<geometry>\n<surface id=\"x\" type=\"z-plane\" coeffs=\"1\"/>\n</geometry>",
@@ -618,4 +674,16 @@ TEST_CASE("cells: OpenMC's geometry.xml is read exactly, and what is not taken i
         CHECK(ran.status == 2);
         CHECK(ran.err == std::string("linequad cells: bad.xml: ") + b.error + "\n");
     }
+    // Universes nested a thousand deep (each level's regions wrapped once more): refused at 64.
+    {
+        std::ofstream deep(dir / "deep.xml");
+        deep << "<geometry>\n<surface id=\"1\" type=\"sphere\" coeffs=\"0 0 0 1\"/>\n";
+        for (int u = 0; u < 1000; ++u)
+            deep << "<cell id=\"" << u + 1 << "\" universe=\"" << u << "\" fill=\"" << u + 1
+                 << "\" region=\"-1\"/>\n";
+        deep << "</geometry>\n";
+    }
+    test::Ran deep = test::program("cells deep.xml < /dev/null", dir);
+    CHECK(deep.status == 2);
+    CHECK(deep.err.find("universes nested more than 64 deep") != std::string::npos);
 }

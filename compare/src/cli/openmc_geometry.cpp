@@ -190,23 +190,89 @@ bool surface(Reader& r, const pugi::xml_node& node, Model::Surface* out) {
     return true;
 }
 
-bool cell(Reader& r, const pugi::xml_node& node, Model::CellSource* out) {
-    if (!r.id(node, "cell", &out->id)) return false;
-    std::string where = "cell " + std::to_string(out->id);
-    for (const char* refused : {"fill", "rotation", "translation"})
+// A cell as geometry.xml writes it: its universe, and what fills it (a material, or another
+// universe's cells).
+struct XmlCell {
+    Model::CellSource source; // id, name, region ("" for a universe's infinite cell)
+    std::string universe = "0", fill;
+    pugi::xml_node node;
+};
+
+bool cell(Reader& r, const pugi::xml_node& node, XmlCell* out) {
+    out->node = node;
+    if (!r.id(node, "cell", &out->source.id)) return false;
+    std::string where = "cell " + std::to_string(out->source.id);
+    for (const char* refused : {"rotation", "translation"})
         if (node.attribute(refused))
             return r.fail(node, where + ": " + refused +
-                                    " is not taken yet (only cells of the root universe, each "
-                                    "filled with a material)");
-    pugi::xml_attribute universe = node.attribute("universe");
-    if (universe && std::string(universe.value()) != "0")
-        return r.fail(node, where + ": universe " + universe.value() +
-                                " is not taken yet (only the root universe, 0)");
+                                    " is not taken yet (a universe fills a cell as it is)");
+    if (pugi::xml_attribute u = node.attribute("universe")) out->universe = u.value();
+    if (pugi::xml_attribute f = node.attribute("fill")) out->fill = f.value();
     pugi::xml_attribute region = node.attribute("region");
-    if (!region || std::string(region.value()).find_first_not_of(" \t\r\n") == std::string::npos)
-        return r.fail(node, where + ": has no region (an infinite cell is not taken)");
-    out->region = region.value();
-    out->name = node.attribute("name").value();
+    bool infinite =
+        !region || std::string(region.value()).find_first_not_of(" \t\r\n") == std::string::npos;
+    if (infinite && out->universe == "0")
+        return r.fail(node, where + ": has no region (an infinite cell is not taken in the root "
+                                    "universe)");
+    out->source.region = infinite ? "" : region.value();
+    out->source.name = node.attribute("name").value();
+    return true;
+}
+
+constexpr std::size_t max_universe_depth = 64;
+
+// The root universe's cells, each cell filled with a universe replaced by that universe's cells
+// (each one's region within the filling cell's), down to cells of materials. A universe fills
+// one cell at most (its cells keep their ids), and no universe contains itself.
+bool flatten(Reader& r, const std::vector<XmlCell>& cells, std::vector<Model::CellSource>* out) {
+    std::vector<std::string> filled; // universes already placed
+    struct Place {
+        const XmlCell* cell;
+        std::string region, name;      // within the cells that hold it
+        std::vector<std::string> path; // the universes it is placed through
+    };
+    std::vector<Place> todo;
+    for (auto it = cells.rbegin(); it != cells.rend(); ++it)
+        if (it->universe == "0") todo.push_back({&*it, "", "", {"0"}});
+    if (todo.empty() && !cells.empty())
+        return r.fail(cells.front().node, "no cell is in the root universe (0)");
+    std::vector<Model::CellSource> placed;
+    while (!todo.empty()) {
+        Place p = todo.back();
+        todo.pop_back();
+        const XmlCell& c = *p.cell;
+        std::string region = c.source.region.empty() ? p.region
+                             : p.region.empty()      ? c.source.region
+                                                     : p.region + " (" + c.source.region + ")";
+        std::string name = p.name.empty() ? c.source.name : p.name + " / " + c.source.name;
+        if (c.fill.empty()) {
+            placed.push_back({c.source.id, name, region});
+            continue;
+        }
+        std::string where = "cell " + std::to_string(c.source.id) + ": fill " + c.fill;
+        if (std::find(p.path.begin(), p.path.end(), c.fill) != p.path.end())
+            return r.fail(c.node, where + ": the universe contains itself");
+        // Each level wraps the regions within once more: bounded, so that hostile text cannot
+        // make them grow as the square of its length.
+        if (p.path.size() > max_universe_depth)
+            return r.fail(c.node, where + ": universes nested more than " +
+                                      std::to_string(max_universe_depth) + " deep");
+        if (std::find(filled.begin(), filled.end(), c.fill) != filled.end())
+            return r.fail(c.node, where + ": the universe fills another cell too (a universe "
+                                          "placed more than once is not taken yet: its cells "
+                                          "would need ids of their own)");
+        filled.push_back(c.fill);
+        std::vector<Place> inner;
+        for (const XmlCell& d : cells)
+            if (d.universe == c.fill) {
+                std::vector<std::string> path = p.path;
+                path.push_back(c.fill);
+                inner.push_back({&d, "(" + region + ")", name, path});
+            }
+        if (inner.empty()) return r.fail(c.node, where + ": no cell is in that universe");
+        todo.insert(todo.end(), inner.rbegin(), inner.rend());
+    }
+    *out = std::move(placed);
     return true;
 }
 
@@ -231,6 +297,7 @@ bool parse_openmc_geometry(std::string_view xml, ModelFile* out, std::string* wh
     pugi::xml_node geometry = doc.child("geometry");
     Reader r(xml, why);
     if (!geometry) return r.fail(doc.first_child(), "expected a <geometry> element");
+    std::vector<XmlCell> cells;
     for (pugi::xml_node node : geometry.children()) {
         if (node.type() != pugi::node_element) continue;
         std::string name = node.name();
@@ -239,16 +306,16 @@ bool parse_openmc_geometry(std::string_view xml, ModelFile* out, std::string* wh
             if (!surface(r, node, &s)) return false;
             out->surfaces.push_back(s);
         } else if (name == "cell") {
-            Model::CellSource c{};
+            XmlCell c;
             if (!cell(r, node, &c)) return false;
-            out->cells.push_back(std::move(c));
+            cells.push_back(std::move(c));
         } else {
             return r.fail(node, "<" + name +
-                                    "> is not taken yet (linequad reads surfaces and the root "
-                                    "universe's cells)");
+                                    "> is not taken yet (linequad reads surfaces, cells and "
+                                    "the universes that fill them)");
         }
     }
-    return true;
+    return flatten(r, cells, &out->cells);
 }
 
 } // namespace linequad::cli
