@@ -281,6 +281,7 @@ std::string cells_list(const Model& m, const std::vector<int>& cells) {
 // failing tracker and family's first failing ray with its replay, the table by family.
 std::string tracking_markdown(const CellsArgs& a, const Model& m, const TrackingRun& run,
                               const PointSample& points) {
+    using audit::grouped;
     using escape::markdown_text;
     const TrackingTally& textbook = run.totals[0];
     std::ostringstream md;
@@ -289,7 +290,6 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
         md << "**Stopped** (SIGINT or SIGTERM) " << markdown_text(run.stopped)
            << ": what follows is what was tracked before.\n\n";
     const TrackingTally& own = run.totals[tracker_distances_count];
-    using audit::grouped;
     md << "**The textbook tracker went wrong on " << grouped(failed(textbook)) << " of "
        << grouped(textbook.rays) << " rays** (lost " << grouped(count(textbook, TrackOutcome::lost))
        << ", wrong cell " << grouped(count(textbook, TrackOutcome::wrong_cell))
@@ -305,24 +305,27 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
        << " of " << grouped(own.rays) << ". The reference is the oracle's exact track (robust/, "
        << grouped(run.exact_steps) << " cell changes on " << grouped(run.exact_rays)
        << " rays): each crossing ordered by its exact root, its distance correctly rounded.\n\n";
-    std::uint64_t overlapping = 0;
-    for (const auto& [cells, n] : points.overlaps)
-        overlapping += n;
-    md << "**Overlaps and gaps:** of " << audit::grouped(points.points)
-       << " points drawn in the box, " << audit::grouped(overlapping)
-       << " lie in two cells or more";
-    for (std::size_t k = 0; k < points.overlaps.size() && k < 3; ++k)
-        md << (k ? "; " : " (") << markdown_text(cells_list(m, points.overlaps[k].first)) << ": "
-           << points.overlaps[k].second;
-    md << (points.overlaps.empty() ? "" : ")") << ", " << audit::grouped(points.in_none)
-       << " in no cell (a gap, or the box reaching beyond the model)";
-    if (points.undecided) md << ", " << points.undecided << " on a surface, undecided";
-    md << ".\n\n";
-    if (!points.first_overlap.empty())
-        md << "The first point in two cells (its cells): " << replay(a.model, points.first_overlap)
-           << "\n\n";
-    if (!points.first_gap.empty())
-        md << "The first point in none: " << replay(a.model, points.first_gap) << "\n\n";
+    if (points.points == 0) {
+        md << "**Overlaps and gaps:** not sampled (`--points 0`, or the run was stopped).\n\n";
+    } else {
+        std::uint64_t overlapping = 0;
+        for (const auto& [cells, n] : points.overlaps)
+            overlapping += n;
+        md << "**Overlaps and gaps:** of " << grouped(points.points) << " points drawn in the box, "
+           << grouped(overlapping) << " lie in two cells or more";
+        for (std::size_t k = 0; k < points.overlaps.size() && k < 3; ++k)
+            md << (k ? "; " : " (") << markdown_text(cells_list(m, points.overlaps[k].first))
+               << ": " << points.overlaps[k].second;
+        md << (points.overlaps.empty() ? "" : ")") << ", " << grouped(points.in_none)
+           << " in no cell (a gap, or the box reaching beyond the model)";
+        if (points.undecided) md << ", " << points.undecided << " on a surface, undecided";
+        md << ".\n\n";
+        if (!points.first_overlap.empty())
+            md << "The first point in two cells (its cells): "
+               << replay(a.model, points.first_overlap) << "\n\n";
+        if (!points.first_gap.empty())
+            md << "The first point in none: " << replay(a.model, points.first_gap) << "\n\n";
+    }
     // Each tracker's share of rays gone wrong, family by family: where each one breaks.
     md << "| rays gone wrong |";
     for (int f = 0; f < track_family_count; ++f)
@@ -345,7 +348,7 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
         }
         md << "\n";
     }
-    md << "\nOf the rays each tracker is graded on, up to " << audit::grouped(to_whole(a.rays))
+    md << "\nOf the rays each tracker is graded on, up to " << grouped(to_whole(a.rays))
        << " a family: lost, wrong cell, missed, extra, stuck or inexact, each counted in the "
           "table by family below. \"-\": the family does not apply to this model; \"not "
           "graded\": every exact track runs along a surface or through an overlap, which the "
@@ -357,8 +360,8 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
         if (row.tally.worst.empty()) continue;
         any = true;
         md << "**" << run.trackers[std::size_t(row.tracker)] << ", "
-           << track_family_name(row.family) << "**: " << audit::grouped(failed(row.tally)) << " of "
-           << audit::grouped(row.tally.rays) << " rays; the first, " << row.tally.worst_what
+           << track_family_name(row.family) << "**: " << grouped(failed(row.tally)) << " of "
+           << grouped(row.tally.rays) << " rays; the first, " << row.tally.worst_what
            << " (its exact track): " << replay(a.model, row.tally.worst) << "\n\n";
     }
     if (!any) md << "None: every tracker entered every cell the exact tracks enter.\n\n";
