@@ -30,7 +30,7 @@ while IFS= read -r line; do # scenes' records, for the parser
   i=$((i+1))
 done < examples/scenes.jsonl
 cp examples/scenes.jsonl build-fuzz/corpus-parser/scenes-file # a whole scene file
-for model in examples/models/*.json; do cp "$model" "build-fuzz/corpus-parser/model-$(basename "$model")"; done
+for model in examples/models/*.json examples/models/*.xml; do cp "$model" "build-fuzz/corpus-parser/model-$(basename "$model")"; done
 if [ -x build/compare/linequad ]; then
   while IFS= read -r line; do printf '%s' "$line" > "build-fuzz/corpus-parser/result-$i"; i=$((i+1)); done \
     < <(build/compare/linequad solve --solver all examples/cases.jsonl || true)

@@ -14,6 +14,9 @@
 #include "linequad/scene_audit.hpp"
 
 #include "io/jsonl.hpp"
+#ifdef LINEQUAD_FUZZ_OPENMC
+#include "cli/openmc_geometry.hpp"
+#endif
 
 #include <cstdint>
 #include <cstdio>
@@ -122,7 +125,18 @@ void model_reads(std::string_view text) {
     }
     ModelFile file;
     why.clear();
-    if (!parse_model(text, &file, &why)) {
+    bool read = parse_model(text, &file, &why);
+#ifdef LINEQUAD_FUZZ_OPENMC
+    // A geometry.xml (its universes flattened): the same promise.
+    if (!read) {
+        std::string xml_why;
+        if (cli::parse_openmc_geometry(text, &file, &xml_why))
+            read = true;
+        else if (xml_why.empty())
+            broken("a geometry.xml refused without a reason", text, "");
+    }
+#endif
+    if (!read) {
         if (why.empty()) broken("a model refused without a reason", text, "");
         return;
     }
