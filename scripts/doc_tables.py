@@ -297,7 +297,8 @@ def cells_audits():
     out = []
     for path in sorted((LATEST / "cells").glob("*/report.md")):
         lines = path.read_text(encoding="utf-8").splitlines()
-        start = next(i for i, l in enumerate(lines) if l.startswith("| rays gone wrong |"))
+        heading = next(i for i, l in enumerate(lines) if l.startswith("### Misclassified rays"))
+        start = next(i for i in range(heading, len(lines)) if lines[i].startswith("|"))
         end = next(i for i in range(start, len(lines)) if not lines[i].startswith("|"))
         command = next(l for l in lines if l.startswith("Command: "))
         out += [f"From `{relative(path)}` ({command[len('Command: '):]}):", ""]

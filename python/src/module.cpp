@@ -172,6 +172,22 @@ BatchCall batch_call(const std::string& solver, Precision precision) {
     return BatchCall::none;
 }
 
+// The batch call itself: stable32 for float lines, else stable or correct.
+template <class T>
+void batch_solve(BatchCall call, const Shape& shape, const LineArraysT<T>& lines, Query q,
+                 Result* out) {
+    std::visit(
+        [&](const auto& s) {
+            if constexpr (std::is_same_v<T, float>)
+                stable32::intersect(s, lines, q, out);
+            else if (call == BatchCall::stable)
+                stable::intersect(s, lines, q, out);
+            else
+                correct::intersect(s, lines, q, out);
+        },
+        shape);
+}
+
 // (N, 3) rows laid out as the batch's structure of arrays, a chunk at a time: small enough to
 // stay in cache, large enough that a batch's set-up (a shape's preparation) is paid rarely.
 template <class T>
@@ -188,16 +204,7 @@ struct Chunk {
         return {a, a + size, a + 2 * size, a + 3 * size, a + 4 * size, a + 5 * size, m, range};
     }
     void solve(BatchCall call, const Shape& shape, const LineArraysT<T>& lines, Query q) {
-        std::visit(
-            [&](const auto& s) {
-                if constexpr (std::is_same_v<T, float>)
-                    stable32::intersect(s, lines, q, out.data());
-                else if (call == BatchCall::stable)
-                    stable::intersect(s, lines, q, out.data());
-                else
-                    correct::intersect(s, lines, q, out.data());
-            },
-            shape);
+        batch_solve(call, shape, lines, q, out.data());
     }
 };
 
@@ -279,25 +286,13 @@ double batch_seconds(const PyShape& s, const py::array& origins, const py::array
     Query q;
     py::gil_scoped_release released;
     auto start = std::chrono::steady_clock::now();
-    std::visit(
-        [&](const auto& shape) {
-            for (std::size_t at = 0; at < n; at += step) {
-                const double* a = soa.data() + at;
-                LineArrays lines{a,
-                                 a + n,
-                                 a + 2 * n,
-                                 a + 3 * n,
-                                 a + 4 * n,
-                                 a + 5 * n,
-                                 std::min(step, n - at),
-                                 Interval()};
-                if (call == BatchCall::stable)
-                    stable::intersect(shape, lines, q, out.data());
-                else
-                    correct::intersect(shape, lines, q, out.data());
-            }
-        },
-        s.shape);
+    for (std::size_t at = 0; at < n; at += step) {
+        const double* a = soa.data() + at;
+        batch_solve(call, s.shape,
+                    LineArrays{a, a + n, a + 2 * n, a + 3 * n, a + 4 * n, a + 5 * n,
+                               std::min(step, n - at), Interval()},
+                    q, out.data());
+    }
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -285,7 +285,7 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
     using escape::markdown_text;
     const TrackingTally& textbook = run.totals[0];
     std::ostringstream md;
-    md << "# Tracking audit: " << markdown_text(a.model) << "\n\n";
+    md << "# Tracking audit: " << markdown_text(a.model) << "\n\n## Verdict\n\n";
     if (!run.stopped.empty())
         md << "**Stopped** (SIGINT or SIGTERM) " << markdown_text(run.stopped)
            << ": what follows is what was tracked before.\n\n";
@@ -326,8 +326,9 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
         if (!points.first_gap.empty())
             md << "The first point in none: " << replay(a.model, points.first_gap) << "\n\n";
     }
-    // Each tracker's share of rays gone wrong, family by family: where each one breaks.
-    md << "| rays gone wrong |";
+    // Each tracker's share of rays gone wrong, family by family: where each one breaks (report.html
+    // colours a verdict's "Misclassified" table as a heat map, as the audit's).
+    md << "### Misclassified rays, by tracker and family (% of the rays graded)\n\n| tracker |";
     for (int f = 0; f < track_family_count; ++f)
         md << " " << markdown_text(track_family_name(TrackFamily(f))) << " |";
     md << "\n|---|";
