@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
 
 using namespace linequad;
 
@@ -475,6 +476,64 @@ TEST_CASE("cells: the transport loop takes a user's distances as it takes linequ
     CHECK(!external_distances_problem(m, unit).empty());
 }
 
+TEST_CASE("cells: the transport loop finds its cells by a user's sides where it has them",
+          "[cells]") {
+    // linequad's correct distances, and the sides exact (linequad's sense, the direction
+    // deciding a point on the surface): a backscattered particle, some 2^-20 to 2^-50 box sizes
+    // past a surface, starts in the oracle's cell, where the textbook's sides (|f| < 1e-12: the
+    // side u points into) put it in the next one.
+    audit::ExternalSolver mine;
+    mine.name = "mine";
+    mine.on<Plane>() = [](const Plane& s, const Line& l) -> std::optional<Result> {
+        return correct::intersect(s, l, {Need::all, false});
+    };
+    mine.on<Quadric>() = [](const Quadric& s, const Line& l) -> std::optional<Result> {
+        return correct::intersect(s, l, {Need::all, false});
+    };
+    int calls = 0;
+    mine.sense = [&](const Shape& s, Vec3 p, Vec3 u) {
+        ++calls;
+        return std::visit(
+            [&](const auto& x) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(x)>, Plane> ||
+                              std::is_same_v<std::decay_t<decltype(x)>, Quadric>)
+                    return int(sense(x, p, u).sense);
+                else
+                    return 0;
+            },
+            s);
+    };
+    CHECK(mine.has_sense());
+    Model m =
+        build({{1, sphere(1)}, {2, sphere(4)}, {3, plane_x(0.5)}}, {{10, "core", "-1"},
+                                                                    {20, "shell, left", "1 -2 -3"},
+                                                                    {30, "shell, right", "1 -2 3"},
+                                                                    {40, "outside", "2"}});
+    int rays = 0, textbook_wrong = 0;
+    for (std::uint64_t i = 0; i < 200; ++i) {
+        std::optional<TrackRay> ray =
+            track_ray(m, {-3, -3, -3}, {3, 3, 3}, TrackFamily::backscatter, 5, i);
+        if (!ray) continue;
+        Model::Track exact = exact::track(m, ray->p, ray->u, 100);
+        REQUIRE(exact.start.size() == 1);
+        INFO("ray " << i);
+        TrackerRun theirs = textbook_track(m, ray->p, ray->u, 100, mine);
+        CHECK(theirs.start == exact.start[0]);
+        CHECK(grade_track(exact, theirs).outcome == TrackOutcome::right);
+        textbook_wrong += textbook_track(m, ray->p, ray->u, 100, TrackerDistances::correct).start !=
+                          exact.start[0];
+        ++rays;
+    }
+    CHECK(rays > 150);
+    CHECK(textbook_wrong > 10);
+    CHECK(calls > rays * 4);
+    // A side it cannot give (a call that answers 0 here) is undecided: no cell found, lost.
+    mine.sense = [](const Shape&, Vec3, Vec3) { return 0; };
+    std::optional<TrackRay> ray = track_ray(m, {-3, -3, -3}, {3, 3, 3}, TrackFamily::generic, 5, 0);
+    REQUIRE(ray);
+    CHECK(textbook_track(m, ray->p, ray->u, 100, mine).start == -1);
+}
+
 TEST_CASE("cells: the CLI answers queries on a model file and refuses a bad one by name",
           "[cells]") {
     namespace fs = std::filesystem;
@@ -530,23 +589,38 @@ TEST_CASE("cells: the CLI answers queries on a model file and refuses a bad one 
     CHECK(md_text.find("`echo '{\"id\":\"far_source/") != std::string::npos);
     CHECK(html_text.find("linequad (replay|cells) ") != std::string::npos);
     CHECK(html_text.find("<h1") != std::string::npos);
-    // A plugin's distances in the same loop, out of process: OpenMC's formulas without its
-    // 1e-12 rule (tests/plugins/transport_plugin.c) fail where the textbook's do on far sources.
+    // A plugin's distances and sides in the same loop, out of process: OpenMC's distances without
+    // its 1e-12 rule (tests/plugins/transport_plugin.c) fail where the textbook's do on far
+    // sources; its sense is OpenMC's, and without the 1e-12 band (`transport_unbanded`) it finds
+    // the cell a backscattered particle is in, which the band mistakes (it takes the side u points
+    // into) on a quarter of those rays.
     std::string plugin = std::string(" --plugin '") + LINEQUAD_TRANSPORT_PLUGIN + "'";
     test::Ran user = test::program("cells '" + model.string() +
                                        "' --audit --rays 300 --points 10 --solvers "
-                                       "transport_textbook" +
+                                       "transport_textbook,transport_unbanded" +
                                        plugin,
                                    dir);
     CHECK(user.status == 0);
-    std::string far = " | far\\_source | 300 | ";
-    auto row_of = [&](const std::string& tracker) {
-        std::size_t at = user.out.find("| " + tracker + far);
-        return at == std::string::npos ? std::string()
-                                       : user.out.substr(at + tracker.size() + far.size() + 2, 30);
+    // The by-family table's row: "rays | right | ..." after the tracker and the family.
+    auto row_of = [&](const std::string& tracker, const std::string& family) {
+        std::string head = "| " + tracker + " | " + family + " | ";
+        std::size_t at = user.out.find(head);
+        if (at == std::string::npos) return std::string();
+        std::size_t from = at + head.size();
+        return user.out.substr(from, user.out.find('\n', from) - from);
     };
-    CHECK(!row_of("textbook").empty());
-    CHECK(row_of("textbook, transport\\_textbook distances") == row_of("textbook"));
+    auto right_of = [&](const std::string& tracker, const std::string& family) {
+        std::string row = row_of(tracker, family); // "300 | 224 | ..."
+        std::size_t bar = row.find(" | ");
+        return bar == std::string::npos ? -1 : std::atoi(row.c_str() + bar + 3);
+    };
+    const std::string banded = "textbook, transport\\_textbook distances and sides",
+                      unbanded = "textbook, transport\\_unbanded distances and sides";
+    CHECK(!row_of("textbook", "far\\_source").empty());
+    CHECK(row_of(banded, "far\\_source") == row_of("textbook", "far\\_source"));
+    CHECK(row_of(banded, "backscatter") == row_of("textbook", "backscatter"));
+    CHECK(right_of("textbook", "backscatter") < 280);
+    CHECK(right_of(unbanded, "backscatter") == 300);
     test::Ran own = test::program("cells '" + model.string() + "' --audit --solvers correct", dir);
     CHECK(own.status == 2);
     CHECK(own.err.find("'correct' is linequad's own") != std::string::npos);

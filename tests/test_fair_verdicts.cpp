@@ -337,6 +337,25 @@ TEST_CASE("a plugin of ABI 2 loads and grades as it did", "[external][worker][cl
     CHECK(r.external.at("second_abi").conventions.empty());
 }
 
+TEST_CASE("a plugin of ABI 3 loads and is graded under the conventions it declares",
+          "[external][worker][cli]") {
+    fs::path dir = scratch("abi3");
+    Ran ran = program(std::string("audit --plugin '") + LINEQUAD_ABI3_PLUGIN +
+                          "' --solvers third_abi --families generic,near_tangent --shapes sphere "
+                          "--cases 50 --no-plots --out out",
+                      dir);
+    REQUIRE(ran.status == 0);
+    audit::Report r = read_report(dir / "out");
+    audit::Row t = r.total("third_abi");
+    CHECK(t.cases == 300);
+    CHECK(t.cases_mismatched > 100);
+    // Its ABI 3 fields read where lq_solver_v3 lays them out, not as ABI 4's.
+    const audit::Report::External& e = r.external.at("third_abi");
+    CHECK(e.tolerance_absolute == 0x1p-20);
+    CHECK(e.tolerance_relative == 0);
+    CHECK(e.conventions.find("tangent") != std::string::npos);
+}
+
 TEST_CASE("families: --frames aligned puts every vector along a coordinate axis, the elliptic "
           "sections elliptic",
           "[audit]") {

@@ -520,3 +520,52 @@ TEST_CASE("worker: a transport code's textbook distances are graded on planes an
     CHECK(far_mismatched > 30);
     fs::remove_all(dir);
 }
+
+TEST_CASE("worker: a plugin's sides (ABI 4) come back in order, a crash or a side that is no side "
+          "named and charged to its point alone",
+          "[worker][hostile]") {
+    audit::PluginOptions o;
+    o.program = LINEQUAD_BIN;
+    std::vector<audit::ExternalSolver> all = audit::load_plugin(hostile, o);
+    const audit::ExternalSolver* bad = nullptr;
+    for (const audit::ExternalSolver& e : all)
+        if (e.name == "bad_sides") bad = &e;
+    REQUIRE(bad);
+    CHECK(bad->has_sense());
+    // 400 points at the plane x = 0.25 and a sphere of radius 1, each on a known side of both.
+    std::vector<Case> at;
+    std::vector<int> expected;
+    Plane plane{{1, 0, 0}, 0.25, false};
+    Quadric ball{{1, 1, 1, 0, 0, 0, 0, 0, 0, -1}, false};
+    for (int i = 0; i < 200; ++i) {
+        double x = -2 + i / 50.0 + 1.0 / 1024; // never on either surface
+        Vec3 p{x, 0.125, -0.0625};
+        Case c;
+        c.shape = plane, c.line = Line{p, {0, 0, 1}, Range::ray};
+        at.push_back(c), expected.push_back(x > 0.25 ? 1 : -1);
+        c.shape = ball;
+        at.push_back(c), expected.push_back(x * x + 0.125 * 0.125 + 0.0625 * 0.0625 > 1 ? 1 : -1);
+    }
+    std::vector<audit::ExternalAnswer> out;
+    REQUIRE(bad->sides(at, out));
+    REQUIRE(out.size() == at.size());
+    int crashed = 0, no_side = 0, right = 0;
+    for (std::size_t i = 0; i < at.size(); ++i) {
+        INFO("point " << i);
+        REQUIRE(out[i].result);
+        if (out[i].result->ok()) {
+            CHECK(out[i].side == expected[i]);
+            ++right;
+            continue;
+        }
+        CHECK(out[i].side == 0);
+        std::string why = out[i].result->error().field;
+        crashed += why == "crashed (SIGSEGV)";
+        no_side += why == "its sense wrote side 7, not -1 or 1";
+        CHECK((why == "crashed (SIGSEGV)" || why == "its sense wrote side 7, not -1 or 1"));
+    }
+    CHECK(crashed > 10);
+    CHECK(no_side > 10);
+    CHECK(right > 250);
+    CHECK(bad->worker->restarts(bad->worker_index) == crashed);
+}

@@ -54,12 +54,21 @@ static int solve(void* self, const lq_shape* s, const lq_line* l, lq_answer* out
 }
 
 static const lq_solver solvers[] = {{
-    "textbook", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, LQ_POINTS, 1u << LQ_CYLINDER,
-    "the school formula on a normalised axis; open finite cylinders only", solve, NULL,
-    LQ_INSIDE_AS_ANSWERS,      /* a ray that starts inside finds the wall it leaves through */
-    LQ_CONTACT_INTERVAL, NULL, /* no batch entry */
-    LQ_ON_SURFACE_AS_INSIDE, LQ_TANGENT_HIT, /* linequad's own semantics: a touch is a hit */
-    0, 0, 0, /* no surface tolerance declared; negative distances read as they are */
+    .name = "textbook",
+    .precision = 64,
+    .answers = LQ_NEAREST,
+    .parametrisation = LQ_LINE,
+    .surface = LQ_AS_POSED,
+    .carries = LQ_POINTS,
+    .shapes = 1u << LQ_CYLINDER,
+    .mapping = "the school formula on a normalised axis; open finite cylinders only",
+    .solve = solve,
+    .inside = LQ_INSIDE_AS_ANSWERS, /* a ray that starts inside finds the wall it leaves through */
+    .contact = LQ_CONTACT_INTERVAL,
+    .start_on_surface = LQ_ON_SURFACE_AS_INSIDE,
+    .tangent = LQ_TANGENT_HIT, /* linequad's own semantics: a touch is a hit */
+    /* Left 0 or NULL: no self, no batch entry, no surface tolerance, negative distances read
+     * as they are, no sense entry (a tracker's side of a point, ABI 4). */
 }};
 
 int linequad_audit_plugin(int abi, const lq_solver** out) {

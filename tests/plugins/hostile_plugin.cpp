@@ -20,11 +20,14 @@
 
 namespace {
 
-bool picked(const lq_line* l) {
+// A tenth of the points (by their bits: the same ones every run), and another tenth.
+std::uint64_t point_bits(const double* p) {
     std::uint64_t bits;
-    std::memcpy(&bits, &l->L0[0], sizeof bits);
-    bits ^= bits >> 29;
-    return bits % 10 == 3;
+    std::memcpy(&bits, &p[0], sizeof bits);
+    return bits ^ (bits >> 29);
+}
+bool picked(const lq_line* l) {
+    return point_bits(l->L0) % 10 == 3;
 }
 
 double dot3(const double* a, const double* b) {
@@ -127,6 +130,32 @@ int solve(void*, const lq_shape* s, const lq_line* l, lq_answer* out) {
     return 0;
 }
 
+// A tracker's sides (ABI 4's sense entry) that crash on a tenth of the points and write a side
+// that is no side on another tenth; elsewhere the sign of a plane's f, or of a quadric's.
+int no_hit(void*, const lq_shape*, const lq_line*, lq_answer* out) {
+    std::memset(out, 0, sizeof *out);
+    return 0;
+}
+int bad_side(void*, const lq_shape* s, const double p[3], const double*, int* side) {
+    std::uint64_t bits = point_bits(p);
+    if (bits % 10 == 3) {
+        volatile int* nowhere = nullptr;
+        *side = *nowhere;
+    }
+    if (bits % 10 == 5) {
+        *side = 7;
+        return 0;
+    }
+    const double* q = s->p;
+    double f = s->kind == LQ_PLANE
+                   ? q[0] * p[0] + q[1] * p[1] + q[2] * p[2] - q[3]
+                   : q[0] * p[0] * p[0] + q[1] * p[1] * p[1] + q[2] * p[2] * p[2] +
+                         q[3] * p[0] * p[1] + q[4] * p[1] * p[2] + q[5] * p[2] * p[0] +
+                         q[6] * p[0] + q[7] * p[1] + q[8] * p[2] + q[9];
+    *side = f > 0 ? 1 : -1;
+    return 0;
+}
+
 const lq_solver solvers[] = {
     {"rounds_up", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, 0, 1u, "leaves FE_UPWARD", solve<0>,
      nullptr, 0, 0, nullptr},
@@ -148,6 +177,9 @@ const lq_solver solvers[] = {
      nullptr, 0, 0, nullptr},
     {"closes_descriptors", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, 0, 1u, "close(3..1023)", solve<9>,
      nullptr, 0, 0, nullptr},
+    {"bad_sides", 64, LQ_ALL, LQ_LINE, LQ_AS_POSED, 0, (1u << LQ_PLANE) | (1u << LQ_QUADRIC),
+     "no hit; its sense crashes or writes 7", no_hit, nullptr, 0, 0, nullptr, 0, 0, 0, 0, 0,
+     bad_side},
 };
 
 } // namespace

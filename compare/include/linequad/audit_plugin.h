@@ -3,12 +3,12 @@
  *     int linequad_audit_plugin(int abi, const lq_solver** solvers);
  *
  * is audited with `linequad audit --plugin libmine.so --solvers mine,...` without rebuilding
- * linequad. It is called with LQ_ABI (3) and, while it returns -1, with 2 and then 1 (the earlier
- * ABIs, whose solvers are lq_solver_v2 and lq_solver_v1: what a plugin built against their
- * headers returns, loaded and graded as it was); it sets *solvers to an array of solvers that lives
- * as long as the library is loaded and returns their number, or returns -1 when it does not speak
- * that ABI. Plain C, so that any language with a C FFI can be audited; the doubles are exactly
- * those of the posed case (a binary32 solver gets floats held in doubles).
+ * linequad. It is called with LQ_ABI (4) and, while it returns -1, with 3, 2 and then 1 (the
+ * earlier ABIs, whose solvers are lq_solver_v3, lq_solver_v2 and lq_solver_v1: what a plugin built
+ * against their headers returns, loaded and graded as it was); it sets *solvers to an array of
+ * solvers that lives as long as the library is loaded and returns their number, or returns -1 when
+ * it does not speak that ABI. Plain C, so that any language with a C FFI can be audited; the
+ * doubles are exactly those of the posed case (a binary32 solver gets floats held in doubles).
  *
  * The library runs in a worker process of its own (`linequad plugin-worker`), never in the
  * process that holds the exact reference and the report: a crash, an exit, an uncaught C++
@@ -25,7 +25,7 @@
 extern "C" {
 #endif
 
-#define LQ_ABI 3
+#define LQ_ABI 4
 
 /* Shapes, as in linequad/shapes.hpp. */
 enum lq_shape_kind {
@@ -140,7 +140,36 @@ typedef struct {
     double tolerance_absolute, tolerance_relative;
     /* A distance in [-negative_zero, 0) (scene units) reads as 0. Finite, >= 0. */
     double negative_zero;
+    /* ABI 4 from here. Optional (NULL: none): the side of a surface the library puts the point
+     * p on, as its tracker's find-cell decides it (OpenMC's Surface::sense: the sign of f, and
+     * for a point it counts as on the surface, the side the direction of travel u points into).
+     * Writes -1 (the negative half-space, f < 0) or +1 to *side; returns 0, or nonzero when it
+     * could not. Asked of LQ_PLANE and LQ_QUADRIC, the surfaces cells are built from, by
+     * `linequad cells MODEL --audit --plugin LIB --solvers NAME`: that tracker then finds its
+     * cells by these sides (docs/cells.md). */
+    int (*sense)(void* self, const lq_shape* shape, const double p[3], const double u[3],
+                 int* side);
 } lq_solver;
+
+/* The solvers of ABI 3: lq_solver without the fields of ABI 4. */
+typedef struct {
+    const char* name;
+    int precision;
+    int answers, parametrisation, surface;
+    int carries;
+    unsigned shapes;
+    const char* mapping;
+    int (*solve)(void* self, const lq_shape* shape, const lq_line* line, lq_answer* out);
+    void* self;
+    int inside;
+    int contact;
+    int (*solve_batch)(void* self, int n, const lq_shape* shapes, const lq_line* lines,
+                       lq_answer* out);
+    int start_on_surface;
+    int tangent;
+    double tolerance_absolute, tolerance_relative;
+    double negative_zero;
+} lq_solver_v3;
 
 /* The solvers of ABI 2: lq_solver without the fields of ABI 3. */
 typedef struct {

@@ -106,6 +106,7 @@ struct ExternalAnswer {
     std::optional<Result> result;   // nullopt: the library cannot represent the case (not graded)
     const char* unrepresented = ""; // why not, in the library's words, if it says
     const char* environment = "";   // how the call left the floating-point environment, if changed
+    int side = 0; // a sense call's answer: -1 (f < 0) or +1; 0 where it failed (`result` says why)
 };
 
 class PluginWorker; // a plugin's solvers in a worker process (plugin_worker.hpp)
@@ -192,6 +193,19 @@ struct ExternalSolver {
     using ChunkCallable =
         std::function<void(const std::vector<Case>& posed, std::vector<ExternalAnswer>& out)>;
     ChunkCallable chunk;
+    // Its side of a point, as its tracker's find-cell decides it (the plugin ABI's sense entry, or
+    // a callable of the caller's own): -1 (f < 0) or +1 for a plane or a quadric at p, the
+    // particle moving along u; anything else where it cannot say. None: the tracking audit finds
+    // that tracker's cells by the textbook's sides (OpenMC's Surface::sense).
+    using SenseCallable = std::function<int(const Shape&, Vec3 p, Vec3 u)>;
+    SenseCallable sense;
+    bool worker_sense = false; // a plugin's solver with the sense entry
+
+    bool has_sense() const;
+    // The sides of many points (each case: a shape, the point L0, the direction v) in out[i].side,
+    // in order; a call that failed, crashed or answered something else than -1 or 1 has side 0
+    // and a failure as its result. False when a stop request ended it.
+    bool sides(const std::vector<Case>& at, std::vector<ExternalAnswer>& out) const;
 
     // Whether it takes this shape, or the shape of this index in linequad::Shape.
     bool takes(const Shape& s) const;

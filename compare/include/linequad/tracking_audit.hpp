@@ -44,7 +44,9 @@ TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
 // that takes the model's planes and quadrics, asked once a step for the current cell's surfaces
 // (the one the particle sits on posed `coincident`, the ray from the particle's position), its
 // first hit beyond the particle taken as each one's distance. A refusal, a crash or a case it
-// cannot hold: no surface ahead.
+// cannot hold: no surface ahead. Where it has a sense entry (ExternalSolver::has_sense), its
+// cell search takes each surface's side from it too (the crossed surface's, as the loop's, from
+// u against the normal); a failed call leaves that side undecided: no cell found by it.
 TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
                           const audit::ExternalSolver& distances);
 // Why such a solver cannot give a model's distances (its lines not L0, v and t along v, its

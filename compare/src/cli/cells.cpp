@@ -205,7 +205,8 @@ TrackingRun track_families(const Model& m, Vec3 lo, Vec3 hi, std::uint64_t rays,
     for (int k = 0; k < tracker_count; ++k)
         out.trackers.push_back(tracker_name(k));
     for (const audit::ExternalSolver* e : external)
-        out.trackers.push_back("textbook, " + escape::markdown_text(e->name) + " distances");
+        out.trackers.push_back("textbook, " + escape::markdown_text(e->name) +
+                               (e->has_sense() ? " distances and sides" : " distances"));
     const std::size_t count = out.trackers.size();
     out.totals.resize(count);
     for (int f = 0; f < track_family_count; ++f) {

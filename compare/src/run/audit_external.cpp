@@ -142,8 +142,9 @@ CrashGuard::~CrashGuard() {
 
 namespace {
 
-template <class S>
-std::optional<Result> guarded(const ShapeCallable<S>& f, const S& s, const Line& l) {
+// call(), or crashed(the crash's name) where it faulted or aborted.
+template <class Call, class Crashed>
+auto guarded(Call call, Crashed crashed) -> decltype(call()) {
     CrashGuard guard;
     sigjmp_buf here;
     sigjmp_buf* outer = crash_target;
@@ -151,11 +152,18 @@ std::optional<Result> guarded(const ShapeCallable<S>& f, const S& s, const Line&
     // No mask to restore (a system call per solve): with SA_NODEFER nothing stays blocked.
     if (sigsetjmp(here, 0)) {
         crash_target = outer;
-        return Result::failure(ErrorCode::foreign, crash_name(crash_signal));
+        return crashed(crash_name(crash_signal));
     }
-    std::optional<Result> r = f(s, l);
+    auto r = call();
     crash_target = outer;
     return r;
+}
+template <class S>
+std::optional<Result> guarded(const ShapeCallable<S>& f, const S& s, const Line& l) {
+    return guarded([&] { return f(s, l); },
+                   [](const char* why) -> std::optional<Result> {
+                       return Result::failure(ErrorCode::foreign, why);
+                   });
 }
 
 } // namespace
@@ -238,6 +246,42 @@ ExternalAnswer ExternalSolver::answer(const Shape& s, const Line& l) const {
         numeric::set_fp_state(before);
     }
     return a;
+}
+
+bool ExternalSolver::has_sense() const {
+    return worker ? worker_sense : bool(sense);
+}
+
+bool ExternalSolver::sides(const std::vector<Case>& at, std::vector<ExternalAnswer>& out) const {
+    if (worker) return worker->sides(worker_index, at, out);
+    out.assign(at.size(), ExternalAnswer{});
+    if (!sense) {
+        for (ExternalAnswer& a : out)
+            a.result = Result::failure(ErrorCode::foreign, "it has no sense entry");
+        return true;
+    }
+    CrashGuard guard;
+    for (std::size_t i = 0; i < at.size(); ++i) {
+        numeric::FpState before = numeric::fp_state();
+        const char* crashed = "";
+        int side = guarded([&] { return sense(at[i].shape, at[i].line.L0, at[i].line.v); },
+                           [&](const char* why) { return crashed = why, 0; });
+        ExternalAnswer& a = out[i];
+        if (*crashed)
+            a.result = Result::failure(ErrorCode::foreign, crashed);
+        else if (side == -1 || side == 1)
+            a.result = Result{}, a.side = side;
+        else
+            a.result = Result::failure(
+                ErrorCode::foreign,
+                interned("its sense answered " + std::to_string(side) + ", not -1 or 1"));
+        numeric::FpState after = numeric::fp_state();
+        if (after != before) {
+            a.environment = interned(numeric::fp_change(before, after));
+            numeric::set_fp_state(before);
+        }
+    }
+    return true;
 }
 
 bool ExternalSolver::answer_all(const std::vector<Case>& posed, std::vector<ExternalAnswer>& out,
@@ -656,6 +700,7 @@ ExternalSolver declared_as_external(const DeclaredSolver& d) {
     e.negative_zero = d.negative_zero;
     e.points = d.points, e.kinds = d.kinds, e.parts = d.parts;
     e.mapping = d.mapping;
+    e.worker_sense = d.sense;
     return e;
 }
 

@@ -55,6 +55,7 @@ constexpr std::size_t max_hello_bytes = std::size_t(1) << 20;
 struct Request {
     std::uint32_t magic, seq, solver, first, count, batch;
     std::uint32_t check_socket; // after it, the worker checks its socket (see socket_intact)
+    std::uint32_t sides;        // 1: the sense entry, a case's line its point and direction
 };
 struct Reply {
     std::uint32_t magic, seq, status, unused;
@@ -186,6 +187,7 @@ struct Offered {
     int (*solve_batch)(void*, int, const lq_shape*, const lq_line*, lq_answer*) = nullptr;
     int on_surface = 0, tangent = 0;
     double tolerance_absolute = 0, tolerance_relative = 0, negative_zero = 0;
+    int (*sense)(void*, const lq_shape*, const double*, const double*, int*) = nullptr;
 };
 
 // A double for the hello line exactly, NaN and infinities included (JSON numbers hold neither):
@@ -277,7 +279,7 @@ Loaded load(const std::string& path) {
     } catch (...) {
         refuse_to_load("its linequad_audit_plugin threw");
     }
-    if (n < 0) refuse_to_load("does not speak the plugin ABI 3, 2 or 1");
+    if (n < 0) refuse_to_load("does not speak the plugin ABI 4, 3, 2 or 1");
     if (n == 0 || !array) refuse_to_load("offers no solver");
     if (n > 256) refuse_to_load("offers " + std::to_string(n) + " solvers (at most 256)");
     out.after = numeric::fp_state();
@@ -291,12 +293,18 @@ Loaded load(const std::string& path) {
             out.offered.push_back({s.name, s.precision, s.answers, s.parametrisation, s.surface,
                                    s.carries, s.shapes, s.mapping, s.solve, s.self, s.inside,
                                    s.contact, s.solve_batch});
-        } else {
-            const lq_solver& s = array[i];
+        } else if (out.abi == 3) {
+            const lq_solver_v3& s = reinterpret_cast<const lq_solver_v3*>(array)[i];
             out.offered.push_back({s.name, s.precision, s.answers, s.parametrisation, s.surface,
                                    s.carries, s.shapes, s.mapping, s.solve, s.self, s.inside,
                                    s.contact, s.solve_batch, s.start_on_surface, s.tangent,
                                    s.tolerance_absolute, s.tolerance_relative, s.negative_zero});
+        } else {
+            const lq_solver& s = array[i];
+            out.offered.push_back(
+                {s.name, s.precision, s.answers, s.parametrisation, s.surface, s.carries, s.shapes,
+                 s.mapping, s.solve, s.self, s.inside, s.contact, s.solve_batch, s.start_on_surface,
+                 s.tangent, s.tolerance_absolute, s.tolerance_relative, s.negative_zero, s.sense});
         }
     }
     return out;
@@ -323,7 +331,8 @@ jsonl::Json hello(const Loaded& l) {
                            {"tolerance_absolute", exact_text(o.tolerance_absolute)},
                            {"tolerance_relative", exact_text(o.tolerance_relative)},
                            {"negative_zero", exact_text(o.negative_zero)},
-                           {"batch", o.solve_batch != nullptr}});
+                           {"batch", o.solve_batch != nullptr},
+                           {"sense", o.sense != nullptr}});
     return {{"ok", true},
             {"abi", l.abi},
             {"before", state_json(l.before)},
@@ -340,11 +349,16 @@ class Answerer {
     Reply answer(const Request& q, const Offered& o) const {
         Reply r{reply_magic, q.seq, all_answered, 0, 0};
         auto start = Clock::now();
-        if (q.batch && o.solve_batch) {
+        if (q.sides) {
+            for (std::uint32_t i = q.first; i < q.count; ++i)
+                one(i, [&](lq_answer& a) { return side(i, o, a); });
+        } else if (q.batch && o.solve_batch) {
             if (!packet(q, o)) r.status = batch_declined;
         } else {
             for (std::uint32_t i = q.first; i < q.count; ++i)
-                one(i, o);
+                one(i, [&](lq_answer& a) {
+                    return o.solve(o.self, &sh_.shapes()[i], &sh_.lines()[i], &a);
+                });
         }
         r.ns = std::uint64_t(
             std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count());
@@ -360,15 +374,15 @@ class Answerer {
         note.changed = now != loaded_;
         note.simd = now.simd, note.x87 = now.x87;
     }
-    void one(std::uint32_t i, const Offered& o) const {
+    // Case i by `call` (its solve, or its sense), into answer i; `done` advanced after it.
+    template <class Call>
+    void one(std::uint32_t i, Call call) const {
         lq_answer& a = sh_.answers()[i];
         Note& note = sh_.notes()[i];
         a = lq_answer{};
         settle();
         try {
-            note.outcome = o.solve(o.self, &sh_.shapes()[i], &sh_.lines()[i], &a) == 0
-                               ? answered
-                               : returned_nonzero;
+            note.outcome = call(a) == 0 ? answered : returned_nonzero;
         } catch (const std::exception& e) {
             note.outcome = threw;
             char* text = sh_.thrown()[i].text;
@@ -379,6 +393,16 @@ class Answerer {
         }
         note_environment(note);
         sh_.header()->done.store(i + 1, std::memory_order_release);
+    }
+    // The sense entry on case i's shape, at its line's point and direction: the side it writes
+    // is handed back in the answer's `count` (a solver without the entry declines).
+    int side(std::uint32_t i, const Offered& o, lq_answer& a) const {
+        if (!o.sense) return 1;
+        const lq_line& l = sh_.lines()[i];
+        int at = 0;
+        int rc = o.sense(o.self, &sh_.shapes()[i], l.L0, l.v, &at);
+        a.count = at;
+        return rc;
     }
     // A packet through the batch entry: true when it answered.
     bool packet(const Request& q, const Offered& o) const {
@@ -891,6 +915,7 @@ struct PluginWorker::Impl {
                 d.parts = carries & LQ_PARTS;
                 d.mapping = s.at("mapping").get<std::string>();
                 d.batch = s.at("batch").get<bool>();
+                d.sense = s.at("sense").get<bool>();
                 if (std::string p = declaration_problem(declared_as_external(d)); !p.empty())
                     return p;
                 for (const DeclaredSolver& other : solvers)
@@ -988,15 +1013,25 @@ struct PluginWorker::Impl {
         }
     }
 
-    void collect(std::uint32_t i, ExternalAnswer& a) const {
+    void collect(std::uint32_t i, ExternalAnswer& a, bool sides) const {
         Note note = shared.notes()[i];
         a.environment = "";
+        a.side = 0;
         switch (note.outcome) {
         case answered:
-            read_plugin_answer(shared.answers()[i], a);
+            if (!sides) {
+                read_plugin_answer(shared.answers()[i], a);
+            } else if (int side = shared.answers()[i].count; side == -1 || side == 1) {
+                a.result = Result{}, a.side = side;
+            } else {
+                a.result = Result::failure(
+                    ErrorCode::foreign,
+                    own_words("its sense wrote side " + std::to_string(side) + ", not -1 or 1"));
+            }
             break;
         case returned_nonzero:
-            a.result = Result::failure(ErrorCode::foreign, "its solve returned nonzero");
+            a.result = Result::failure(ErrorCode::foreign, sides ? "its sense returned nonzero"
+                                                                 : "its solve returned nonzero");
             break;
         case threw:
             a.result =
@@ -1022,6 +1057,7 @@ struct PluginWorker::Impl {
         std::uint32_t count;
         std::vector<ExternalAnswer>& out;
         bool batch;
+        bool sides = false; // the sense entry's calls, not solve's
         std::uint32_t cursor = 0, filled = 0;
         std::uint32_t one_at_a_time_until = 0; // cases before it asked one per request
         struct Sent {
@@ -1045,7 +1081,7 @@ struct PluginWorker::Impl {
     // The answers [cursor, done) read (a plugin cannot make this read past `count`).
     void take(Run& r, std::uint32_t done) {
         for (done = std::min(done, r.count); r.cursor < done; ++r.cursor)
-            collect(r.cursor, r.out[r.base + r.cursor]);
+            collect(r.cursor, r.out[r.base + r.cursor], r.sides);
     }
 
     // Requests of a few hundred cases kept two in flight, so that the worker answers one while
@@ -1078,8 +1114,8 @@ struct PluginWorker::Impl {
                 // took it is looked for in this run's requests only) and after each one asked
                 // alone to find that call.
                 bool check = to == r.count || next < r.one_at_a_time_until;
-                Request q{request_magic,     ++seq,          std::uint32_t(r.s), next, to,
-                          r.batch ? 1u : 0u, check ? 1u : 0u};
+                Request q{request_magic,     ++seq,           std::uint32_t(r.s), next, to,
+                          r.batch ? 1u : 0u, check ? 1u : 0u, r.sides ? 1u : 0u};
                 r.sent.push_back({q.seq, next, to});
                 h->requests[q.seq % ring] = q;
                 h->posted.store(q.seq);
@@ -1186,6 +1222,11 @@ struct PluginWorker::Impl {
         }
         return true;
     }
+
+    // Solver s's solve (or, `sides`, its sense entry) on every case, a shared memory's worth at
+    // a time.
+    bool answer(int s, const std::vector<Case>& posed, std::vector<ExternalAnswer>& out, double* ns,
+                bool sides);
 };
 
 PluginWorker::PluginWorker(const std::string& plugin, const PluginOptions& o)
@@ -1215,14 +1256,22 @@ const std::string& PluginWorker::load_environment() const {
 
 bool PluginWorker::answer(int s, const std::vector<Case>& posed, std::vector<ExternalAnswer>& out,
                           double* ns) {
-    Impl& m = *impl_;
+    return impl_->answer(s, posed, out, ns, false);
+}
+bool PluginWorker::sides(int s, const std::vector<Case>& at, std::vector<ExternalAnswer>& out) {
+    return impl_->answer(s, at, out, nullptr, true);
+}
+
+bool PluginWorker::Impl::answer(int s, const std::vector<Case>& posed,
+                                std::vector<ExternalAnswer>& out, double* ns, bool sides) {
+    Impl& m = *this;
     std::lock_guard<std::mutex> lock(m.one_request);
     out.resize(posed.size());
     double total = 0;
     std::uint64_t timed = 0;
     for (std::size_t base = 0; base < posed.size(); base += capacity) {
         auto count = std::uint32_t(std::min<std::size_t>(capacity, posed.size() - base));
-        Impl::Run r{s, posed, base, count, out, m.solvers[std::size_t(s)].batch};
+        Impl::Run r{s, posed, base, count, out, !sides && m.solvers[std::size_t(s)].batch, sides};
         if (!m.run(r)) return false;
         total += r.ns, timed += r.timed;
     }

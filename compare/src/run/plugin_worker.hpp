@@ -38,6 +38,7 @@ struct DeclaredSolver {
     bool points = false, kinds = false, parts = false;
     unsigned shapes = 0; // bit k: the shape kind k of the ABI (the index in linequad::Shape)
     bool batch = false;  // it has the ABI's batch entry
+    bool sense = false;  // it has the ABI's sense entry (ABI 4)
 };
 
 // The ExternalSolver a declaration makes (without its worker).
@@ -64,6 +65,10 @@ class PluginWorker {
     // a time (callers from several threads take turns).
     bool answer(int s, const std::vector<Case>& posed, std::vector<ExternalAnswer>& out,
                 double* ns);
+    // Solver s's sense entry on each case's shape at its line's point L0 and direction v: the
+    // side in each answer's `side` (a call that failed: its result a failure, as answer's are).
+    // False when a stop request ended it.
+    bool sides(int s, const std::vector<Case>& at, std::vector<ExternalAnswer>& out);
 
     // What the plugin wrote on standard output and error while solver s ran: its first lines,
     // and how many bytes in all.

@@ -94,14 +94,43 @@ Sense textbook_sense(const SurfaceShape& s, Vec3 p, Vec3 u) {
         s);
 }
 
+// The textbook's sides of a point: OpenMC's Surface::sense, surface by surface.
+struct TextbookSides {
+    const Model& m;
+    void at(Vec3 p, Vec3 u, int known, std::vector<Sense>& senses) {
+        for (std::size_t s = 0; s < m.surfaces().size(); ++s)
+            if (int(s) != known) senses[s] = textbook_sense(m.surfaces()[s].shape, p, u);
+    }
+};
+
+// A user's sides (its sense entry: a plugin's, in its worker), every surface of the model in one
+// call. A failed call leaves that surface's side undecided, which no cell is found by.
+struct ExternalSides {
+    const Model& m;
+    const audit::ExternalSolver& solver;
+    std::vector<Case> posed{};
+    std::vector<audit::ExternalAnswer> answers{};
+
+    void at(Vec3 p, Vec3 u, int known, std::vector<Sense>& senses) {
+        posed.resize(m.surfaces().size());
+        for (std::size_t s = 0; s < posed.size(); ++s) {
+            posed[s].shape =
+                std::visit([](const auto& x) -> Shape { return x; }, m.surfaces()[s].shape);
+            posed[s].line = Line{p, u, Range::ray};
+        }
+        if (!solver.sides(posed, answers)) answers.assign(posed.size(), {});
+        for (std::size_t s = 0; s < posed.size(); ++s)
+            if (int(s) != known) senses[s] = Sense(answers[s].side);
+    }
+};
+
 // The first cell (in the model's order, as an exhaustive search finds it) holding p, the
-// surface `known` (if any) on its side `known_sense`.
-int find_cell(const Model& m, Vec3 p, Vec3 u, int known, Sense known_sense) {
-    std::vector<Sense> senses;
-    senses.reserve(m.surfaces().size());
-    for (std::size_t s = 0; s < m.surfaces().size(); ++s)
-        senses.push_back(int(s) == known ? known_sense
-                                         : textbook_sense(m.surfaces()[s].shape, p, u));
+// surface `known` (if any) on its side `known_sense`, the others on the sides `sides` puts p on.
+template <class Sides>
+int find_cell(const Model& m, Vec3 p, Vec3 u, int known, Sense known_sense, Sides& sides) {
+    std::vector<Sense> senses(m.surfaces().size(), Sense::on);
+    if (known >= 0) senses[std::size_t(known)] = known_sense;
+    sides.at(p, u, known, senses);
     for (std::size_t c = 0; c < m.cells().size(); ++c)
         if (m.cells()[c].region.contains(senses) == std::optional<bool>(true)) return int(c);
     return -1;
@@ -147,11 +176,12 @@ namespace {
 
 // The transport codes' loop (textbook_track's comment), its surface distances from `distances`:
 // begin(tokens, p, u, last) once a step, then distance(surface, on_it) for each surface the
-// current cell's region names.
-template <class Distances>
-TrackerRun transport_loop(const Model& m, Vec3 p, Vec3 u, int max_steps, Distances& distances) {
+// current cell's region names; the sides of a point for its cell search from `sides`.
+template <class Distances, class Sides>
+TrackerRun transport_loop(const Model& m, Vec3 p, Vec3 u, int max_steps, Distances& distances,
+                          Sides& sides) {
     TrackerRun run;
-    int cell = run.start = find_cell(m, p, u, -1, Sense::on);
+    int cell = run.start = find_cell(m, p, u, -1, Sense::on, sides);
     if (cell < 0) return run;
     int last = -1;
     double t = 0;
@@ -176,11 +206,11 @@ TrackerRun transport_loop(const Model& m, Vec3 p, Vec3 u, int max_steps, Distanc
         Vec3 n = std::visit([&](const auto& x) { return normal(x, p); },
                             m.surfaces()[std::size_t(nearest)].shape);
         Sense side = dot3(n, u) > 0 ? Sense::positive : Sense::negative;
-        cell = find_cell(m, p, u, nearest, side);
+        cell = find_cell(m, p, u, nearest, side, sides);
         if (cell < 0) { // tangent, or a void: a tiny step on, then lost
             p = {p.x + tiny_bit * u.x, p.y + tiny_bit * u.y, p.z + tiny_bit * u.z};
             t += tiny_bit;
-            cell = find_cell(m, p, u, nearest, side);
+            cell = find_cell(m, p, u, nearest, side, sides);
         }
         run.steps.push_back({t, d_min, cell});
         if (cell < 0) return run;
@@ -256,13 +286,19 @@ struct ExternalDistances {
 TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
                           TrackerDistances distances) {
     OwnDistances own{m, distances};
-    return transport_loop(m, p, u, max_steps, own);
+    TextbookSides sides{m};
+    return transport_loop(m, p, u, max_steps, own, sides);
 }
 
 TrackerRun textbook_track(const Model& m, Vec3 p, Vec3 u, int max_steps,
                           const audit::ExternalSolver& distances) {
     ExternalDistances external{m, distances, {}, {}, {}, {}};
-    return transport_loop(m, p, u, max_steps, external);
+    if (distances.has_sense()) {
+        ExternalSides sides{m, distances};
+        return transport_loop(m, p, u, max_steps, external, sides);
+    }
+    TextbookSides sides{m};
+    return transport_loop(m, p, u, max_steps, external, sides);
 }
 
 std::string external_distances_problem(const Model& m, const audit::ExternalSolver& s) {
