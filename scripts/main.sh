@@ -61,10 +61,14 @@ for model in examples/models/*.json; do
   step "tracking audit: $name" "$reports/latest/cells/$name.log" \
     $linequad cells "$model" --audit --rays 20000 --out "$reports/latest/cells/$name"
 done
-# OpenMC's own file of the pin cell: a geometry.xml has no source box of its own.
+# OpenMC's own files of the pin cell and of four pins of an assembly: a geometry.xml has no
+# source box of its own.
 step "tracking audit: pin_cell_openmc" "$reports/latest/cells/pin_cell_openmc.log" \
   $linequad cells examples/models/pin_cell_openmc.xml --audit --rays 20000 \
   --box -0.625,-0.625,-1,0.625,0.625,1 --out "$reports/latest/cells/pin_cell_openmc"
+step "tracking audit: assembly_openmc" "$reports/latest/cells/assembly_openmc.log" \
+  $linequad cells examples/models/assembly_openmc.xml --audit --rays 20000 \
+  --box -1.26,-1.26,-10,1.26,1.26,10 --out "$reports/latest/cells/assembly_openmc"
 
 cat <<SUMMARY
 main job done in $((SECONDS - start)) s. Reports:

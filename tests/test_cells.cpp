@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <type_traits>
 
 using namespace linequad;
@@ -250,6 +251,111 @@ TEST_CASE("cells: coincident surfaces tie and surfaces an ulp apart are told apa
         REQUIRE(want.count == 1);
         CHECK(test::same_bits(out.t, want.hits[0].t));
     }
+}
+
+TEST_CASE("cells: a sphere and an axis-aligned cylinder have the exact sense OpenMC's definition "
+          "gives, whatever their doubles",
+          "[cells]") {
+    // R = 1 - 0.63 exactly (Sterbenz): (1, -0.63, z) lies on the z-cylinder around
+    // (0.63, -0.63) of radius R, and (0.63, -0.63 + ..., ...) does not; the expanded quadric's
+    // constant 2 (0.63)^2 - R^2 is no double, which is why the cylinder is posed by its centre.
+    const double R = 1.0 - 0.63;
+    Cylinder pin{{0.63, -0.63, 0}, {0.63, -0.63, 5}, R};
+    pin.finite = false;
+    Vec3 on{1.0, -0.63, 2.5};
+    CHECK(sense(pin, on).sense == Sense::on);
+    CHECK(sense(pin, on, {1, 0, 0}).sense == Sense::positive);
+    CHECK(sense(pin, on, {-1, 0.5, 3}).sense == Sense::negative);
+    CHECK(sense(pin, on, {0, 1, 0}).sense == Sense::positive); // tangent: curving away
+    CHECK(sense(pin, on, {0, 0, -1}).sense == Sense::on);      // along the surface
+    CHECK(sense(pin, {std::nextafter(1.0, 2.0), -0.63, 0}).sense == Sense::positive);
+    CHECK(sense(pin, {std::nextafter(1.0, 0.0), -0.63, 0}).sense == Sense::negative);
+    Sphere ball{{0.1, 0.2, 0.3}, 0.7};
+    // Against the oracle on points at and beside both surfaces: their rounded hits, and points
+    // a few ulps off.
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> box(-2, 2);
+    int decided = 0;
+    for (int i = 0; i < 3000; ++i) {
+        Line l{{box(rng), box(rng), box(rng)}, {box(rng), box(rng), box(rng)}, Range::line};
+        Vec3 u{box(rng), box(rng), box(rng)};
+        auto compare = [&](const auto& s) {
+            Result r = correct::intersect(s, l);
+            for (int k = 0; k < r.count; ++k) {
+                Vec3 p = r.hits[k].p;
+                for (Vec3 q : {p, Vec3{std::nextafter(p.x, 9.0), p.y, p.z}}) {
+                    INFO(i << " " << q.x << " " << q.y << " " << q.z);
+                    CHECK(sense(s, q, u).sense == exact::sense(s, q, u).sense);
+                    CHECK(sense(s, q).sense == exact::sense(s, q).sense);
+                    decided += sense(s, q).sense != Sense::on;
+                }
+            }
+        };
+        compare(pin);
+        compare(ball);
+    }
+    CHECK(decided > 1000);
+    // What a cell's cylinder cannot be: finite, capped, oblique; and radii that are no radius.
+    Cylinder finite = pin;
+    finite.finite = true;
+    CHECK(check_sense(finite, {}).code == ErrorCode::bad_option);
+    Cylinder oblique = pin;
+    oblique.H = {1, 1, 5};
+    CHECK(check_sense(oblique, {}).code == ErrorCode::bad_option);
+    CHECK(std::string(check_sense(oblique, {}).field).rfind("H - C", 0) == 0);
+    CHECK(check_sense(Sphere{{0, 0, 0}, 0}, {}).code == ErrorCode::bad_radius);
+    CHECK(check_sense(Sphere{{0, 0, 0}, NAN}, {}).code == ErrorCode::not_a_number);
+    CHECK(sense(Sphere{{0, 0, 0}, -1}, {}).error.code == ErrorCode::bad_radius);
+}
+
+TEST_CASE("cells: a model's spheres and cylinders track exactly, from JSON and from geometry.xml",
+          "[cells]") {
+    namespace fs = std::filesystem;
+    // The same two pins from a JSON model, the sphere around them too.
+    const char* json = R"({"box":[[-2,-2,-2],[2,2,2]],
+      "surfaces":[{"id":1,"shape":"cylinder","C":[-0.63,0,0],"H":[-0.63,0,1],"r":0.39218},
+                  {"id":2,"shape":"cylinder","C":[0.63,0,0],"H":[0.63,0,1],"r":0.39218},
+                  {"id":3,"shape":"sphere","C":[0,0,0.1],"r":1.7}],
+      "cells":[{"id":1,"region":"-1 -3"},{"id":2,"region":"-2 -3"},{"id":3,"region":"1 2 -3"},
+               {"id":4,"region":"3"}]})";
+    ModelFile file;
+    std::string why;
+    REQUIRE(parse_model(json, &file, &why));
+    std::optional<Model> m = Model::build(file.surfaces, file.cells, why);
+    INFO(why);
+    REQUIRE(m);
+    for (int f = 0; f < track_family_count; ++f)
+        for (std::uint64_t i = 0; i < 100; ++i) {
+            std::optional<TrackRay> ray =
+                track_ray(*m, (*file.box)[0], (*file.box)[1], TrackFamily(f), 3, i);
+            if (!ray) break;
+            GradedTrack g = grade_linequad_track(exact::track(*m, ray->p, ray->u, 1000),
+                                                 m->track(ray->p, ray->u, 1000));
+            INFO(track_family_name(TrackFamily(f)) << " ray " << i);
+            CHECK(g.outcome == TrackOutcome::right);
+        }
+    // An oblique cylinder, or a field a cylinder does not have, is refused by name.
+    std::string oblique = json;
+    const std::string axis = "\"H\":[-0.63,0,1]";
+    oblique.replace(oblique.find(axis), axis.size(), "\"H\":[-0.62,0,1]");
+    REQUIRE(parse_model(oblique, &file, &why));
+    CHECK(!Model::build(file.surfaces, file.cells, why));
+    CHECK(why.find("surface 1: ") == 0);
+    CHECK(why.find("H - C") != std::string::npos);
+    std::string extra = json;
+    extra.replace(extra.find("\"r\":1.7"), 7, "\"r\":1.7,\"q\":[1]");
+    CHECK(!parse_model(extra, &file, &why));
+    CHECK(why.find("surfaces[2]") == 0);
+    // OpenMC's assembly patch: four off-centre pins of decimal radii.
+    fs::path dir = test::scratch("cells_assembly");
+    fs::path xml = fs::path(LINEQUAD_SOURCE_DIR) / "examples/models/assembly_openmc.xml";
+    test::Ran audit = test::program("cells '" + xml.string() +
+                                        "' --audit --rays 150 --points 500 --box "
+                                        "-1.26,-1.26,-10,1.26,1.26,10",
+                                    dir);
+    REQUIRE(audit.status == 0);
+    CHECK(audit.out.find("**linequad's cells went wrong on 0**") != std::string::npos);
+    CHECK(audit.out.find(", 0 lie in two cells or more, 0 in no cell") != std::string::npos);
 }
 
 TEST_CASE("cells: a union's inner surface is not a boundary", "[cells]") {
@@ -703,10 +809,10 @@ TEST_CASE("cells: OpenMC's geometry.xml is read exactly, and what is not taken i
         const char* error;
     };
     const Bad bad[] = {
-        {"<geometry>\n<surface id=\"1\" type=\"sphere\" coeffs=\"0 0 0 0.39218\"/>\n</geometry>",
-         "line 2: surface 1 (sphere): coeffs \"0 0 0 0.39218\": its general-quadric coefficient K "
-         "is not a double, and linequad poses a surface exactly, never rounded (such centred "
-         "surfaces are not taken yet)"},
+        {"<geometry>\n<surface id=\"1\" type=\"z-cone\" coeffs=\"0.1 0 0 0.5\"/>\n</geometry>",
+         "line 2: surface 1 (z-cone): coeffs \"0.1 0 0 0.5\": its general-quadric coefficient K "
+         "is not a double, and linequad poses a surface exactly, never rounded (such cones are "
+         "not taken yet)"},
         {"<geometry>\n\n<surface id=\"4\" type=\"x-torus\" coeffs=\"0 0 0 1 1 1\"/>\n</geometry>",
          "line 3: surface 4 (x-torus): a surface type linequad does not pose (it poses plane, "
          "x-/y-/z-plane, sphere, x-/y-/z-cylinder, x-/y-/z-cone and quadric)"},

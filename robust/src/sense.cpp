@@ -41,6 +41,37 @@ SenseResult refused(Error e) {
     return {Sense::on, e};
 }
 
+// A sphere's f or an axis-aligned cylinder's (sense_terms.hpp's centred terms), for a surface
+// check_sense accepted.
+struct Centred {
+    detail::Across across;
+    Vec3 c;
+    double r;
+};
+Centred centred(const Sphere& s) {
+    return {{{true, true, true}}, s.C, s.r};
+}
+Centred centred(const Cylinder& s) {
+    return {*detail::cylinder_across(s), s.C, s.r};
+}
+template <class S>
+SenseResult centred_sense(const S& shape, Vec3 p, const Vec3* u) {
+    numeric::StandardEnvironmentT<true> standard;
+    if (Error e = check_sense(shape, p, u); !e.ok()) return refused(e);
+    Centred s = centred(shape);
+    Sense at = sense_of([&](auto&& add) {
+        detail::centred_value_terms(s.across, exact(s.c), Exact(s.r), exact(p), add);
+    });
+    if (at != Sense::on || !u) return {at, {}};
+    Sense slope = sense_of([&](auto&& add) {
+        detail::centred_slope_terms(s.across, exact(s.c), exact(p), exact(*u), add);
+    });
+    if (slope != Sense::on) return {slope, {}};
+    return {
+        sense_of([&](auto&& add) { detail::centred_curvature_terms(s.across, exact(*u), add); }),
+        {}};
+}
+
 } // namespace
 
 SenseResult sense(const Plane& s, Vec3 p) {
@@ -73,6 +104,19 @@ SenseResult sense(const Quadric& s, Vec3 p, Vec3 u) {
     return {
         sense_of([&](auto&& add) { detail::quadric_curvature_terms(exact(s.q), exact(u), add); }),
         {}};
+}
+
+SenseResult sense(const Sphere& s, Vec3 p) {
+    return centred_sense(s, p, nullptr);
+}
+SenseResult sense(const Cylinder& s, Vec3 p) {
+    return centred_sense(s, p, nullptr);
+}
+SenseResult sense(const Sphere& s, Vec3 p, Vec3 u) {
+    return centred_sense(s, p, &u);
+}
+SenseResult sense(const Cylinder& s, Vec3 p, Vec3 u) {
+    return centred_sense(s, p, &u);
 }
 
 } // namespace linequad::exact

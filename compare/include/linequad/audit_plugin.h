@@ -144,9 +144,10 @@ typedef struct {
      * p on, as its tracker's find-cell decides it (OpenMC's Surface::sense: the sign of f, and
      * for a point it counts as on the surface, the side the direction of travel u points into).
      * Writes -1 (the negative half-space, f < 0) or +1 to *side; returns 0, or nonzero when it
-     * could not. Asked of LQ_PLANE and LQ_QUADRIC, the surfaces cells are built from, by
-     * `linequad cells MODEL --audit --plugin LIB --solvers NAME`: that tracker then finds its
-     * cells by these sides (docs/cells.md). */
+     * could not. Asked of the surfaces cells are built from (LQ_PLANE, LQ_QUADRIC, LQ_SPHERE,
+     * and LQ_CYLINDER infinite along a coordinate axis) by `linequad cells MODEL --audit
+     * --plugin LIB --solvers NAME`: that tracker then finds its cells by these sides
+     * (docs/cells.md). */
     int (*sense)(void* self, const lq_shape* shape, const double p[3], const double u[3],
                  int* side);
 } lq_solver;

@@ -194,9 +194,10 @@ struct ExternalSolver {
         std::function<void(const std::vector<Case>& posed, std::vector<ExternalAnswer>& out)>;
     ChunkCallable chunk;
     // Its side of a point, as its tracker's find-cell decides it (the plugin ABI's sense entry, or
-    // a callable of the caller's own): -1 (f < 0) or +1 for a plane or a quadric at p, the
-    // particle moving along u; anything else where it cannot say. None: the tracking audit finds
-    // that tracker's cells by the textbook's sides (OpenMC's Surface::sense).
+    // a callable of the caller's own): -1 (f < 0) or +1 for a model's surface at p (a plane, a
+    // quadric, a sphere or an axis-aligned cylinder), the particle moving along u; anything else
+    // where it cannot say. None: the tracking audit finds that tracker's cells by the textbook's
+    // sides (OpenMC's Surface::sense).
     using SenseCallable = std::function<int(const Shape&, Vec3 p, Vec3 u)>;
     SenseCallable sense;
     bool worker_sense = false; // a plugin's solver with the sense entry

@@ -390,11 +390,15 @@ std::string tracking_markdown(const CellsArgs& a, const Model& m, const Tracking
           "is the tracker's summed distance against the exact crossing's, over right steps. A "
           "family with no rays does not apply to the model (no axis-aligned planes, no curved "
           "surface).\n";
-    md << "\nCommand: "
-       << escape::markdown_code("linequad cells " + escape::shell_word(a.model) +
-                                " --audit --rays " + a.rays + " --points " + a.points + " --seed " +
-                                a.seed)
-       << "\n";
+    // The command that measures it again: every option that changes what is measured.
+    std::string command = "linequad cells " + escape::shell_word(a.model) + " --audit --rays " +
+                          a.rays + " --points " + a.points + " --seed " + a.seed;
+    if (!a.box.empty()) command += " --box " + escape::shell_word(a.box);
+    if (a.max_steps != "1000") command += " --max-steps " + escape::shell_word(a.max_steps);
+    for (const std::string& plugin : a.plugins)
+        command += " --plugin " + escape::shell_word(plugin);
+    if (!a.solvers.empty()) command += " --solvers " + escape::shell_word(a.solvers);
+    md << "\nCommand: " << escape::markdown_code(command) << "\n";
     return md.str();
 }
 
@@ -467,7 +471,8 @@ Command cells_command(CLI::App& app) {
     auto a = std::make_shared<CellsArgs>();
     CLI::App* s = app.add_subcommand(
         "cells",
-        "Particles through a model of cells over planes and quadrics (a JSON file: "
+        "Particles through a model of cells over planes, quadrics, spheres and cylinders (a JSON "
+        "file: "
         "{\"surfaces\": [...], \"cells\": [{\"id\", \"region\"}], \"box\"}, or OpenMC's "
         "geometry.xml): each query line "
         "{\"id\", \"p\", \"u\"} gets the exact track (the cells at p, then each point where "
@@ -499,8 +504,9 @@ Command cells_command(CLI::App& app) {
         ->check(WholeNumber(0, 100000000))
         ->type_name("N");
     s->add_option("--solvers", a->solvers,
-                  "(--audit) the transport loop again with each of these solvers' plane and "
-                  "quadric distances: a plugin's (--plugin) or a peer library's")
+                  "(--audit) the transport loop again with each of these solvers' distances to the "
+                  "model's surfaces, and its sides of them where it has a sense entry: a "
+                  "plugin's (--plugin) or a peer library's")
         ->type_name("NAME,...");
     add_plugin_options(s, a->plugins, a->timeout);
     s->add_option("--markdown", a->markdown, "write the audit's report here (default: stdout)")

@@ -149,22 +149,29 @@ bool surface(Reader& r, const pugi::xml_node& node, Model::Surface* out) {
         out->shape = q;
         return true;
     }
-    Exact one = exactly(1), zero = exactly(0);
-    Expanded e;
+    // The sphere and the cylinders as OpenMC defines them, from their centre and radius: exact
+    // whatever the doubles (linequad/cells.hpp's Sphere and Cylinder surfaces).
     if (type == "sphere") {
         if (!r.coeffs(node, where, 4, &c)) return false;
-        Exact R = exactly(c[3]);
-        e = centred({one, one, one}, {exactly(c[0]), exactly(c[1]), exactly(c[2])}, -(R * R));
-    } else if (type == "x-cylinder" || type == "y-cylinder" || type == "z-cylinder") {
+        out->shape = Sphere{{c[0], c[1], c[2]}, c[3]};
+        return true;
+    }
+    if (type == "x-cylinder" || type == "y-cylinder" || type == "z-cylinder") {
         if (!r.coeffs(node, where, 3, &c)) return false;
         int axis = type[0] - 'x';
-        std::array<Exact, 3> s{one, one, one}, centre{};
-        s[std::size_t(axis)] = zero;
-        for (int i = 0, k = 0; i < 3; ++i)
-            centre[std::size_t(i)] = i == axis ? zero : exactly(c[std::size_t(k++)]);
-        Exact R = exactly(c[2]);
-        e = centred(s, centre, -(R * R));
-    } else if (type == "x-cone" || type == "y-cone" || type == "z-cone") {
+        double centre[3], along[3];
+        for (int i = 0, k = 0; i < 3; ++i) {
+            centre[i] = i == axis ? 0.0 : c[std::size_t(k++)];
+            along[i] = i == axis ? 1.0 : centre[i];
+        }
+        Cylinder cylinder{{centre[0], centre[1], centre[2]}, {along[0], along[1], along[2]}, c[2]};
+        cylinder.finite = false;
+        out->shape = cylinder;
+        return true;
+    }
+    Exact one = exactly(1), zero = exactly(0);
+    Expanded e;
+    if (type == "x-cone" || type == "y-cone" || type == "z-cone") {
         // (x_i - c_i)^2 summed over the other axes, less R2 (x_axis - c_axis)^2: R2 is OpenMC's
         // coefficient itself (the squared tangent), not a square to round.
         if (!r.coeffs(node, where, 4, &c)) return false;
@@ -183,7 +190,7 @@ bool surface(Reader& r, const pugi::xml_node& node, Model::Surface* out) {
             return r.fail(node, where + ": coeffs \"" + node.attribute("coeffs").value() +
                                     "\": its general-quadric coefficient " + e.names[i] +
                                     " is not a double, and linequad poses a surface exactly, "
-                                    "never rounded (such centred surfaces are not taken yet)");
+                                    "never rounded (such cones are not taken yet)");
         q.q[std::size_t(i)] = e.q[std::size_t(i)].v;
     }
     out->shape = q;

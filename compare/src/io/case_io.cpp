@@ -536,12 +536,23 @@ std::string format_failure(const std::string& id, std::string_view solver, std::
 
 namespace {
 
-// A plane's fields ("n", "d") or a quadric's ("q"), `kind` being the one or the other.
+// A plane's fields ("n", "d"), a quadric's ("q"), a sphere's ("C", "r") or a cylinder's ("C",
+// "H", "r": infinite, along a coordinate axis), `kind` being one of them.
 bool read_surface(Reader& r, const std::string& kind, SurfaceShape* out) {
     if (kind == "plane") {
         Plane plane{};
         if (!r.vec("n", &plane.n) || !r.number("d", &plane.d)) return false;
         *out = plane;
+    } else if (kind == "sphere") {
+        Sphere sphere{};
+        if (!r.vec("C", &sphere.C) || !r.number("r", &sphere.r)) return false;
+        *out = sphere;
+    } else if (kind == "cylinder") {
+        Cylinder cylinder{};
+        cylinder.finite = false;
+        if (!r.vec("C", &cylinder.C) || !r.vec("H", &cylinder.H) || !r.number("r", &cylinder.r))
+            return false;
+        *out = cylinder;
     } else {
         Quadric quadric{};
         if (!r.coefficients("q", &quadric.q)) return false;
@@ -613,11 +624,15 @@ bool parse_model(std::string_view text, ModelFile* out, std::string* why) {
         const Json* shape = r.need("shape");
         if (!shape) return false;
         std::string kind = shape->is_string() ? shape->get<std::string>() : "";
-        if (kind != "plane" && kind != "quadric")
-            return r.fail("shape", "expected plane or quadric");
+        if (kind != "plane" && kind != "quadric" && kind != "sphere" && kind != "cylinder")
+            return r.fail("shape", "expected plane, quadric, sphere or cylinder");
         bool fields =
             kind == "plane"
                 ? only_fields(r, obj, {"id", "shape", "n", "d", "note"}, "a model's plane")
+            : kind == "sphere"
+                ? only_fields(r, obj, {"id", "shape", "C", "r", "note"}, "a model's sphere")
+            : kind == "cylinder"
+                ? only_fields(r, obj, {"id", "shape", "C", "H", "r", "note"}, "a model's cylinder")
                 : only_fields(r, obj, {"id", "shape", "q", "note"}, "a model's quadric");
         if (!fields || !read_id(r, &surface.id) || !read_surface(r, kind, &surface.shape))
             return false;

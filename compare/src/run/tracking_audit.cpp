@@ -47,6 +47,54 @@ Vec3 normal(const Quadric& s, Vec3 r) {
             2 * q[2] * r.z + q[4] * r.y + q[5] * r.x + q[8]};
 }
 
+// The sphere (SurfaceSphere) and the x-, y- and z-cylinders (axis_aligned_cylinder_distance), as
+// OpenMC writes them for a unit direction, here with its squared length for the 1 it assumes
+// (the tracking audit's directions are not unit vectors).
+double evaluate(const Sphere& s, Vec3 r) {
+    double x = r.x - s.C.x, y = r.y - s.C.y, z = r.z - s.C.z;
+    return x * x + y * y + z * z - s.r * s.r;
+}
+Vec3 normal(const Sphere& s, Vec3 r) {
+    return {2 * (r.x - s.C.x), 2 * (r.y - s.C.y), 2 * (r.z - s.C.z)};
+}
+// The cylinder's axis (0, 1 or 2: x, y or z; a model's cylinders lie along one).
+int axis_of(const Cylinder& s) {
+    Vec3 d = s.H - s.C;
+    return d.x != 0 ? 0 : d.y != 0 ? 1 : 2;
+}
+double evaluate(const Cylinder& s, Vec3 r) {
+    int i = axis_of(s), j = (i + 1) % 3, k = (i + 2) % 3;
+    double x = r[j] - s.C[j], y = r[k] - s.C[k];
+    return x * x + y * y - s.r * s.r;
+}
+Vec3 normal(const Cylinder& s, Vec3 r) {
+    int i = axis_of(s);
+    double n[3] = {2 * (r.x - s.C.x), 2 * (r.y - s.C.y), 2 * (r.z - s.C.z)};
+    n[i] = 0;
+    return {n[0], n[1], n[2]};
+}
+// OpenMC's near root of a k^2 - a c: the far one from a point on the surface or inside.
+double centred_distance(double a, double k, double c, bool coincident) {
+    if (a == 0.0) return infinity;
+    double quad = k * k - a * c;
+    if (quad < 0.0) return infinity;
+    if (coincident || std::fabs(c) < fp_coincident)
+        return k >= 0.0 ? infinity : (-k + std::sqrt(quad)) / a;
+    if (c < 0.0) return (-k + std::sqrt(quad)) / a;
+    double d = (-k - std::sqrt(quad)) / a;
+    return d < 0.0 ? infinity : d;
+}
+double distance(const Sphere& s, Vec3 r, Vec3 u, bool coincident) {
+    double x = r.x - s.C.x, y = r.y - s.C.y, z = r.z - s.C.z;
+    return centred_distance(dot3(u, u), x * u.x + y * u.y + z * u.z, evaluate(s, r), coincident);
+}
+double distance(const Cylinder& s, Vec3 r, Vec3 u, bool coincident) {
+    int i = axis_of(s), j = (i + 1) % 3, k = (i + 2) % 3;
+    double x = r[j] - s.C[j], y = r[k] - s.C[k];
+    return centred_distance(u[j] * u[j] + u[k] * u[k], x * u[j] + y * u[k], evaluate(s, r),
+                            coincident);
+}
+
 double distance(const Plane& s, Vec3 r, Vec3 u, bool coincident) {
     double f = evaluate(s, r), projection = dot3(s.n, u);
     if (coincident || std::fabs(f) < fp_coincident || projection == 0.0) return infinity;
@@ -140,10 +188,24 @@ int find_cell(const Model& m, Vec3 p, Vec3 u, int known, Sense known_sense, Side
 // surface it sits on posed coincident (its root at t = 0 exactly).
 template <class S>
 double solver_distance(S s, Vec3 p, Vec3 u, bool coincident, TrackerDistances d) {
-    s.coincident = coincident;
-    Line ray{p, u, Range::ray};
-    Result r = d == TrackerDistances::stable ? stable::intersect(s, ray, {Need::all, false})
-                                             : correct::intersect(s, ray, {Need::all, false});
+    auto solve = [&](const Line& l) {
+        return d == TrackerDistances::stable ? stable::intersect(s, l, {Need::all, false})
+                                             : correct::intersect(s, l, {Need::all, false});
+    };
+    if constexpr (!has_coincident<S>) {
+        // A sphere or a cylinder has no `coincident`: of the whole line's crossings, the one
+        // nearest 0 is the surface the particle sits on, and the other its distance, if ahead.
+        if (coincident) {
+            Result r = solve(Line{p, u, Range::line});
+            if (r.count != 2 || r.hits[1].kind != HitKind::cross) return infinity;
+            double other =
+                std::fabs(r.hits[0].t) <= std::fabs(r.hits[1].t) ? r.hits[1].t : r.hits[0].t;
+            return other > 0 ? other : infinity;
+        }
+    } else {
+        s.coincident = coincident;
+    }
+    Result r = solve(Line{p, u, Range::ray});
     for (int k = 0; k < r.count; ++k)
         if (r.hits[k].t > 0 && r.hits[k].kind == HitKind::cross) return r.hits[k].t;
     return infinity;
@@ -252,7 +314,7 @@ struct ExternalDistances {
             Case c;
             c.shape = std::visit(
                 [&](auto x) -> Shape {
-                    x.coincident = tok.surface == last;
+                    if constexpr (has_coincident<decltype(x)>) x.coincident = tok.surface == last;
                     return x;
                 },
                 m.surfaces()[std::size_t(tok.surface)].shape);
@@ -309,8 +371,9 @@ std::string external_distances_problem(const Model& m, const audit::ExternalSolv
     for (const Model::Surface& surface : m.surfaces())
         if (!s.takes(std::visit([](const auto& x) -> Shape { return x; }, surface.shape)))
             return "solver '" + s.name + "' does not take the model's " +
-                   std::string(std::holds_alternative<Plane>(surface.shape) ? "planes"
-                                                                            : "quadrics");
+                   std::visit([](const auto& x) { return std::string(shape_name(x)); },
+                              surface.shape) +
+                   "s";
     return "";
 }
 
@@ -467,18 +530,23 @@ std::optional<TrackRay> track_ray(const Model& m, Vec3 lo, Vec3 hi, TrackFamily 
         return TrackRay{p, u};
     }
     case TrackFamily::grazing: {
-        std::vector<const Quadric*> curved;
-        for (const Model::Surface& s : m.surfaces())
-            if (const Quadric* q = std::get_if<Quadric>(&s.shape))
-                if (q->q[0] != 0 || q->q[1] != 0 || q->q[2] != 0 || q->q[3] != 0 || q->q[4] != 0 ||
-                    q->q[5] != 0)
-                    curved.push_back(q);
+        // The curved surfaces: spheres, cylinders and quadrics with a quadratic part.
+        std::vector<const SurfaceShape*> curved;
+        for (const Model::Surface& s : m.surfaces()) {
+            const Quadric* q = std::get_if<Quadric>(&s.shape);
+            bool flat = std::holds_alternative<Plane>(s.shape) ||
+                        (q && q->q[0] == 0 && q->q[1] == 0 && q->q[2] == 0 && q->q[3] == 0 &&
+                         q->q[4] == 0 && q->q[5] == 0);
+            if (!flat) curved.push_back(&s.shape);
+        }
         if (curved.empty()) return std::nullopt;
-        const Quadric& q = *curved[i % curved.size()];
+        const SurfaceShape& surface = *curved[i % curved.size()];
         for (int attempt = 0; attempt < 1000; ++attempt) {
-            Result r = correct::intersect(q, Line{point(), direction(), Range::line});
+            Line l{point(), direction(), Range::line};
+            Result r = std::visit([&](const auto& x) { return correct::intersect(x, l); }, surface);
             if (r.count == 0) continue;
-            Vec3 at = r.hits[rng() % r.count].p, n = normal(q, at), w = direction();
+            Vec3 at = r.hits[rng() % r.count].p, w = direction();
+            Vec3 n = std::visit([&](const auto& x) { return normal(x, at); }, surface);
             double nn = dot3(n, n);
             if (!(nn > 0) || !std::isfinite(nn)) continue;
             double along = dot3(w, n) / nn;

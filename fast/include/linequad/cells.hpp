@@ -6,6 +6,7 @@
 #pragma once
 
 #include "linequad/result.hpp"
+#include "linequad/shapes.hpp"
 #include "linequad/surfaces.hpp"
 #include "linequad/vec3.hpp"
 
@@ -18,8 +19,22 @@
 
 namespace linequad {
 
-// The surfaces a model is built from.
-using SurfaceShape = std::variant<Plane, Quadric>;
+// The surfaces a model is built from: planes and general quadrics, and the sphere and the
+// cylinder along a coordinate axis as OpenMC defines them from their centre and radius (a
+// Cylinder with `finite` false and no caps, C and H apart on one axis): their f,
+// sum (p_i - c_i)^2 - r^2 over the axes across, is exact for any doubles, where its expansion
+// into general-quadric coefficients (c_i^2 - r^2) is seldom a double.
+using SurfaceShape = std::variant<Plane, Quadric, Sphere, Cylinder>;
+
+// The sense of a point against such a sphere or cylinder (negative inside), as sense() answers it
+// for planes and quadrics (linequad/surfaces.hpp); check_sense also refuses a cylinder that is
+// finite, capped or not along a coordinate axis (bad_option), and a radius that is not positive.
+SenseResult sense(const Sphere& s, Vec3 p);
+SenseResult sense(const Cylinder& s, Vec3 p);
+SenseResult sense(const Sphere& s, Vec3 p, Vec3 u);
+SenseResult sense(const Cylinder& s, Vec3 p, Vec3 u);
+Error check_sense(const Sphere& s, Vec3 p, const Vec3* u = nullptr);
+Error check_sense(const Cylinder& s, Vec3 p, const Vec3* u = nullptr);
 
 // A region in OpenMC's syntax over surface ids: "-1 2 ~(3 | -4)". A signed id is a half-space
 // (-7: f < 0, the negative sense; 7 or +7: f > 0), juxtaposition is intersection, `|` union, `~`

@@ -1,5 +1,6 @@
 // The sense of a point: a floating-point filter, then exact dyadic arithmetic (BigFloat) when the
 // filter cannot prove the sign. The terms themselves are in sense_terms.hpp.
+#include "linequad/cells.hpp"
 #include "linequad/surfaces.hpp"
 
 #include "numeric/big_float.hpp"
@@ -102,6 +103,28 @@ Error check(const Quadric& s) {
     return {};
 }
 
+Error check_radius(double r) {
+    if (Error e = check_finite(&r, 1, "r"); !e.ok()) return e;
+    if (!(r > 0)) return {ErrorCode::bad_radius, "r"};
+    return {};
+}
+Error check(const Sphere& s) {
+    if (Error e = check_vector(s.C, "C"); !e.ok()) return e;
+    return check_radius(s.r);
+}
+Error check(const Cylinder& s) {
+    if (Error e = check_vector(s.C, "C"); !e.ok()) return e;
+    if (Error e = check_vector(s.H, "H"); !e.ok()) return e;
+    if (Error e = check_radius(s.r); !e.ok()) return e;
+    if (s.finite || s.caps)
+        return {ErrorCode::bad_option, "finite (a cell's cylinder is infinite, uncapped)"};
+    if (!detail::cylinder_across(s))
+        return {ErrorCode::bad_option,
+                "H - C (a cell's cylinder lies along a coordinate axis: write another as a "
+                "quadric)"};
+    return {};
+}
+
 // Each sum below is written once, over the number type of `zero` (Guarded, then BigFloat).
 int value_sign(const Plane& s, Vec3 p) {
     return sign_of([&](auto zero, auto&& add) {
@@ -113,6 +136,36 @@ int value_sign(const Quadric& s, Vec3 p) {
     return sign_of([&](auto zero, auto&& add) {
         using T = decltype(zero);
         detail::quadric_value_terms(as<T>(s.q), as<T>(p), add);
+    });
+}
+
+// A sphere's f or a cylinder's: the axes across it, its centre and radius.
+struct Centred {
+    detail::Across across;
+    Vec3 c;
+    double r;
+};
+Centred centred(const Sphere& s) {
+    return {{{true, true, true}}, s.C, s.r};
+}
+Centred centred(const Cylinder& s) {
+    return {*detail::cylinder_across(s), s.C, s.r};
+}
+int value_sign(const Centred& s, Vec3 p) {
+    return sign_of([&](auto zero, auto&& add) {
+        using T = decltype(zero);
+        detail::centred_value_terms(s.across, as<T>(s.c), T(s.r), as<T>(p), add);
+    });
+}
+int direction_sign(const Centred& s, Vec3 p, Vec3 u) {
+    int slope = sign_of([&](auto zero, auto&& add) {
+        using T = decltype(zero);
+        detail::centred_slope_terms(s.across, as<T>(s.c), as<T>(p), as<T>(u), add);
+    });
+    if (slope != 0) return slope;
+    return sign_of([&](auto zero, auto&& add) {
+        using T = decltype(zero);
+        detail::centred_curvature_terms(s.across, as<T>(u), add);
     });
 }
 
@@ -170,6 +223,36 @@ SenseResult sense(const Quadric& s, Vec3 p, Vec3 u) {
         using T = decltype(zero);
         detail::quadric_curvature_terms(as<T>(s.q), as<T>(u), add);
     }));
+}
+
+Error check_sense(const Sphere& s, Vec3 p, const Vec3* u) {
+    return check_inputs(s, p, u);
+}
+Error check_sense(const Cylinder& s, Vec3 p, const Vec3* u) {
+    return check_inputs(s, p, u);
+}
+
+SenseResult sense(const Sphere& s, Vec3 p) {
+    numeric::StandardEnvironment standard; // the filter's bound assumes it
+    if (Error e = check_sense(s, p); !e.ok()) return refused(e);
+    return found(value_sign(centred(s), p));
+}
+SenseResult sense(const Cylinder& s, Vec3 p) {
+    numeric::StandardEnvironment standard;
+    if (Error e = check_sense(s, p); !e.ok()) return refused(e);
+    return found(value_sign(centred(s), p));
+}
+SenseResult sense(const Sphere& s, Vec3 p, Vec3 u) {
+    numeric::StandardEnvironment standard;
+    if (Error e = check_sense(s, p, &u); !e.ok()) return refused(e);
+    if (int at = value_sign(centred(s), p); at != 0) return found(at);
+    return found(direction_sign(centred(s), p, u));
+}
+SenseResult sense(const Cylinder& s, Vec3 p, Vec3 u) {
+    numeric::StandardEnvironment standard;
+    if (Error e = check_sense(s, p, &u); !e.ok()) return refused(e);
+    if (int at = value_sign(centred(s), p); at != 0) return found(at);
+    return found(direction_sign(centred(s), p, u));
 }
 
 const char* sense_name(Sense s) {

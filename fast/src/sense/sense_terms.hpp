@@ -12,8 +12,10 @@
 // exact type just sums them.
 #pragma once
 
+#include "linequad/shapes.hpp"
 #include "linequad/surfaces.hpp"
 
+#include <optional>
 #include <type_traits>
 
 namespace linequad::detail {
@@ -63,6 +65,41 @@ void plane_value_terms(const Vec3T<T>& n, const T& d, const Vec3T<T>& p, Add&& a
 template <class T, class Add>
 void plane_slope_terms(const Vec3T<T>& n, const Vec3T<T>& u, Add&& add) {
     add(n.x * u.x), add(n.y * u.y), add(n.z * u.z);
+}
+
+// A sphere, or a cylinder along coordinate axis k, as OpenMC defines them: f is the sum over the
+// axes across it (`across`: all three for a sphere, the two but k for a cylinder) of
+// (p_i - c_i)^2, less r^2; along the line, g(t) = f(p) + 2 t sum (p_i - c_i) u_i + t^2 sum u_i^2.
+// Expanded into products of the inputs: (p_i - c_i)^2 = p_i p_i - 2 p_i c_i + c_i c_i.
+struct Across {
+    bool axis[3];
+};
+// A cylinder's axes across it, where it lies along a coordinate axis (C and H apart on that axis
+// alone); none otherwise.
+inline std::optional<Across> cylinder_across(const Cylinder& s) {
+    Vec3 d = s.H - s.C;
+    int along = (d.x != 0) + (d.y != 0) + (d.z != 0);
+    if (along != 1) return std::nullopt;
+    return Across{{d.x == 0, d.y == 0, d.z == 0}};
+}
+template <class T, class Add>
+void centred_value_terms(Across a, const Vec3T<T>& c, const T& r, const Vec3T<T>& p, Add&& add) {
+    const T two = two_in<T>();
+    for (int i = 0; i < 3; ++i)
+        if (a.axis[i]) add(p[i] * p[i]), add(-(two * p[i] * c[i])), add(c[i] * c[i]);
+    add(-(r * r));
+}
+template <class T, class Add>
+void centred_slope_terms(Across a, const Vec3T<T>& c, const Vec3T<T>& p, const Vec3T<T>& u,
+                         Add&& add) {
+    const T two = two_in<T>();
+    for (int i = 0; i < 3; ++i)
+        if (a.axis[i]) add(two * p[i] * u[i]), add(-(two * c[i] * u[i]));
+}
+template <class T, class Add>
+void centred_curvature_terms(Across a, const Vec3T<T>& u, Add&& add) {
+    for (int i = 0; i < 3; ++i)
+        if (a.axis[i]) add(u[i] * u[i]);
 }
 
 // The exact sum of the terms `terms(add)` gives, in an exact ring type T.

@@ -455,11 +455,13 @@ inline double quadric_length(const QuadricCoefficients<double>& q) {
         a2 = std::max(a2, std::fabs(q[i]));
     for (int i = 6; i < 9; ++i)
         a1 = std::max(a1, std::fabs(q[i]));
-    auto e = [](double x) { return Binary64::exponent(x); };
+    // Each degree's exponent once (a subnormal's costs a call).
+    auto e = [](double x) { return x > 0 ? Binary64::exponent(x) : 0; };
+    int e2 = e(a2), e1 = e(a1), e0 = e(a0);
     int L = -(1 << 20);
-    if (a2 > 0 && a0 > 0) L = std::max(L, (e(a0) - e(a2)) / 2);
-    if (a2 > 0 && a1 > 0) L = std::max(L, e(a1) - e(a2));
-    if (a1 > 0 && a0 > 0) L = std::max(L, e(a0) - e(a1));
+    if (a2 > 0 && a0 > 0) L = std::max(L, (e0 - e2) / 2);
+    if (a2 > 0 && a1 > 0) L = std::max(L, e1 - e2);
+    if (a1 > 0 && a0 > 0) L = std::max(L, e0 - e1);
     if (L == -(1 << 20)) return 0;
     return Binary64::pow2(std::clamp(L, -Binary64::moderate_exponent, Binary64::moderate_exponent));
 }

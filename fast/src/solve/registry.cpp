@@ -89,8 +89,9 @@ std::string message(const Error& e) {
     case ErrorCode::out_of_range:
         return f + ": magnitudes too far apart for the solver's format (overflow or underflow)";
     case ErrorCode::bad_option:
-        return f == "caps" ? std::string("caps: only a finite shape has end discs to close it")
-                           : f + ": not an option this shape takes (nappes is 1 or 2)";
+        if (f == "caps") return "caps: only a finite shape has end discs to close it";
+        if (f == "nappes") return "nappes: a cone has 1 or 2";
+        return f + ": not an option this shape takes"; // a field that says why, where it can
     case ErrorCode::not_binary32:
         return f + " is not a binary32 value (a float solver takes float inputs)";
     case ErrorCode::along_surface:

@@ -45,6 +45,11 @@ SenseResult sense(const Plane& s, Vec3 p);
 SenseResult sense(const Quadric& s, Vec3 p);
 SenseResult sense(const Plane& s, Vec3 p, Vec3 u);
 SenseResult sense(const Quadric& s, Vec3 p, Vec3 u);
+// And against a model's sphere or axis-aligned cylinder (linequad/cells.hpp).
+SenseResult sense(const Sphere& s, Vec3 p);
+SenseResult sense(const Cylinder& s, Vec3 p);
+SenseResult sense(const Sphere& s, Vec3 p, Vec3 u);
+SenseResult sense(const Cylinder& s, Vec3 p, Vec3 u);
 
 // The oracle for a model of cells (linequad/cells.hpp): the exact track Model::track defines,
 // from exact senses (above), each surface's crossings solved exactly and ordered by their exact
