@@ -306,6 +306,17 @@ TEST_CASE("cells: a sphere and an axis-aligned cylinder have the exact sense Ope
     CHECK(check_sense(Sphere{{0, 0, 0}, 0}, {}).code == ErrorCode::bad_radius);
     CHECK(check_sense(Sphere{{0, 0, 0}, NAN}, {}).code == ErrorCode::not_a_number);
     CHECK(sense(Sphere{{0, 0, 0}, -1}, {}).error.code == ErrorCode::bad_radius);
+    // From the command line, as a model file writes them.
+    std::filesystem::path dir = test::scratch("cells_centred_sense");
+    std::ofstream(dir / "q.jsonl")
+        << R"({"id":1,"shape":"cylinder","C":[0.63,-0.63,0],"H":[0.63,-0.63,1],"r":"0x1.7ae147ae147aep-2","p":[1,-0.63,2],"u":[0,0,1]})"
+        << "\n"
+        << R"({"id":2,"shape":"sphere","C":[0,0,0],"r":0.1,"p":[0.1,0,0],"u":[-1,0,0]})"
+        << "\n";
+    test::Ran cli = test::program("sense q.jsonl", dir);
+    CHECK(cli.status == 0);
+    CHECK(cli.out == "{\"id\":1,\"sense\":\"on\",\"sign\":0}\n"
+                     "{\"id\":2,\"sense\":\"negative\",\"sign\":-1}\n");
 }
 
 TEST_CASE("cells: a model's spheres and cylinders track exactly, from JSON and from geometry.xml",

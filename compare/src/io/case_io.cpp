@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <set>
 
@@ -536,6 +537,33 @@ std::string format_failure(const std::string& id, std::string_view solver, std::
 
 namespace {
 
+// The surfaces a model and a sense query take, by their "shape", and each one's own fields.
+const std::map<std::string, std::vector<std::string>>& surface_kinds() {
+    static const std::map<std::string, std::vector<std::string>> kinds = {
+        {"plane", {"n", "d"}},
+        {"quadric", {"q"}},
+        {"sphere", {"C", "r"}},
+        {"cylinder", {"C", "H", "r"}}};
+    return kinds;
+}
+// Reads `shape` into *kind: one of surface_kinds(), or fails naming them.
+bool read_surface_kind(Reader& r, std::string* kind) {
+    const Json* shape = r.need("shape");
+    if (!shape) return false;
+    *kind = shape->is_string() ? shape->get<std::string>() : "";
+    if (!surface_kinds().count(*kind))
+        return r.fail("shape", "expected plane, quadric, sphere or cylinder");
+    return true;
+}
+// Whether field f is one of kind's own or one of `common`.
+bool surface_field(const std::string& kind, const std::string& f,
+                   std::initializer_list<const char*> common) {
+    for (const char* c : common)
+        if (f == c) return true;
+    const std::vector<std::string>& own = surface_kinds().at(kind);
+    return std::find(own.begin(), own.end(), f) != own.end();
+}
+
 // A plane's fields ("n", "d"), a quadric's ("q"), a sphere's ("C", "r") or a cylinder's ("C",
 // "H", "r": infinite, along a coordinate axis), `kind` being one of them.
 bool read_surface(Reader& r, const std::string& kind, SurfaceShape* out) {
@@ -621,21 +649,12 @@ bool parse_model(std::string_view text, ModelFile* out, std::string* why) {
     };
     bool surfaces_read = each(*s, "surfaces", [&](Reader& r, const Json& obj) {
         Model::Surface surface{};
-        const Json* shape = r.need("shape");
-        if (!shape) return false;
-        std::string kind = shape->is_string() ? shape->get<std::string>() : "";
-        if (kind != "plane" && kind != "quadric" && kind != "sphere" && kind != "cylinder")
-            return r.fail("shape", "expected plane, quadric, sphere or cylinder");
-        bool fields =
-            kind == "plane"
-                ? only_fields(r, obj, {"id", "shape", "n", "d", "note"}, "a model's plane")
-            : kind == "sphere"
-                ? only_fields(r, obj, {"id", "shape", "C", "r", "note"}, "a model's sphere")
-            : kind == "cylinder"
-                ? only_fields(r, obj, {"id", "shape", "C", "H", "r", "note"}, "a model's cylinder")
-                : only_fields(r, obj, {"id", "shape", "q", "note"}, "a model's quadric");
-        if (!fields || !read_id(r, &surface.id) || !read_surface(r, kind, &surface.shape))
-            return false;
+        std::string kind;
+        if (!read_surface_kind(r, &kind)) return false;
+        for (const auto& m : obj.items())
+            if (!surface_field(kind, m.key(), {"id", "shape", "note"}))
+                return r.fail(m.key(), "not a field of a model's " + kind);
+        if (!read_id(r, &surface.id) || !read_surface(r, kind, &surface.shape)) return false;
         surfaces->push_back(surface);
         return true;
     });
@@ -663,16 +682,11 @@ bool parse_sense_query(std::string_view line, SenseQuery* q, std::string* why) {
     if (!parse_object(line, &obj, why)) return false;
     Reader r{obj, why};
     if (const Json* id = r.find("id")) q->id = id_text(line, "id", *id);
-    const Json* shape = r.need("shape");
-    if (!shape) return false;
-    std::string kind = shape->is_string() ? shape->get<std::string>() : "";
-    if (kind != "plane" && kind != "quadric") return r.fail("shape", "expected plane or quadric");
-    for (const auto& m : obj.items()) {
-        const std::string& f = m.key();
-        bool known = f == "id" || f == "shape" || f == "p" || f == "u" ||
-                     (kind == "plane" ? f == "n" || f == "d" : f == "q");
-        if (!known) return r.fail(f, "not a field of a " + kind + " sense query");
-    }
+    std::string kind;
+    if (!read_surface_kind(r, &kind)) return false;
+    for (const auto& m : obj.items())
+        if (!surface_field(kind, m.key(), {"id", "shape", "p", "u"}))
+            return r.fail(m.key(), "not a field of a " + kind + " sense query");
     if (!read_surface(r, kind, &q->surface)) return false;
     if (!r.vec("p", &q->p)) return false;
     if (r.find("u")) {
