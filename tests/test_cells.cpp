@@ -51,6 +51,19 @@ Model spheres() {
                  {{10, "core", "-1"}, {20, "shell", "1 -2"}, {30, "outside", "2"}});
 }
 
+// An in-process solver of planes and quadrics answering with linequad's correct solver.
+audit::ExternalSolver correct_distances() {
+    audit::ExternalSolver mine;
+    mine.name = "mine";
+    mine.on<Plane>() = [](const Plane& s, const Line& l) -> std::optional<Result> {
+        return correct::intersect(s, l, {Need::all, false});
+    };
+    mine.on<Quadric>() = [](const Quadric& s, const Line& l) -> std::optional<Result> {
+        return correct::intersect(s, l, {Need::all, false});
+    };
+    return mine;
+}
+
 std::vector<Sense> senses(std::initializer_list<int> s) {
     std::vector<Sense> out;
     for (int x : s)
@@ -550,14 +563,7 @@ TEST_CASE("cells: points in two cells or in none are found, named and replayable
 TEST_CASE("cells: the transport loop takes a user's distances as it takes linequad's", "[cells]") {
     // An in-process solver answering with linequad's correct solver: the loop with its distances
     // must run as the loop with correct distances does, step for step, whatever the family.
-    audit::ExternalSolver mine;
-    mine.name = "mine";
-    mine.on<Plane>() = [](const Plane& s, const Line& l) -> std::optional<Result> {
-        return correct::intersect(s, l, {Need::all, false});
-    };
-    mine.on<Quadric>() = [](const Quadric& s, const Line& l) -> std::optional<Result> {
-        return correct::intersect(s, l, {Need::all, false});
-    };
+    audit::ExternalSolver mine = correct_distances();
     Model m =
         build({{1, sphere(1)}, {2, sphere(4)}, {3, plane_x(0.5)}}, {{10, "core", "-1"},
                                                                     {20, "shell, left", "1 -2 -3"},
@@ -599,14 +605,7 @@ TEST_CASE("cells: the transport loop finds its cells by a user's sides where it 
     // deciding a point on the surface): a backscattered particle, some 2^-20 to 2^-50 box sizes
     // past a surface, starts in the oracle's cell, where the textbook's sides (|f| < 1e-12: the
     // side u points into) put it in the next one.
-    audit::ExternalSolver mine;
-    mine.name = "mine";
-    mine.on<Plane>() = [](const Plane& s, const Line& l) -> std::optional<Result> {
-        return correct::intersect(s, l, {Need::all, false});
-    };
-    mine.on<Quadric>() = [](const Quadric& s, const Line& l) -> std::optional<Result> {
-        return correct::intersect(s, l, {Need::all, false});
-    };
+    audit::ExternalSolver mine = correct_distances();
     int calls = 0;
     mine.sense = [&](const Shape& s, Vec3 p, Vec3 u) {
         ++calls;

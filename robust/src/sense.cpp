@@ -41,24 +41,12 @@ SenseResult refused(Error e) {
     return {Sense::on, e};
 }
 
-// A sphere's f or an axis-aligned cylinder's (sense_terms.hpp's centred terms), for a surface
-// check_sense accepted.
-struct Centred {
-    detail::Across across;
-    Vec3 c;
-    double r;
-};
-Centred centred(const Sphere& s) {
-    return {{{true, true, true}}, s.C, s.r};
-}
-Centred centred(const Cylinder& s) {
-    return {*detail::cylinder_across(s), s.C, s.r};
-}
+// A sphere's or an axis-aligned cylinder's sense (sense_terms.hpp's centred terms).
 template <class S>
 SenseResult centred_sense(const S& shape, Vec3 p, const Vec3* u) {
     numeric::StandardEnvironmentT<true> standard;
     if (Error e = check_sense(shape, p, u); !e.ok()) return refused(e);
-    Centred s = centred(shape);
+    detail::Centred s = detail::centred(shape);
     Sense at = sense_of([&](auto&& add) {
         detail::centred_value_terms(s.across, exact(s.c), Exact(s.r), exact(p), add);
     });

@@ -139,18 +139,7 @@ int value_sign(const Quadric& s, Vec3 p) {
     });
 }
 
-// A sphere's f or a cylinder's: the axes across it, its centre and radius.
-struct Centred {
-    detail::Across across;
-    Vec3 c;
-    double r;
-};
-Centred centred(const Sphere& s) {
-    return {{{true, true, true}}, s.C, s.r};
-}
-Centred centred(const Cylinder& s) {
-    return {*detail::cylinder_across(s), s.C, s.r};
-}
+using detail::Centred;
 int value_sign(const Centred& s, Vec3 p) {
     return sign_of([&](auto zero, auto&& add) {
         using T = decltype(zero);
@@ -167,6 +156,19 @@ int direction_sign(const Centred& s, Vec3 p, Vec3 u) {
         using T = decltype(zero);
         detail::centred_curvature_terms(s.across, as<T>(u), add);
     });
+}
+
+template <class S>
+Error check_inputs(const S& s, Vec3 p, const Vec3* u);
+
+// A sphere's or a cylinder's sense (with the direction u where given).
+template <class S>
+SenseResult centred_sense(const S& shape, Vec3 p, const Vec3* u) {
+    numeric::StandardEnvironment standard; // the filter's bound assumes it
+    if (Error e = check_inputs(shape, p, u); !e.ok()) return refused(e);
+    Centred s = detail::centred(shape);
+    if (int at = value_sign(s, p); at != 0 || !u) return found(at);
+    return found(direction_sign(s, p, *u));
 }
 
 template <class S>
@@ -233,26 +235,16 @@ Error check_sense(const Cylinder& s, Vec3 p, const Vec3* u) {
 }
 
 SenseResult sense(const Sphere& s, Vec3 p) {
-    numeric::StandardEnvironment standard; // the filter's bound assumes it
-    if (Error e = check_sense(s, p); !e.ok()) return refused(e);
-    return found(value_sign(centred(s), p));
+    return centred_sense(s, p, nullptr);
 }
 SenseResult sense(const Cylinder& s, Vec3 p) {
-    numeric::StandardEnvironment standard;
-    if (Error e = check_sense(s, p); !e.ok()) return refused(e);
-    return found(value_sign(centred(s), p));
+    return centred_sense(s, p, nullptr);
 }
 SenseResult sense(const Sphere& s, Vec3 p, Vec3 u) {
-    numeric::StandardEnvironment standard;
-    if (Error e = check_sense(s, p, &u); !e.ok()) return refused(e);
-    if (int at = value_sign(centred(s), p); at != 0) return found(at);
-    return found(direction_sign(centred(s), p, u));
+    return centred_sense(s, p, &u);
 }
 SenseResult sense(const Cylinder& s, Vec3 p, Vec3 u) {
-    numeric::StandardEnvironment standard;
-    if (Error e = check_sense(s, p, &u); !e.ok()) return refused(e);
-    if (int at = value_sign(centred(s), p); at != 0) return found(at);
-    return found(direction_sign(centred(s), p, u));
+    return centred_sense(s, p, &u);
 }
 
 const char* sense_name(Sense s) {

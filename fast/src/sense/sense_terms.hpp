@@ -82,6 +82,19 @@ inline std::optional<Across> cylinder_across(const Cylinder& s) {
     if (along != 1) return std::nullopt;
     return Across{{d.x == 0, d.y == 0, d.z == 0}};
 }
+// A sphere's f or an axis-aligned cylinder's, for the terms below: the axes across it, its centre
+// and radius (for a surface check_sense accepted).
+struct Centred {
+    Across across;
+    Vec3 c;
+    double r;
+};
+inline Centred centred(const Sphere& s) {
+    return {{{true, true, true}}, s.C, s.r};
+}
+inline Centred centred(const Cylinder& s) {
+    return {*cylinder_across(s), s.C, s.r};
+}
 template <class T, class Add>
 void centred_value_terms(Across a, const Vec3T<T>& c, const T& r, const Vec3T<T>& p, Add&& add) {
     const T two = two_in<T>();
