@@ -316,6 +316,9 @@ TEST_CASE("cells: a sphere and an axis-aligned cylinder have the exact sense Ope
     oblique.H = {1, 1, 5};
     CHECK(check_sense(oblique, {}).code == ErrorCode::bad_option);
     CHECK(std::string(check_sense(oblique, {}).field).rfind("H - C", 0) == 0);
+    Cylinder no_axis = pin;
+    no_axis.H = no_axis.C;
+    CHECK(check_sense(no_axis, {}).code == ErrorCode::degenerate_axis);
     CHECK(check_sense(Sphere{{0, 0, 0}, 0}, {}).code == ErrorCode::bad_radius);
     CHECK(check_sense(Sphere{{0, 0, 0}, NAN}, {}).code == ErrorCode::not_a_number);
     CHECK(sense(Sphere{{0, 0, 0}, -1}, {}).error.code == ErrorCode::bad_radius);
@@ -823,6 +826,9 @@ TEST_CASE("cells: OpenMC's geometry.xml is read exactly, and what is not taken i
          "line 2: surface 1 (z-cone): coeffs \"0.1 0 0 0.5\": its general-quadric coefficient K "
          "is not a double, and linequad poses a surface exactly, never rounded (such cones are "
          "not taken yet)"},
+        {"<geometry>\n<surface id=\"2\" type=\"y-cylinder\" coeffs=\"0.5 0.25 "
+         "-0.4572\"/>\n</geometry>",
+         "line 2: surface 2 (y-cylinder): coeffs \"0.5 0.25 -0.4572\": the radius is not positive"},
         {"<geometry>\n\n<surface id=\"4\" type=\"x-torus\" coeffs=\"0 0 0 1 1 1\"/>\n</geometry>",
          "line 3: surface 4 (x-torus): a surface type linequad does not pose (it poses plane, "
          "x-/y-/z-plane, sphere, x-/y-/z-cylinder, x-/y-/z-cone and quadric)"},

@@ -151,13 +151,17 @@ bool surface(Reader& r, const pugi::xml_node& node, Model::Surface* out) {
     }
     // The sphere and the cylinders as OpenMC defines them, from their centre and radius: exact
     // whatever the doubles (linequad/cells.hpp's Sphere and Cylinder surfaces).
+    auto radius = [&](double R) {
+        return R > 0 || r.fail(node, where + ": coeffs \"" + node.attribute("coeffs").value() +
+                                         "\": the radius is not positive");
+    };
     if (type == "sphere") {
-        if (!r.coeffs(node, where, 4, &c)) return false;
+        if (!r.coeffs(node, where, 4, &c) || !radius(c[3])) return false;
         out->shape = Sphere{{c[0], c[1], c[2]}, c[3]};
         return true;
     }
     if (type == "x-cylinder" || type == "y-cylinder" || type == "z-cylinder") {
-        if (!r.coeffs(node, where, 3, &c)) return false;
+        if (!r.coeffs(node, where, 3, &c) || !radius(c[2])) return false;
         int axis = type[0] - 'x';
         double centre[3], along[3];
         for (int i = 0, k = 0; i < 3; ++i) {

@@ -116,6 +116,7 @@ Error check(const Cylinder& s) {
     if (Error e = check_vector(s.C, "C"); !e.ok()) return e;
     if (Error e = check_vector(s.H, "H"); !e.ok()) return e;
     if (Error e = check_radius(s.r); !e.ok()) return e;
+    if (s.H == s.C) return {ErrorCode::degenerate_axis, "H - C"};
     if (s.finite || s.caps)
         return {ErrorCode::bad_option, "finite (a cell's cylinder is infinite, uncapped)"};
     if (!detail::cylinder_across(s))
