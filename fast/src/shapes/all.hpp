@@ -21,14 +21,14 @@
     X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid) X(Capsule) X(Plane) X(Quadric)
 // The shapes that are one quadric (not made of patches: the batch kernels take them).
 #define LINEQUAD_FOR_EACH_QUADRIC_SHAPE(X)                                                         \
-    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid)
+    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid) X(Quadric)
 // The shapes whose quadratic has the Newton rung's form in the batch lanes (line_form_in_lanes).
 #define LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X)                                                       \
     X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid)
 
 namespace linequad::detail {
-// Whether the stable batch kernels take the shape: the one-quadric shapes above. (A plane or a
-// general quadric has no lane kernel yet: its batches are solved line by line.)
+// Whether the stable batch kernels take the shape: the one-quadric shapes above. (A plane has no
+// lane kernel: its g is linear, which the lanes hand back to the scalar solver.)
 template <class S>
 inline constexpr bool stable_in_lanes = false;
 #define LINEQUAD_STABLE_IN_LANES(S)                                                                \

@@ -68,19 +68,19 @@ namespace linequad::detail {
 template <class T>
 struct ProductSum {
     T s = T(0), c = T(0);
-    void add(T x) {
+    LINEQUAD_INLINE void add(T x) {
         TwoTermT<T> t = two_sum(s, x);
         s = t.hi, c = c + t.lo;
     }
-    void add(T k, T a) {
+    LINEQUAD_INLINE void add(T k, T a) {
         TwoTermT<T> p = two_prod(k, a);
         add(p.hi), c = c + p.lo;
     }
-    void add(T k, T a, T b) { // k a b
+    LINEQUAD_INLINE void add(T k, T a, T b) { // k a b
         TwoTermT<T> p = two_prod(a, b), q = two_prod(k, p.hi);
         add(q.hi), c = c + (q.lo + k * p.lo);
     }
-    T value() const { return s + c; }
+    LINEQUAD_INLINE T value() const { return s + c; }
 };
 
 // A = 2 f2(v), B = grad f(w) . v and 2 f(w) (C0 at w) as products k a b of doubles, each handed
@@ -135,14 +135,49 @@ std::optional<QuadricCoefficients<R>> quadric_in_frame(const QuadricCoefficients
     return out;
 }
 
-// The arithmetic of stable's quadric solve, once, for a real type R (double or float).
+// quadric_in_frame in lanes of L (the batch kernels'), each lane's 2^-k its `to_unit`: the
+// coefficients times 2^-k per degree, then all by the power of two of the largest, as two or three
+// products by powers of two, exact while each stays in R's normal range: the same values as
+// quadric_in_frame's in the lanes of `ok`, the others the scalar solver's. *smallest: the
+// smallest nonzero |coefficient| in the frame.
+template <class L>
+QuadricCoefficients<L> quadric_in_frame_lanes(const QuadricCoefficients<double>& q, L to_unit,
+                                              MaskOf<L>& ok, L& smallest) {
+    using R = Real<L>;
+    const L lo(std::numeric_limits<R>::min()), hi(std::numeric_limits<R>::max());
+    QuadricCoefficients<L> c;
+    L largest(R(0));
+    ok = !(lo < lo); // every lane
+    for (int i = 0; i < 10; ++i) {
+        c[i] = L(R(q[i]));
+        if (i >= 6) c[i] = c[i] * to_unit;
+        if (i == 9) c[i] = c[i] * to_unit;
+        if (q[i] == 0) continue;
+        ok = ok & (lo <= fabs(c[i])) & (fabs(c[i]) <= hi);
+        largest = maximum(largest, fabs(c[i]));
+    }
+    L inv = power_of_two_inverse(largest); // 2^-E for the largest in [2^E, 2^(E+1))
+    smallest = L(std::numeric_limits<R>::infinity());
+    for (int i = 0; i < 10; ++i) {
+        if (q[i] == 0) continue;
+        c[i] = c[i] * inv;
+        L size = fabs(c[i]);
+        ok = ok & (lo <= size) & (size <= hi);
+        smallest = select(size < smallest, size, smallest);
+    }
+    return c;
+}
+
+// The arithmetic of stable's quadric solve, once, for a real type R (double or float) or lanes of
+// one (the batch kernels').
 template <class T>
 struct QuadricStable {
     static constexpr bool parallel_is_miss = false; // A = 0: a linear root, or none, or on it
-    using Mask = bool;
+    using Mask = MaskOf<T>;
     QuadricCoefficients<T> q{};
     Vec3T<T> L0, v;
-    bool coincident = false, in_frame = false;
+    bool coincident = false;
+    Mask in_frame{};
     T smallest = T(0); // the smallest nonzero |coefficient| in the frame
     T A = T(0), tc = T(0), B = T(0), C_moved = T(0), D = T(0);
     T A_lo = T(0); // what A, rounded, left out: a far source's A C0 needs it
@@ -155,6 +190,15 @@ struct QuadricStable {
         smallest = Format<T>::inf;
         for (int i = 0; i < 10; ++i)
             if (q[i] != 0) smallest = std::min(smallest, std::fabs(q[i])); // not fmin: a call
+        curvature();
+    }
+    // Lanes: the frame quadric_in_frame_lanes made, in frame where `ok`.
+    QuadricStable(const QuadricCoefficients<T>& framed, Mask ok, T smallest_, bool coincident_,
+                  Vec3T<T> L0_, Vec3T<T> v_)
+        : q(framed), L0(L0_), v(v_), coincident(coincident_), in_frame(ok), smallest(smallest_) {
+        curvature();
+    }
+    LINEQUAD_INLINE void curvature() {
         ProductSum<T> a;
         curvature_products(q, v, a);
         A = a.value();
@@ -167,7 +211,7 @@ struct QuadricStable {
     Mask zero_may_underflow() const {
         return smallest < T(std::sqrt(double(Guards<T>::tiny_decisive)));
     }
-    Mask scalar_only() const { return false; }
+    Mask scalar_only() const { return !(in_frame | !in_frame); } // no lane: false
 
     // 2 f(w): C0 at w, unrounded.
     ProductSum<T> twice_value(Vec3T<T> w) const {
@@ -200,12 +244,13 @@ struct QuadricStable {
     T z_of(const Roots&, int) const {
         return T(0);
     }
-    T z_lanes(T, T, Mask) const { return T(0); }
+    T z_lanes(T, T, Mask) const { return T(Real<T>(0)); }
     T axial_moved() const { return T(0); }
     T axial_rate() const { return T(0); }
     template <class S>
     ExtentT<T> extent(const S&) const {
-        return {T(-Binary64::inf), T(Binary64::inf)};
+        const Real<T> inf = std::numeric_limits<Real<T>>::infinity();
+        return {T(-inf), T(inf)};
     }
 };
 
@@ -509,8 +554,16 @@ struct AsQuadric {
     template <class T, class Source, class Scale>
     static Stable<T> stable_core(const Source& src, const Scale& ps, Vec3T<T> L0, Vec3T<T> v) {
         const S& s = src.shape;
-        return {quadric_in_frame<T>(Traits::coefficients(s), ps.k), s.coincident, ps.pos(L0),
-                ps.dir(v)};
+        if constexpr (std::is_floating_point_v<T>) {
+            return {quadric_in_frame<T>(Traits::coefficients(s), ps.k), s.coincident, ps.pos(L0),
+                    ps.dir(v)};
+        } else { // the batch kernels' lanes
+            MaskOf<T> ok;
+            T smallest;
+            QuadricCoefficients<T> q =
+                quadric_in_frame_lanes(Traits::coefficients(s), ps.to_unit, ok, smallest);
+            return {q, ok, smallest, s.coincident, ps.pos(L0), ps.dir(v)};
+        }
     }
 
     // ---- certified ----
