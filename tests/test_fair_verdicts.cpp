@@ -319,14 +319,21 @@ TEST_CASE("declarations out of range are refused, naming the solver and the fiel
         refused(field, "");
 }
 
-TEST_CASE("a plugin of ABI 2 loads and grades as it did", "[external][worker][cli]") {
-    fs::path dir = scratch("abi2");
-    Ran ran = program(std::string("audit --plugin '") + LINEQUAD_ABI2_PLUGIN +
-                          "' --solvers second_abi --families generic,near_tangent --shapes sphere "
-                          "--cases 50 --no-plots --out out",
-                      dir);
+namespace {
+// The report of `solvers`, a plugin of an earlier ABI's, on two families of spheres.
+audit::Report earlier_abi_audit(const char* plugin, const std::string& solvers, const char* dir) {
+    fs::path at = scratch(dir);
+    Ran ran = program(std::string("audit --plugin '") + plugin + "' --solvers " + solvers +
+                          " --families generic,near_tangent --shapes sphere --cases 50 "
+                          "--no-plots --out out",
+                      at);
     REQUIRE(ran.status == 0);
-    audit::Report r = read_report(dir / "out");
+    return read_report(at / "out");
+}
+} // namespace
+
+TEST_CASE("a plugin of ABI 2 loads and grades as it did", "[external][worker][cli]") {
+    audit::Report r = earlier_abi_audit(LINEQUAD_ABI2_PLUGIN, "second_abi", "abi2");
     audit::Row t = r.total("second_abi");
     CHECK(t.cases == 300);
     // No hit, ever: every case the nearest-hit reference hits is missed; touches are hits (no
@@ -339,21 +346,19 @@ TEST_CASE("a plugin of ABI 2 loads and grades as it did", "[external][worker][cl
 
 TEST_CASE("a plugin of ABI 3 loads and is graded under the conventions it declares",
           "[external][worker][cli]") {
-    fs::path dir = scratch("abi3");
-    Ran ran = program(std::string("audit --plugin '") + LINEQUAD_ABI3_PLUGIN +
-                          "' --solvers third_abi --families generic,near_tangent --shapes sphere "
-                          "--cases 50 --no-plots --out out",
-                      dir);
-    REQUIRE(ran.status == 0);
-    audit::Report r = read_report(dir / "out");
-    audit::Row t = r.total("third_abi");
-    CHECK(t.cases == 300);
-    CHECK(t.cases_mismatched > 100);
-    // Its ABI 3 fields read where lq_solver_v3 lays them out, not as ABI 4's.
-    const audit::Report::External& e = r.external.at("third_abi");
-    CHECK(e.tolerance_absolute == 0x1p-20);
-    CHECK(e.tolerance_relative == 0);
-    CHECK(e.conventions.find("tangent") != std::string::npos);
+    audit::Report r =
+        earlier_abi_audit(LINEQUAD_ABI3_PLUGIN, "third_abi,third_abi_relative", "abi3");
+    CHECK(r.total("third_abi").cases == 300);
+    CHECK(r.total("third_abi").cases_mismatched > 100);
+    // Each solver's ABI 3 fields read where lq_solver_v3 lays them out, the second one's too.
+    const audit::Report::External &first = r.external.at("third_abi"),
+                                  &second = r.external.at("third_abi_relative");
+    CHECK(first.tolerance_absolute == 0x1p-20);
+    CHECK(first.tolerance_relative == 0);
+    CHECK(first.conventions.find("a tangent touch is no hit") != std::string::npos);
+    CHECK(second.tolerance_absolute == 0);
+    CHECK(second.tolerance_relative == 0x1p-30);
+    CHECK(second.conventions.find("tangent") == std::string::npos);
 }
 
 TEST_CASE("families: --frames aligned puts every vector along a coordinate axis, the elliptic "

@@ -13,13 +13,18 @@ static int solve(void* self, const lq_shape* s, const lq_line* l, lq_answer* out
     return 0;
 }
 
-static const lq_solver_v3 solvers[] = {{"third_abi", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, 0,
-                                        1u << LQ_SPHERE, "no hit, ever", solve, NULL,
-                                        LQ_INSIDE_AS_ANSWERS, LQ_CONTACT_INTERVAL, NULL,
-                                        LQ_ON_SURFACE_AS_INSIDE, LQ_TANGENT_NO_HIT, 0x1p-20, 0, 0}};
+/* Two solvers, so that the second is read only where lq_solver_v3's size puts it (ABI 4's
+ * larger lq_solver would read it from the wrong place). */
+static const lq_solver_v3 solvers[] = {
+    {"third_abi", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, 0, 1u << LQ_SPHERE, "no hit, ever", solve,
+     NULL, LQ_INSIDE_AS_ANSWERS, LQ_CONTACT_INTERVAL, NULL, LQ_ON_SURFACE_AS_INSIDE,
+     LQ_TANGENT_NO_HIT, 0x1p-20, 0, 0},
+    {"third_abi_relative", 64, LQ_NEAREST, LQ_LINE, LQ_AS_POSED, 0, 1u << LQ_SPHERE, "no hit, ever",
+     solve, NULL, LQ_INSIDE_AS_ANSWERS, LQ_CONTACT_INTERVAL, NULL, LQ_ON_SURFACE_AS_INSIDE,
+     LQ_TANGENT_HIT, 0, 0x1p-30, 0}};
 
 int linequad_audit_plugin(int abi, const lq_solver** out) {
     if (abi != 3) return -1;
     *out = (const lq_solver*)solvers;
-    return 1;
+    return 2;
 }

@@ -211,7 +211,7 @@ struct QuadricStable {
     Mask zero_may_underflow() const {
         return smallest < T(std::sqrt(double(Guards<T>::tiny_decisive)));
     }
-    Mask scalar_only() const { return !(in_frame | !in_frame); } // no lane: false
+    Mask scalar_only() const { return Mask{}; } // false; in lanes, no lane
 
     // 2 f(w): C0 at w, unrounded.
     ProductSum<T> twice_value(Vec3T<T> w) const {
