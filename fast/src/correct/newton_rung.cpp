@@ -1305,6 +1305,53 @@ bool newton_rung(const LineForm& f, const Unit& unit, const Line& caller, Query 
 
 // A quadric (QuadricNewtonForm): the same proof from its own local quadratic, without the extent
 // and the discs. A tangency, a root at the range's end, or a bound too wide: the next rungs.
+//
+// Where every hit is asked, two roots go through the steps side by side, a lane each
+// (numeric/two_lanes.hpp: every lane the bits of the scalar step), and where every step is
+// proven in both lanes (a generic line) the hits are written from the lanes; otherwise the scalar
+// steps take the roots in turn from the same local quadratics, with their further tries.
+LINEQUAD_INLINE bool both_roots_in_lanes(const Local<D2>& L, const Leading<double>& A, D2 c,
+                                         const Unit& unit, const Line& caller, Query query,
+                                         Result& r) {
+    Enclosure<D2> en = newton::root_near(L, Leading<D2>{A.A, A.e}, c);
+    // Proven, the smaller first, and too narrow for the scalar steps to try root_near_tight.
+    M2 settled = en.proven & (en.e <= D2(0x1p-88) * fabs(en.c));
+    if (!(lane(settled, 0) && lane(settled, 1) && lane(en.smaller, 0) && !lane(en.smaller, 1)))
+        return false;
+    EnclosedT<D2> t = t_of(en);
+    Kept<D2> k = Kept<D2>().range(unit.line.range, t.t, t.e_t);
+    bool keep[2];
+    for (int i = 0; i < 2; ++i) {
+        if (!lane(k.inside, i) && !lane(k.outside, i)) return false;
+        keep[i] = lane(k.inside, i);
+    }
+    Rounded<D2> rt = rounded_t(en, D2(unit.t_factor));
+    M2 proven = rt.proven;
+    D2 p[3] = {0.0, 0.0, 0.0};
+    if (query.points)
+        for (int a = 0; a < 3; ++a) {
+            // L0_k + t v_k is L0_k exactly when v_k = 0 (an exact zero is +0, as the oracle's).
+            if (caller.v[a] == 0) {
+                p[a] = D2(caller.L0[a] + 0.0);
+                continue;
+            }
+            Rounded<D2> pa =
+                rounded_point(en, D2(unit.line.L0[a]), D2(unit.line.v[a]), D2(unit.pos_factor));
+            proven = proven & pa.proven;
+            p[a] = pa.value;
+        }
+    if ((keep[0] && !lane(proven, 0)) || (keep[1] && !lane(proven, 1))) return false;
+    for (int i = 0; i < 2; ++i) {
+        if (!keep[i]) continue;
+        Hit& h = r.hits[r.count++];
+        h.t = lane(rt.value, i);
+        h.kind = HitKind::cross;
+        h.part = Part::lateral;
+        h.p = {lane(p[0], i), lane(p[1], i), lane(p[2], i)};
+    }
+    return true;
+}
+
 template <class Target>
 bool surface_newton_rung(const QuadricNewtonForm& f, const Unit& unit, const Line& caller,
                          Query query, Result& r, const ExtentEnds* ends) {
@@ -1315,9 +1362,24 @@ bool surface_newton_rung(const QuadricNewtonForm& f, const Unit& unit, const Lin
     if (!est.real) // no root, where g keeps its sign at its vertex
         return !linear && std::isfinite(est.vertex) &&
                newton::no_root_proven(A, est.vertex, f.local_at(est.vertex));
+    Local<double> at[2];
+    bool evaluated[2] = {false, false};
+    // Every hit asked: both roots at once. The nearest or any: the smaller first, alone, which
+    // usually answers.
+    if (est.count == 2 && query.need == Need::all) {
+        D2 c(est.root[0], est.root[1]);
+        Local<D2> both = f.local_at(c);
+        if constexpr (std::is_same_v<Target, Binary64>)
+            if (both_roots_in_lanes(both, A, c, unit, caller, query, r)) return true;
+        for (int i = 0; i < 2; ++i) {
+            at[i] = {lane(both.G, i), lane(both.e_G, i), lane(both.Gp, i), lane(both.e_Gp, i)};
+            evaluated[i] = true;
+        }
+    }
     for (int i = 0; i < est.count; ++i) {
         double c = est.root[i];
-        Local<double> L = f.local_at(c);
+        if (!evaluated[i]) at[i] = f.local_at(c);
+        const Local<double>& L = at[i];
         std::optional<Enclosure<double>> en = root_near(L, A, c);
         if (en && !(en->e <= 0x1p-88 * std::fabs(en->c)))
             if (std::optional<Enclosure<double>> tight = root_near_tight(L, A, c))

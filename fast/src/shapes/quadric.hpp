@@ -51,6 +51,7 @@
 #include "forms/roots.hpp"
 #include "forms/traits.hpp"
 #include "numeric/compensated_sum.hpp"
+#include "numeric/two_lanes.hpp"
 #include "sense/sense_terms.hpp"
 
 #include <algorithm>
@@ -359,52 +360,56 @@ class QuadricNewtonForm {
                 (8 * u * size + quadratic_size_ * 0x1p-1072) * F::cover(32) + F::underflow_floor};
     }
 
-    // g(c + x) = A x^2 + G' x + G at the point P = L0 + c v.
-    newton::Local<double> local_at(double c) const {
+    // g(c + x) = A x^2 + G' x + G at the point P = L0 + c v; T is double, or D2 for two points
+    // at once (the two roots' estimates: numeric/two_lanes.hpp), each lane the bits of double's.
+    template <class T = double>
+    LINEQUAD_INLINE newton::Local<T> local_at(T c) const {
+        using std::fabs;
         // P = s + w + delta exactly: s + (the low parts) is L0 + c v exactly (two_prod, two_sum),
         // w their sum rounded once: |delta_k| <= u |w_k|, or 2^-1074 where c v_k underflows.
-        double s[3], w[3];
+        T s[3], w[3];
         for (int k = 0; k < 3; ++k) {
-            TwoTerm cv = two_prod(c, v_[k]), sum = two_sum(L0_[k], cv.hi);
+            TwoTermT<T> cv = two_prod(c, T(v_[k])), sum = two_sum(T(L0_[k]), cv.hi);
             s[k] = sum.hi, w[k] = sum.lo + cv.lo;
         }
         // f(s) in double-double: each q_i s_a s_b as q_i times the exact pair s_a s_b.
-        CompensatedSum f;
+        CompensatedSumT<T> f;
         constexpr int a_of[6] = {0, 1, 2, 0, 1, 2}, b_of[6] = {0, 1, 2, 1, 2, 0};
         for (int i = 0; i < 6; ++i) {
-            TwoTerm p = two_prod(s[a_of[i]], s[b_of[i]]);
-            f.add_product(q_[i], p.hi);
-            f.add_small(q_[i] * p.lo);
+            TwoTermT<T> p = two_prod(s[a_of[i]], s[b_of[i]]);
+            f.add_product(T(q_[i]), p.hi);
+            f.add_small(T(q_[i]) * p.lo);
         }
         for (int k = 0; k < 3; ++k)
-            f.add_product(q_[6 + k], s[k]);
-        f.add_exact(q_[9]);
-        BoundedDD fs = f.unnormalized();
+            f.add_product(T(q_[6 + k]), s[k]);
+        f.add_exact(T(q_[9]));
+        BoundedDDT<T> fs = f.unnormalized();
         // grad f(s) in double, each component four terms (gamma_4: 5u) no larger than
         // 2 quadratic_size max|s| + linear_size together.
-        Vec3 at{s[0], s[1], s[2]}, g = gradient(at);
-        double e_g = 5 * u * (2 * quadratic_size_ * max_abs(at) + linear_size_) * F::cover(8) +
-                     F::underflow_floor;
+        Vec3T<T> at{s[0], s[1], s[2]}, g = gradient(at);
+        T s_max = maximum(maximum(fabs(s[0]), fabs(s[1])), fabs(s[2]));
+        T e_g = T(5 * u) * (T(2 * quadratic_size_) * s_max + T(linear_size_)) * T(F::cover(8)) +
+                T(F::underflow_floor);
         // G = f(s) + grad f(s) . w + [grad f(s) . delta + f2(w + delta)], the bracket bounded
         // with W = sum |w_k| + slack >= max |w_k + delta_k|.
-        double gw = g.x * w[0] + g.y * w[1] + g.z * w[2];
-        double aw = std::fabs(w[0]) + std::fabs(w[1]) + std::fabs(w[2]);
-        double gw_size = std::fabs(g.x * w[0]) + std::fabs(g.y * w[1]) + std::fabs(g.z * w[2]);
-        double g_size = std::fabs(g.x) + std::fabs(g.y) + std::fabs(g.z) + 3 * e_g;
-        double W = aw * (1 + 4 * u) + F::subnormal_slack;
-        double lo = fs.lo + gw, G = fs.hi + lo;
+        T gw = g.x * w[0] + g.y * w[1] + g.z * w[2];
+        T aw = fabs(w[0]) + fabs(w[1]) + fabs(w[2]);
+        T gw_size = fabs(g.x * w[0]) + fabs(g.y * w[1]) + fabs(g.z * w[2]);
+        T g_size = fabs(g.x) + fabs(g.y) + fabs(g.z) + T(3.0) * e_g;
+        T W = aw * T(1 + 4 * u) + T(F::subnormal_slack);
+        T lo = fs.lo + gw, G = fs.hi + lo;
         // An s_a s_b below the normal range is 2^-1074 off in its pair, times q_i.
-        double e_G = (fs.e + e_g * aw + 6 * u * gw_size + g_size * F::subnormal_slack +
-                      quadratic_size_ * (W * W + 0x1p-1070) + u * (std::fabs(lo) + std::fabs(G))) *
-                         F::cover(32) +
-                     2 * F::underflow_floor;
+        T e_G = (fs.e + e_g * aw + T(6 * u) * gw_size + g_size * T(F::subnormal_slack) +
+                 T(quadratic_size_) * (W * W + T(0x1p-1070)) + T(u) * (fabs(lo) + fabs(G))) *
+                    T(F::cover(32)) +
+                T(2 * F::underflow_floor);
         // G' = grad f(P) . v = grad f(s) . v + d^T H v (d = w + delta, H the Hessian, whose
         // entries' magnitudes sum to 2 quadratic_size).
-        double Gp = g.x * v_.x + g.y * v_.y + g.z * v_.z;
-        double gv_size = std::fabs(g.x * v_.x) + std::fabs(g.y * v_.y) + std::fabs(g.z * v_.z);
-        double e_Gp =
-            (e_g * v_sum_ + 4 * u * gv_size + 2 * quadratic_size_ * W * v_max_) * F::cover(32) +
-            F::underflow_floor;
+        T Gp = g.x * T(v_.x) + g.y * T(v_.y) + g.z * T(v_.z);
+        T gv_size = fabs(g.x * T(v_.x)) + fabs(g.y * T(v_.y)) + fabs(g.z * T(v_.z));
+        T e_Gp = (e_g * T(v_sum_) + T(4 * u) * gv_size + T(2 * quadratic_size_) * W * T(v_max_)) *
+                     T(F::cover(32)) +
+                 T(F::underflow_floor);
         return {G, e_G, Gp, e_Gp};
     }
 
@@ -436,11 +441,13 @@ class QuadricNewtonForm {
         v_sum_ = std::fabs(v_.x) + std::fabs(v_.y) + std::fabs(v_.z);
         v_max_ = max_abs(v_);
     }
-    Vec3 gradient(const Vec3& s) const {
+    template <class T>
+    Vec3T<T> gradient(const Vec3T<T>& s) const {
         const QuadricCoefficients<double>& q = q_;
-        return {2 * q[0] * s.x + q[3] * s.y + q[5] * s.z + q[6],
-                2 * q[1] * s.y + q[3] * s.x + q[4] * s.z + q[7],
-                2 * q[2] * s.z + q[4] * s.y + q[5] * s.x + q[8]};
+        auto c = [&](int i) { return T(q[i]); };
+        return {T(2.0) * c(0) * s.x + c(3) * s.y + c(5) * s.z + c(6),
+                T(2.0) * c(1) * s.y + c(3) * s.x + c(4) * s.z + c(7),
+                T(2.0) * c(2) * s.z + c(4) * s.y + c(5) * s.x + c(8)};
     }
     double value(const Vec3& p) const {
         const QuadricCoefficients<double>& q = q_;
