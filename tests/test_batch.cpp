@@ -258,13 +258,19 @@ template <class S>
 bool rung_proves(const Prepared<S>& p, const Line& l, Query q) {
     using Traits = detail::ShapeTraits<S>;
     auto src = detail::source(p);
-    int orientation = src.validity().orientation;
     detail::Unit unit{1, 1, l};
     Result r;
-    if (q.need != Need::any)
-        return detail::newton_rung<detail::Binary64>(Traits::line_form(src, l.L0, l.v, orientation),
-                                                     unit, l, q, r);
-    return detail::hit_test_rung(Traits::quick_line_form(src, l.L0, l.v, orientation), unit, r);
+    if constexpr (detail::has_newton_form<S>) { // a hit test is the same rung, without points
+        std::optional form = Traits::newton_form(src.shape, l);
+        if (q.need == Need::any) q.points = false;
+        return form && detail::surface_newton_rung<detail::Binary64>(*form, unit, l, q, r, nullptr);
+    } else {
+        int orientation = src.validity().orientation;
+        if (q.need != Need::any)
+            return detail::newton_rung<detail::Binary64>(
+                Traits::line_form(src, l.L0, l.v, orientation), unit, l, q, r);
+        return detail::hit_test_rung(Traits::quick_line_form(src, l.L0, l.v, orientation), unit, r);
+    }
 }
 
 // Every family's cases in blocks of N lines against the block's first shape: each lane is
@@ -291,7 +297,7 @@ std::map<int, std::pair<long, long>> lanes_against_scalar_rung() {
                     std::visit(
                         [&](const auto& shape) {
                             using S = std::decay_t<decltype(shape)>;
-                            if constexpr (detail::line_form_in_lanes<S>) {
+                            if constexpr (detail::correct_in_lanes<S>) {
                                 Prepared<S> p = prepare(shape);
                                 if (!p.ok()) return;
                                 for (Query q : {Query{}, Query{Need::nearest, false},
@@ -330,9 +336,8 @@ TEST_CASE("batch: correct's lanes prove exactly the lines the scalar first rung 
     if (batch_lanes() >= Lanes::avx512) runs.push_back(lanes_against_scalar_rung<8>());
 #endif
     for (const auto& by_shape : runs) {
-        // Every quadric the lanes take (the capsule, made of patches, is the scalar solver's;
-        // the plane and the general quadric have no Newton form).
-        CHECK(by_shape.size() == std::size_t(shape_kinds - 3));
+        // Every shape but the capsule (made of patches: the scalar solver's).
+        CHECK(by_shape.size() == std::size_t(shape_kinds - 1));
         for (auto [shape_kind, counts] : by_shape) {
             auto [lanes, proven] = counts;
             INFO("shape " << shape_kind << ": " << proven << " of " << lanes << " lanes proven");

@@ -371,14 +371,6 @@ inline constexpr bool
     has_exact_axial<S, std::void_t<decltype(ShapeTraits<S>::template exact_axial<BigFloat>(
                            std::declval<const S&>(), std::declval<const Line&>(), 0))>> = true;
 
-// Whether a shape gives the Newton rung its local quadratic at any point (newton_form: a
-// quadric's), in place of a line form.
-template <class S, class = void>
-inline constexpr bool has_newton_form = false;
-template <class S>
-inline constexpr bool
-    has_newton_form<S, std::void_t<decltype(ShapeTraits<S>::newton_form(
-                           std::declval<const S&>(), std::declval<const Line&>()))>> = true;
 
 // The scene scaled to unit size (unit_scale): the double-double rung's, and the Newton rung's
 // where the scene as given is not of moderate size.

@@ -1356,7 +1356,7 @@ template <class Target>
 bool surface_newton_rung(const QuadricNewtonForm& f, const Unit& unit, const Line& caller,
                          Query query, Result& r, const ExtentEnds* ends) {
     Leading<double> A = f.leading();
-    bool linear = A.A == 0 && A.e == 0; // no quadratic part: one root
+    bool linear = f.linear(); // no quadratic part: one root, and A = 0 exactly
     if (!linear && !(std::fabs(A.A) > A.e)) return false;
     QuadricNewtonForm::Estimates est = f.estimates(A);
     if (!est.real) // no root, where g keeps its sign at its vertex

@@ -150,7 +150,9 @@ bool newton_rung(const LineForm& f, const Unit& u, const Line& caller, Query que
 // The same proof for a surface without extent, from its own local quadratic at any point (a
 // quadric's: shapes/quadric.hpp) rather than a line form; u's factors 1 (the scene as given).
 // False where a bound leaves anything open (a tangency, a root at the range's end).
-class QuadricNewtonForm;
+template <class R>
+class QuadricNewtonFormT;
+using QuadricNewtonForm = QuadricNewtonFormT<double>;
 template <class Target>
 bool surface_newton_rung(const QuadricNewtonForm& f, const Unit& u, const Line& caller, Query query,
                          Result& r, const ExtentEnds* ends);

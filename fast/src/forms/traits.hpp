@@ -372,6 +372,19 @@ auto with_patch(const S& shape, Part part, F&& f) {
 template <class S>
 inline constexpr bool line_form_in_lanes = ShapeTraits<S>::has_line_form;
 
+// Whether a shape gives the Newton rung its local quadratic at any point (newton_form: a
+// quadric's), in place of a line form.
+template <class S, class = void>
+inline constexpr bool has_newton_form = false;
+template <class S>
+inline constexpr bool
+    has_newton_form<S, std::void_t<decltype(ShapeTraits<S>::newton_form(
+                           std::declval<const S&>(), std::declval<const Line&>()))>> = true;
+// Whether the batch correct solver's lanes take the shape (simd/correct_lanes.hpp): a line form
+// or a newton form (LINEQUAD_FOR_EACH_CORRECT_LANES_SHAPE).
+template <class S>
+inline constexpr bool correct_in_lanes = line_form_in_lanes<S> || has_newton_form<S>;
+
 // Whether discs close the shape's ends (the Newton rung's LineFormT::discs).
 template <class S>
 bool has_discs(const S& s) {

@@ -25,6 +25,10 @@
 // The shapes whose quadratic has the Newton rung's form in the batch lanes (line_form_in_lanes).
 #define LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X)                                                       \
     X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid)
+// The shapes the correct solver's batch lanes take: those above, and the surfaces with their own
+// local quadratic (ShapeTraits::newton_form).
+#define LINEQUAD_FOR_EACH_CORRECT_LANES_SHAPE(X)                                                   \
+    LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X) X(Plane) X(Quadric)
 
 namespace linequad::detail {
 // Whether the stable batch kernels take the shape: the one-quadric shapes above. (A plane has no

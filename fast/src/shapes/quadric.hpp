@@ -334,35 +334,54 @@ inline exact_form::LineQuadratic<BoundedDD> quadric_filter(const QuadricCoeffici
 // roundings of nonnegative terms (cover(32)). Products that underflow err by 2^-1074 absolute:
 // an absolute floor, times a coefficient where a coefficient multiplies them. Overflow makes a
 // value or a bound infinite or NaN, which proves nothing.
-class QuadricNewtonForm {
+template <class R>
+class QuadricNewtonFormT {
     using F = Binary64;
     static constexpr double u = F::u;
+    using Mask = MaskOf<R>;
 
   public:
-    // None for `coincident`: g is then f(P) - f(L0), which this form does not carry.
-    static std::optional<QuadricNewtonForm> of(const QuadricCoefficients<double>& q,
-                                               bool coincident, const Line& l) {
-        if (coincident) return std::nullopt;
-        return QuadricNewtonForm(q, l);
+    // The form of the line (L0, v), R = double, or of a lane of lines (R a lane type: the batch
+    // correct solver's, simd/correct_lanes.hpp); the shape's coefficients are doubles.
+    QuadricNewtonFormT(const QuadricCoefficients<double>& q, const Vec3T<R>& L0, const Vec3T<R>& v)
+        : q_(q), L0_(L0), v_(v) {
+        for (int i = 0; i < 6; ++i)
+            quadratic_size_ += std::fabs(q[i]);
+        quadratic_size_ *= F::cover(8);
+        linear_size_ = std::fabs(q[6]) + std::fabs(q[7]) + std::fabs(q[8]);
+        using std::fabs;
+        v_sum_ = fabs(v_.x) + fabs(v_.y) + fabs(v_.z);
+        v_max_ = maximum(maximum(fabs(v_.x), fabs(v_.y)), fabs(v_.z));
     }
+    // None for `coincident`: g is then f(P) - f(L0), which this form does not carry.
+    static std::optional<QuadricNewtonFormT> of(const QuadricCoefficients<double>& q,
+                                                bool coincident, const Line& l) {
+        if (coincident) return std::nullopt;
+        return QuadricNewtonFormT(q, l.L0, l.v);
+    }
+
+    // Whether f has no quadratic part (a plane): g is then linear, and A exactly 0.
+    bool linear() const { return quadratic_size_ == 0; }
 
     // A = f2(v): six rounded products q_i (v_a v_b) and five sums (8u covers gamma_7). Exactly 0,
     // with no bound, where f has no quadratic part (a plane): g is then linear.
-    newton::Leading<double> leading() const {
-        if (quadratic_size_ == 0) return {0, 0};
-        const Vec3& v = v_;
-        double t[6] = {q_[0] * (v.x * v.x), q_[1] * (v.y * v.y), q_[2] * (v.z * v.z),
-                       q_[3] * (v.x * v.y), q_[4] * (v.y * v.z), q_[5] * (v.z * v.x)};
-        double A = 0, size = 0;
-        for (double x : t)
-            A += x, size += std::fabs(x);
-        return {A,
-                (8 * u * size + quadratic_size_ * 0x1p-1072) * F::cover(32) + F::underflow_floor};
+    newton::Leading<R> leading() const {
+        using std::fabs;
+        if (linear()) return {R(0.0), R(0.0)};
+        const Vec3T<R>& v = v_;
+        auto q = [&](int i) { return coefficient(i); };
+        R t[6] = {q(0) * (v.x * v.x), q(1) * (v.y * v.y), q(2) * (v.z * v.z),
+                  q(3) * (v.x * v.y), q(4) * (v.y * v.z), q(5) * (v.z * v.x)};
+        R A(0.0), size(0.0);
+        for (R x : t)
+            A = A + x, size = size + fabs(x);
+        return {A, (R(8 * u) * size + R(quadratic_size_ * 0x1p-1072)) * R(F::cover(32)) +
+                       R(F::underflow_floor)};
     }
 
-    // g(c + x) = A x^2 + G' x + G at the point P = L0 + c v; T is double, or D2 for two points
-    // at once (the two roots' estimates: numeric/two_lanes.hpp), each lane the bits of double's.
-    template <class T = double>
+    // g(c + x) = A x^2 + G' x + G at the point P = L0 + c v; T is R, or D2 for two points of one
+    // line at once (the two roots' estimates: numeric/two_lanes.hpp), each lane the bits of R's.
+    template <class T = R>
     LINEQUAD_INLINE newton::Local<T> local_at(T c) const {
         using std::fabs;
         // P = s + w + delta exactly: s + (the low parts) is L0 + c v exactly (two_prod, two_sum),
@@ -405,42 +424,45 @@ class QuadricNewtonForm {
                 T(2 * F::underflow_floor);
         // G' = grad f(P) . v = grad f(s) . v + d^T H v (d = w + delta, H the Hessian, whose
         // entries' magnitudes sum to 2 quadratic_size).
-        T Gp = g.x * T(v_.x) + g.y * T(v_.y) + g.z * T(v_.z);
-        T gv_size = fabs(g.x * T(v_.x)) + fabs(g.y * T(v_.y)) + fabs(g.z * T(v_.z));
+        Vec3T<T> v{T(v_.x), T(v_.y), T(v_.z)};
+        T Gp = g.x * v.x + g.y * v.y + g.z * v.z;
+        T gv_size = fabs(g.x * v.x) + fabs(g.y * v.y) + fabs(g.z * v.z);
         T e_Gp = (e_g * T(v_sum_) + T(4 * u) * gv_size + T(2 * quadratic_size_) * W * T(v_max_)) *
                      T(F::cover(32)) +
                  T(F::underflow_floor);
         return {G, e_G, Gp, e_Gp};
     }
 
-    // The roots' estimates in double from g's coefficients at L0 (f(L0) and grad f(L0) . v, each
+    // The roots' estimates in R from g's coefficients at L0 (f(L0) and grad f(L0) . v, each
     // rounded as the seed's), smaller first: the stable pair where the discriminant is positive
-    // (`real`), one where g is linear; else the vertex, where the rung proves there is none.
+    // (`real`), one where g is linear (`real` where its slope is not 0); else the vertex, where
+    // the rung proves there is none. Every operation in every lane, for lanes (R's `real` a mask).
     struct Estimates {
-        bool real;
+        Mask real;
         int count;
-        double root[2], vertex;
+        R root[2], vertex;
     };
-    Estimates estimates(const newton::Leading<double>& A) const {
-        double b = dot(gradient(L0_), v_), c = value(L0_);
-        if (A.A == 0) return {b != 0, 1, {-c / b, 0}, 0};
-        double D = b * b - 4 * A.A * c;
-        if (!(D > 0)) return {false, 0, {0, 0}, -b / (2 * A.A)};
-        double q = -0.5 * (b + std::copysign(std::sqrt(D), b)), r0 = q / A.A, r1 = c / q;
-        if (r1 < r0) std::swap(r0, r1);
-        return {true, 2, {r0, r1}, 0};
+    Estimates estimates(const newton::Leading<R>& A) const {
+        using std::copysign;
+        using std::sqrt;
+        R b = dot(gradient(L0_), v_), c = value(L0_), zero(0.0);
+        if (linear()) return {b != zero, 1, {-c / b, zero}, zero};
+        R D = b * b - R(4.0) * A.A * c;
+        R vertex = -b / (R(2.0) * A.A);
+        if constexpr (std::is_same_v<R, double>) // one line: no root, no division by q
+            if (!(D > 0)) return {false, 0, {0, 0}, vertex};
+        R q = R(-0.5) * (b + copysign(sqrt(D), b)), r0 = q / A.A, r1 = c / q;
+        if constexpr (std::is_same_v<R, double>) {
+            if (r1 < r0) std::swap(r0, r1);
+            return {true, 2, {r0, r1}, vertex};
+        } else {
+            Mask swap = r1 < r0;
+            return {zero < D, 2, {select(swap, r1, r0), select(swap, r0, r1)}, vertex};
+        }
     }
 
   private:
-    QuadricNewtonForm(const QuadricCoefficients<double>& q, const Line& l)
-        : q_(q), L0_(l.L0), v_(l.v) {
-        for (int i = 0; i < 6; ++i)
-            quadratic_size_ += std::fabs(q[i]);
-        quadratic_size_ *= F::cover(8);
-        linear_size_ = std::fabs(q[6]) + std::fabs(q[7]) + std::fabs(q[8]);
-        v_sum_ = std::fabs(v_.x) + std::fabs(v_.y) + std::fabs(v_.z);
-        v_max_ = max_abs(v_);
-    }
+    R coefficient(int i) const { return R(q_[i]); }
     template <class T>
     Vec3T<T> gradient(const Vec3T<T>& s) const {
         const QuadricCoefficients<double>& q = q_;
@@ -449,17 +471,19 @@ class QuadricNewtonForm {
                 T(2.0) * c(1) * s.y + c(3) * s.x + c(4) * s.z + c(7),
                 T(2.0) * c(2) * s.z + c(4) * s.y + c(5) * s.x + c(8)};
     }
-    double value(const Vec3& p) const {
-        const QuadricCoefficients<double>& q = q_;
-        return q[0] * p.x * p.x + q[1] * p.y * p.y + q[2] * p.z * p.z + q[3] * p.x * p.y +
-               q[4] * p.y * p.z + q[5] * p.z * p.x + q[6] * p.x + q[7] * p.y + q[8] * p.z + q[9];
+    R value(const Vec3T<R>& p) const {
+        auto q = [&](int i) { return coefficient(i); };
+        return q(0) * p.x * p.x + q(1) * p.y * p.y + q(2) * p.z * p.z + q(3) * p.x * p.y +
+               q(4) * p.y * p.z + q(5) * p.z * p.x + q(6) * p.x + q(7) * p.y + q(8) * p.z + q(9);
     }
 
     QuadricCoefficients<double> q_;
-    Vec3 L0_, v_;
+    Vec3T<R> L0_, v_;
     // Sums of magnitudes, rounded up: |f2(d)| <= quadratic_size max|d_k|^2
-    double quadratic_size_ = 0, linear_size_ = 0, v_sum_ = 0, v_max_ = 0;
+    double quadratic_size_ = 0, linear_size_ = 0;
+    R v_sum_, v_max_;
 };
+using QuadricNewtonForm = QuadricNewtonFormT<double>;
 
 // A t^2 + 2 B t + C0 in NT, exactly, at the line's origin (or a point of it: LineThrough).
 template <class NT, class L>

@@ -160,8 +160,9 @@ void correct_batch(const Prepared<S>& shape, const LineArrays& lines, Query q, R
     std::size_t i = 0;
 #if defined(LINEQUAD_HAVE_AVX2_KERNELS)
     // The ladder's Newton rung as given (a hit test's quick rung) covers a valid shape with a
-    // line form (open, or closed by discs) and a valid range.
-    if constexpr (detail::line_form_in_lanes<S>) {
+    // line form (open, or closed by discs) or its own local quadratic (a plane, a quadric) and a
+    // valid range.
+    if constexpr (detail::correct_in_lanes<S>) {
         Line probe{{0, 0, 0}, {1, 0, 0}, lines.range};
         bool rung_applies = shape.ok() && detail::check_line(probe).ok();
         lanes = std::min(lanes, batch_lanes());

@@ -35,6 +35,6 @@ void correct_x4(const Prepared<S>& s, int orientation, const double* const soa[6
 #define LINEQUAD_INSTANTIATE_CORRECT(S)                                                            \
     template void correct_x4(const Prepared<S>&, int, const double* const[6], std::size_t,         \
                              Interval, Query, CorrectBlock<4>&);
-LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(LINEQUAD_INSTANTIATE_CORRECT)
+LINEQUAD_FOR_EACH_CORRECT_LANES_SHAPE(LINEQUAD_INSTANTIATE_CORRECT)
 
 } // namespace linequad::detail

@@ -377,6 +377,84 @@ void hit_test_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, c
                              v, range, out);
 }
 
+// A plane's or a quadric's Newton rung (surface_newton_rung, newton_rung.cpp) on a lane of
+// lines: the surface's own local quadratic (QuadricNewtonFormT in lanes) at each root's estimate,
+// the enclosures, the range and the roundings, every step as the scalar rung takes it. A lane
+// answers exactly where the scalar rung proves its line from its enclosures (a miss proven at the
+// vertex, or every root it needs proven, placed against the range and rounded); the rest go back
+// to the ladder, whose rung may still round a value from the exact form.
+template <class L>
+void surface_lanes(const QuadricCoefficients<double>& coefficients, Mask<L> usable,
+                   const Vec3T<L>& L0, const Vec3T<L>& v, Interval range, Query q,
+                   CorrectBlock<lane_count<L>>& out) {
+    if (q.need == Need::any) q.points = false; // a hit test computes no point (correct.hpp)
+    const L zero(0.0), one(1.0);
+    const Mask<L> none = zero < zero, all = zero <= zero;
+    QuadricNewtonFormT<L> f(coefficients, L0, v);
+    const bool linear = f.linear(); // one root, A = 0 exactly
+    Leading<L> A = f.leading();
+    if (!linear) usable = usable & (A.e < fabs(A.A));
+    auto est = f.estimates(A);
+    // Slot 0 at the smaller root's estimate, or at the vertex where there is no real pair: there
+    // no_root_proven() looks, as the scalar rung does.
+    L c[2] = {linear ? est.root[0] : select(est.real, est.root[0], est.vertex), est.root[1]};
+    Local<L> local[2];
+    local[0] = f.local_at(c[0]);
+    Mask<L> no_root = none;
+    if (!linear) {
+        local[1] = f.local_at(c[1]);
+        no_root = (!est.real) & no_root_proven(A, est.vertex, local[0]);
+    }
+    Mask<L> failed[2] = {all, all}, kept_root[2] = {none, none};
+    L t[2] = {zero, zero}, bound[2] = {zero, zero}, p[3][2] = {};
+    for (int j = 0; j < (linear ? 1 : 2); ++j) {
+        // The enclosure about x0, or where it is wider than 2^-88 of t the one about x0 phi(y)
+        // where that one is narrower, as the scalar rung chooses.
+        Enclosure<L> en = root_near(local[j], A, c[j]);
+        Enclosure<L> tight = root_near_tight(local[j], A, c[j]);
+        Mask<L> wide = !(en.e <= L(0x1p-88) * fabs(en.c));
+        Mask<L> narrower = en.proven & wide & tight.proven & (tight.e < en.e);
+        en.c = select(narrower, tight.c, en.c), en.x = select(narrower, tight.x, en.x);
+        en.e = select(narrower, tight.e, en.e);
+        Mask<L> which = linear ? all : j == 0 ? en.smaller : !en.smaller;
+        EnclosedT<L> tj = t_of(en);
+        Kept<L> k = Kept<L>().range(range, tj.t, tj.e_t);
+        Rounded<L> rt = rounded_t(en, one);
+        Mask<L> hit_proven = rt.proven;
+        t[j] = rt.value;
+        bound[j] = half_ulp(rt.value); // mark_certain's bound
+#pragma GCC unroll 3
+        for (int a = 0; a < 3; ++a) {
+            if (!q.points) {
+                p[a][j] = zero;
+                continue;
+            }
+            Rounded<L> pr = rounded_point(en, L0[a], v[a], one);
+            Mask<L> along = equal(v[a], zero); // L0_k + t v_k is L0_k: +0 for a zero
+            p[a][j] = select(along, L0[a] + zero, pr.value);
+            hit_proven = hit_proven & (along | pr.proven);
+        }
+        Mask<L> decided = k.inside | k.outside;
+        failed[j] = (!en.proven) | (!which) | (!decided) | (k.inside & (!hit_proven));
+        kept_root[j] = est.real & k.inside;
+    }
+    // The nearest hit stops at the first slot when it is kept: the second is then never looked
+    // at; a plane has no second.
+    Mask<L> stop = linear ? all : q.need == Need::all ? none : kept_root[0];
+    Mask<L> roots_proven = (!failed[0]) & (stop | (!failed[1]));
+    Mask<L> proven = usable & ((est.real & roots_proven) | no_root);
+    Mask<L> larger_first = !kept_root[0];
+    auto first = [&](const L(&x)[2]) { return select(larger_first, x[1], x[0]); };
+    store_rows(first(t), first(p[0]), first(p[1]), first(p[2]), out.tp[0]);
+    store_rows(t[1], p[0][1], p[1][1], p[2][1], out.tp[1]);
+    store(out.bound[0], first(bound));
+    store(out.bound[1], bound[1]);
+    out.closed = false;
+    out.proven = unsigned(bits(proven));
+    out.keep[0] = unsigned(bits(kept_root[0] | (kept_root[1] & !stop)));
+    out.keep[1] = unsigned(bits(kept_root[0] & kept_root[1] & !stop));
+}
+
 } // namespace newton
 
 // Lines [i, i + lanes) of the arrays (x, y, z, vx, vy, vz) against the prepared shape: the lanes
@@ -393,24 +471,30 @@ void correct_lanes(const Prepared<S>& shape, int orientation, const Real<L>* con
     auto moderate = [](L x) { return (x >= L(0x1p-64)) & (x <= L(0x1p+64)); };
     L extent = maximum(max_abs(L0), L(src.magnitude()));
     auto usable = usual_line(L0, v) & moderate(extent) & moderate(max_abs(v));
-    if (q.need == Need::any) { // the quick rung, on the quick line form
-        LineFormT<L> f = Traits::template quick_line_form<L>(src, L0, v, orientation);
-        return newton::with_sigma_z_of_lanes<fourth_term>(f.sigma_z, [&](auto sigma_z) {
+    if constexpr (has_newton_form<S>) { // a plane or a quadric: its own local quadratic
+        if (src.shape.coincident) usable = usable & (!usable); // the ladder's exact form
+        return newton::surface_lanes<L>(Traits::coefficients(src.shape), usable, L0, v, range, q,
+                                        out);
+    } else {
+        if (q.need == Need::any) { // the quick rung, on the quick line form
+            LineFormT<L> f = Traits::template quick_line_form<L>(src, L0, v, orientation);
+            return newton::with_sigma_z_of_lanes<fourth_term>(f.sigma_z, [&](auto sigma_z) {
+                constexpr int sz = decltype(sigma_z)::value;
+                if (f.discs == Discs::none)
+                    newton::hit_test_lanes<sz, false>(f, usable, L0, v, range, out);
+                else
+                    newton::hit_test_lanes<sz, true>(f, usable, L0, v, range, out);
+            });
+        }
+        LineFormT<L> f = Traits::template line_form<L>(src, L0, v, orientation);
+        newton::with_sigma_z_of_lanes<fourth_term>(f.sigma_z, [&](auto sigma_z) {
             constexpr int sz = decltype(sigma_z)::value;
-            if (f.discs == Discs::none)
-                newton::hit_test_lanes<sz, false>(f, usable, L0, v, range, out);
+            if (f.discs == Discs::convex)
+                newton::solve_lanes<sz, true>(f, usable, L0, v, range, q, out);
             else
-                newton::hit_test_lanes<sz, true>(f, usable, L0, v, range, out);
+                newton::solve_lanes<sz, false>(f, usable, L0, v, range, q, out);
         });
     }
-    LineFormT<L> f = Traits::template line_form<L>(src, L0, v, orientation);
-    newton::with_sigma_z_of_lanes<fourth_term>(f.sigma_z, [&](auto sigma_z) {
-        constexpr int sz = decltype(sigma_z)::value;
-        if (f.discs == Discs::convex)
-            newton::solve_lanes<sz, true>(f, usable, L0, v, range, q, out);
-        else
-            newton::solve_lanes<sz, false>(f, usable, L0, v, range, q, out);
-    });
 }
 
 } // namespace linequad::detail
