@@ -371,7 +371,6 @@ inline constexpr bool
     has_exact_axial<S, std::void_t<decltype(ShapeTraits<S>::template exact_axial<BigFloat>(
                            std::declval<const S&>(), std::declval<const Line&>(), 0))>> = true;
 
-
 // The scene scaled to unit size (unit_scale): the double-double rung's, and the Newton rung's
 // where the scene as given is not of moderate size.
 template <class S>
