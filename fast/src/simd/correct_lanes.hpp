@@ -120,6 +120,25 @@ LINEQUAD_INLINE CrossingLanes<L> plane_crossing_lanes(const DiscPlanesT<L>& p,
     return {{t.hi, t.lo, t.e, finite, finite}, finite};
 }
 
+// The block's two slots from the roots' values (t, point, bound of root 0 and root 1): the first
+// slot takes the smaller root where it is kept, else the larger; the second the larger where both
+// are kept and the lane's search does not `stop` at the first (the nearest hit).
+template <class L>
+LINEQUAD_INLINE void store_slots(const L (&t)[2], const L (&p)[3][2], const L (&bound)[2],
+                                 const Mask<L> (&kept_root)[2], Mask<L> stop, Mask<L> proven,
+                                 CorrectBlock<lane_count<L>>& out) {
+    Mask<L> larger_first = !kept_root[0];
+    auto first = [&](const L(&x)[2]) { return select(larger_first, x[1], x[0]); };
+    store_rows(first(t), first(p[0]), first(p[1]), first(p[2]), out.tp[0]);
+    store_rows(t[1], p[0][1], p[1][1], p[2][1], out.tp[1]);
+    store(out.bound[0], first(bound));
+    store(out.bound[1], bound[1]);
+    out.closed = false;
+    out.proven = unsigned(bits(proven));
+    out.keep[0] = unsigned(bits(kept_root[0] | (kept_root[1] & !stop)));
+    out.keep[1] = unsigned(bits(kept_root[0] & kept_root[1] & !stop));
+}
+
 // Both roots of one lane's line, as the scalar rung adds them (the smaller first), or the
 // proof that there is none. L0 and v: the lane's line as given.
 //
@@ -282,24 +301,14 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
     else if (f.discs == Discs::two_solids)
         answered = none;
     Mask<L> proven = usable & (answered | ((!est.real) & no_root));
-    // The first slot takes the smaller root where it is kept, else the larger.
-    Mask<L> larger_first = !kept_root[0];
-    auto first = [&](const L(&x)[2]) { return select(larger_first, x[1], x[0]); };
-    store_rows(first(t), first(p[0]), first(p[1]), first(p[2]), out.tp[0]);
-    store_rows(t[1], p[0][1], p[1][1], p[2][1], out.tp[1]);
-    store(out.bound[0], first(bound));
-    store(out.bound[1], bound[1]);
-    out.closed = false;
-    out.proven = unsigned(bits(proven));
-    out.keep[0] = unsigned(bits(kept_root[0] | (kept_root[1] & !stop)));
-    out.keep[1] = unsigned(bits(kept_root[0] & kept_root[1] & !stop));
+    store_slots(t, p, bound, kept_root, stop, proven, out);
     if constexpr (!convex) return;
     // Each slot's part.
     constexpr int N = lane_count<L>;
     out.closed = true;
     unsigned is_disc[2] = {unsigned(bits(disc[0])), unsigned(bits(disc[1]))};
     unsigned is_top[2] = {unsigned(bits(top[0])), unsigned(bits(top[1]))};
-    unsigned firsts = unsigned(bits(larger_first));
+    unsigned firsts = unsigned(bits(!kept_root[0])); // the larger root in the first slot
     for (int k = 0; k < N; ++k)
         for (int j = 0; j < 2; ++j) {
             int slot = j == 0 && ((firsts >> k) & 1) ? 1 : j; // as the rows were stored
@@ -443,16 +452,7 @@ void surface_lanes(const QuadricCoefficients<double>& coefficients, Mask<L> usab
     Mask<L> stop = linear ? all : q.need == Need::all ? none : kept_root[0];
     Mask<L> roots_proven = (!failed[0]) & (stop | (!failed[1]));
     Mask<L> proven = usable & ((est.real & roots_proven) | no_root);
-    Mask<L> larger_first = !kept_root[0];
-    auto first = [&](const L(&x)[2]) { return select(larger_first, x[1], x[0]); };
-    store_rows(first(t), first(p[0]), first(p[1]), first(p[2]), out.tp[0]);
-    store_rows(t[1], p[0][1], p[1][1], p[2][1], out.tp[1]);
-    store(out.bound[0], first(bound));
-    store(out.bound[1], bound[1]);
-    out.closed = false;
-    out.proven = unsigned(bits(proven));
-    out.keep[0] = unsigned(bits(kept_root[0] | (kept_root[1] & !stop)));
-    out.keep[1] = unsigned(bits(kept_root[0] & kept_root[1] & !stop));
+    store_slots(t, p, bound, kept_root, stop, proven, out);
 }
 
 } // namespace newton
