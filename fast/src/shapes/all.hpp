@@ -32,7 +32,8 @@
 
 namespace linequad::detail {
 // Whether the stable batch kernels take the shape: the one-quadric shapes above. (A plane has no
-// lane kernel: its g is linear, which the lanes hand back to the scalar solver.)
+// stable lane kernel: its g is linear, a branch the stable lanes hand back to the scalar solver;
+// the correct lanes take it.)
 template <class S>
 inline constexpr bool stable_in_lanes = false;
 #define LINEQUAD_STABLE_IN_LANES(S)                                                                \
