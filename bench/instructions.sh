@@ -100,7 +100,7 @@ if [ -z "$rows" ]; then
   rows="$rows batch-avx2:cylinder:all:points:prepared batchcorrect-avx2:cylinder:all:points:prepared"
   rows="$rows batchcorrect-avx2:cylinder:any:no_points:prepared"
   rows="$rows batch-avx2:quadric:all:points:prepared batchcorrect-avx2:quadric:all:points:prepared"
-  rows="$rows batchcorrect-avx2:plane:all:points:prepared"
+  rows="$rows batch-avx2:plane:all:points:prepared batchcorrect-avx2:plane:all:points:prepared"
 fi
 for row in $rows; do
   IFS=: read -r solver shape need points prepared <<<"$row"

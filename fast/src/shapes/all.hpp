@@ -19,9 +19,11 @@
     X(Cylinder)                                                                                    \
     X(EllipticCylinder)                                                                            \
     X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid) X(Capsule) X(Plane) X(Quadric)
-// The shapes that are one quadric (not made of patches: the batch kernels take them).
+// The shapes that are one quadric, the plane among them (not made of patches: the batch kernels
+// take them).
 #define LINEQUAD_FOR_EACH_QUADRIC_SHAPE(X)                                                         \
-    X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid) X(Quadric)
+    X(Cylinder)                                                                                    \
+    X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid) X(Plane) X(Quadric)
 // The shapes whose quadratic has the Newton rung's form in the batch lanes (line_form_in_lanes).
 #define LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X)                                                       \
     X(Cylinder) X(EllipticCylinder) X(EllipticCone) X(Frustum) X(Sphere) X(Ellipsoid)
@@ -31,9 +33,8 @@
     LINEQUAD_FOR_EACH_LINE_FORM_SHAPE(X) X(Plane) X(Quadric)
 
 namespace linequad::detail {
-// Whether the stable batch kernels take the shape: the one-quadric shapes above. (A plane has no
-// stable lane kernel: its g is linear, a branch the stable lanes hand back to the scalar solver;
-// the correct lanes take it.)
+// Whether the stable batch kernels take the shape: the one-quadric shapes above. (A plane's g is
+// linear: its double lanes take the one root; its float lanes go to the scalar solver.)
 template <class S>
 inline constexpr bool stable_in_lanes = false;
 #define LINEQUAD_STABLE_IN_LANES(S)                                                                \

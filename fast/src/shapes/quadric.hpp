@@ -142,8 +142,9 @@ std::optional<QuadricCoefficients<R>> quadric_in_frame(const QuadricCoefficients
 // quadric_in_frame's in the lanes of `ok`, the others the scalar solver's. *smallest: the
 // smallest nonzero |coefficient| in the frame.
 template <class L>
-QuadricCoefficients<L> quadric_in_frame_lanes(const QuadricCoefficients<double>& q, L to_unit,
-                                              MaskOf<L>& ok, L& smallest) {
+LINEQUAD_INLINE QuadricCoefficients<L> quadric_in_frame_lanes(const QuadricCoefficients<double>& q,
+                                                              L to_unit, MaskOf<L>& ok,
+                                                              L& smallest) {
     using R = Real<L>;
     const L lo(std::numeric_limits<R>::min()), hi(std::numeric_limits<R>::max());
     QuadricCoefficients<L> c;
@@ -210,28 +211,28 @@ struct QuadricStable {
     // A coefficient below the square root of tiny_decisive: its products with two coordinates
     // may underflow, and a zero of A or D be what is left of them.
     Mask zero_may_underflow() const {
-        return smallest < T(std::sqrt(double(Guards<T>::tiny_decisive)));
+        return smallest < T(Real<T>(std::sqrt(double(Guards<Real<T>>::tiny_decisive))));
     }
     Mask scalar_only() const { return Mask{}; } // false; in lanes, no lane
 
     // 2 f(w): C0 at w, unrounded.
-    ProductSum<T> twice_value(Vec3T<T> w) const {
+    LINEQUAD_INLINE ProductSum<T> twice_value(Vec3T<T> w) const {
         ProductSum<T> c;
         if (!coincident) value_products(q, w, c);
         return c;
     }
     // grad f(w) . v: B at w, unrounded.
-    ProductSum<T> slope(Vec3T<T> w) const {
+    LINEQUAD_INLINE ProductSum<T> slope(Vec3T<T> w) const {
         ProductSum<T> b;
         slope_products(q, w, v, b);
         return b;
     }
-    T C0_at_origin() const { return twice_value(L0).value(); }
+    LINEQUAD_INLINE T C0_at_origin() const { return twice_value(L0).value(); }
     // At the line's own origin: A, B and C0 kept to twice the precision, and D = B^2 - A C0
     // formed from their two parts, so that a far source's huge B^2 and A C0 cancel without losing D
     // (and exact inputs give an exact D: a tangency is found, which moving the origin to a
     // rounded point lost).
-    void discriminant() {
+    LINEQUAD_INLINE void discriminant() {
         tc = T(0);
         ProductSum<T> b = slope(L0), c = twice_value(L0);
         B = b.value(), C_moved = c.value();
