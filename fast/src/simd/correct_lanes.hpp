@@ -15,6 +15,7 @@
 #include "simd/lanes.hpp"
 
 #include <limits>
+#include <type_traits>
 
 namespace linequad::detail {
 
@@ -118,6 +119,36 @@ LINEQUAD_INLINE CrossingLanes<L> plane_crossing_lanes(const DiscPlanesT<L>& p,
     const L largest(std::numeric_limits<double>::max());
     Mask<L> finite = (fabs(t.hi) <= largest) & (fabs(t.e) <= largest);
     return {{t.hi, t.lo, t.e, finite, finite}, finite};
+}
+
+// Slot j's t (with mark_certain's bound) and point, rounded from the root's enclosure on the line
+// as given (scale 1); a coordinate along which the line does not move is L0's (+0 for a zero), and
+// `fixed(a, value, exact)`, unless it is nullptr, may set coordinate a and the lanes where it is
+// exact (a disc's plane). The mask of lanes where every rounding is proven.
+template <class L, class Fixed>
+LINEQUAD_INLINE Mask<L> round_slot(const Enclosure<L>& en, const Vec3T<L>& L0, const Vec3T<L>& v,
+                                   bool points, int j, L (&t)[2], L (&bound)[2], L (&p)[3][2],
+                                   Fixed fixed) {
+    const L zero(0.0), one(1.0);
+    Rounded<L> rt = rounded_t(en, one);
+    Mask<L> proven = rt.proven;
+    t[j] = rt.value;
+    bound[j] = half_ulp(rt.value);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; ++a) {
+        if (!points) {
+            p[a][j] = zero;
+            continue;
+        }
+        Rounded<L> pr = rounded_point(en, L0[a], v[a], one);
+        Mask<L> along = equal(v[a], zero); // L0_k + t v_k is L0_k: +0 for a zero
+        L value = select(along, L0[a] + zero, pr.value);
+        Mask<L> exact = along;
+        if constexpr (!std::is_null_pointer_v<Fixed>) fixed(a, value, exact);
+        proven = proven & (exact | pr.proven);
+        p[a][j] = value;
+    }
+    return proven;
 }
 
 // The block's two slots from the roots' values (t, point, bound of root 0 and root 1): the first
@@ -259,30 +290,18 @@ void solve_lanes(const LineFormT<L>& f, Mask<L> usable, const Vec3T<L>& L0, cons
             en = root_near(local[j], A, c[j]);
             k = kept(f, range, en);
         }
-        Rounded<L> rt = rounded_t(en, one);
-        Mask<L> hit_proven = rt.proven;
-        t[j] = rt.value;
-        bound[j] = half_ulp(rt.value); // mark_certain's bound
-#pragma GCC unroll 3
-        for (int a = 0; a < 3; ++a) {
-            if (!q.points) {
-                p[a][j] = zero;
-                continue;
-            }
-            L va = v[a], pa = L0[a];
-            Rounded<L> pr = rounded_point(en, pa, va, one);
-            Mask<L> along = equal(va, zero); // L0_k + t v_k is L0_k: +0 for a zero
-            L value = select(along, pa + zero, pr.value);
-            Mask<L> exact = along;
-            if constexpr (convex) {
+        Mask<L> hit_proven;
+        if constexpr (convex) {
+            auto on_disc = [&](int a, L& value, Mask<L>& exact) {
                 if (a == f.planes->axis) { // a disc's point: the plane's coordinate, +0
                     L plane = select(top[j], L(f.planes->hi_at), L(f.planes->lo_at)) + zero;
                     value = select(disc[j], plane, value);
                     exact = exact | disc[j];
                 }
-            }
-            hit_proven = hit_proven & (exact | pr.proven);
-            p[a][j] = value;
+            };
+            hit_proven = round_slot(en, L0, v, q.points, j, t, bound, p, on_disc);
+        } else {
+            hit_proven = round_slot(en, L0, v, q.points, j, t, bound, p, nullptr);
         }
         const Enclosure<L>& r = convex ? root[j] : en;   // root j
         Mask<L> which = j == 0 ? r.smaller : !r.smaller; // the root the rung expects
@@ -428,21 +447,7 @@ void surface_lanes(const QuadricCoefficients<double>& coefficients, Mask<L> usab
         Mask<L> which = linear ? all : j == 0 ? en.smaller : !en.smaller;
         EnclosedT<L> tj = t_of(en);
         Kept<L> k = Kept<L>().range(range, tj.t, tj.e_t);
-        Rounded<L> rt = rounded_t(en, one);
-        Mask<L> hit_proven = rt.proven;
-        t[j] = rt.value;
-        bound[j] = half_ulp(rt.value); // mark_certain's bound
-#pragma GCC unroll 3
-        for (int a = 0; a < 3; ++a) {
-            if (!q.points) {
-                p[a][j] = zero;
-                continue;
-            }
-            Rounded<L> pr = rounded_point(en, L0[a], v[a], one);
-            Mask<L> along = equal(v[a], zero); // L0_k + t v_k is L0_k: +0 for a zero
-            p[a][j] = select(along, L0[a] + zero, pr.value);
-            hit_proven = hit_proven & (along | pr.proven);
-        }
+        Mask<L> hit_proven = round_slot(en, L0, v, q.points, j, t, bound, p, nullptr);
         Mask<L> decided = k.inside | k.outside;
         failed[j] = (!en.proven) | (!which) | (!decided) | (k.inside & (!hit_proven));
         kept_root[j] = est.real & k.inside;
