@@ -119,7 +119,6 @@ TEST_CASE("two lanes (" D2_FORM "): a quadric's two local quadratics at once are
     auto same_local = [](const newton::Local<double>& a, const newton::Local<double>& b) {
         return same(a.G, b.G) && same(a.e_G, b.e_G) && same(a.Gp, b.Gp) && same(a.e_Gp, b.e_Gp);
     };
-    int compared = 0;
     for (int i = 0; i < 3000; ++i) {
         QuadricCoefficients<double> q;
         int k = scale(rng);
@@ -139,7 +138,5 @@ TEST_CASE("two lanes (" D2_FORM "): a quadric's two local quadratics at once are
         INFO("case " << i);
         CHECK(same_local(lane0, form->local_at(c0)));
         CHECK(same_local(lane1, form->local_at(c1)));
-        ++compared;
     }
-    CHECK(compared == 3000);
 }

@@ -202,12 +202,6 @@ inline M2 is_power_of_two(D2 x) {
 inline double maximum(double a, double b) {
     return a > b ? a : b;
 }
-inline bool lane(bool m, int) {
-    return m;
-}
-inline double lane(double x, int) {
-    return x;
-}
 inline double lane(D2 x, int k) {
     return x[k];
 }

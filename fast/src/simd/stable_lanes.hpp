@@ -139,18 +139,18 @@ template <class L, class S>
 void stable_lanes(const S& s, double shape_extent, const Real<L>* const soa[6], std::size_t i,
                   Interval range, Query q, LaneBlock<Real<L>, lane_count<L>>& out) {
     using R = Real<L>;
+    if constexpr (std::is_same_v<S, Plane> && !std::is_same_v<R, double>) {
+        out.generic = out.keep[0] = out.keep[1] = 0; // float lanes: every line the scalar solver's
+        return;
+    }
     LineLanes<L> ln = line_lanes<L>(soa, i, shape_extent);
     auto k = ShapeTraits<S>::template stable_core<L>(
         AsGiven<S>{s}, LanePrescale<L>{ln.scale.to_unit, ln.scale.dir_to_unit}, ln.L0, ln.v);
-    if constexpr (std::is_same_v<S, Plane>) { // g linear: its one root
-        auto generic =
-            ln.scale.ok & usual_line(ln.L0, ln.v) & !k.smaller_than(Guards<R>::min_relative_size);
-        if constexpr (std::is_same_v<R, double>) {
-            k.discriminant();
-            generic = generic & linear_generic(k, ln, shape_extent);
-        } else {
-            generic = generic & !generic; // float lanes: the scalar solver
-        }
+    if constexpr (std::is_same_v<S, Plane> && std::is_same_v<R, double>) { // g linear: one root
+        k.discriminant();
+        auto generic = ln.scale.ok & usual_line(ln.L0, ln.v) &
+                       !k.smaller_than(Guards<R>::min_relative_size) &
+                       linear_generic(k, ln, shape_extent);
         return finish_lanes<L, true>(k, generic, ln, k.extent(s), range, q, out);
     }
     L tiny(Guards<R>::tiny_decisive);
